@@ -1,0 +1,14 @@
+"""pool_env.physics: exact continuous-time, event-based pool physics."""
+
+from .config import Physics
+from .cue import strike
+from .engine import EVENT_KINDS
+from .motion import STATE_NAMES
+from .objects import BALL_MASS, BALL_RADIUS, SEED_MASS, SEED_RADIUS, Balls, Table, rack
+from .result import Event, Result
+from .simulate import SimulationError, simulate
+
+__all__ = [
+    "Balls", "Table", "Physics", "simulate", "strike", "rack", "Event", "Result", "SimulationError",
+    "EVENT_KINDS", "STATE_NAMES", "BALL_RADIUS", "BALL_MASS", "SEED_RADIUS", "SEED_MASS",
+]

@@ -1,0 +1,163 @@
+"""Ball-ball events: when two balls meet, and what each collision model does to them.
+
+Every model is a small function taking the two balls' state rows at contact (updated in
+place), the unit normal n from ball i to ball j, radii, masses and the coefficients; the
+engine picks one by its id (`BALL_BALL_MODELS` in config.py gives the names).
+"""
+
+import math
+
+from numba import njit
+
+from .motion import P_E_B, VX, VY, WX, WY, WZ, X, Y, trajectory
+from .roots import first_entry
+
+# Contacts approaching slower than this (m/s) are tangent touches, not collisions. It is far
+# below anything physical (the hard-case suite collides balls at 1e-6 m/s) and far above the
+# round-off in a relative velocity, so a resolved pair is never re-detected at once.
+MIN_APPROACH = 1e-12
+
+SEED, ELASTIC, FRICTIONAL = 0, 1, 2
+
+# Alciatore's fit of ball-ball friction against the sliding speed at the contact point,
+# mu(v) = a + b exp(-c v) with v in m/s (D. G. Alciatore, "Throw" technical proof TP A-14,
+# from Marlow's measurements).
+ALCIATORE_A, ALCIATORE_B, ALCIATORE_C = 9.951e-3, 0.108, 1.088
+
+
+@njit(cache=True)
+def collision_time(row_i, state_i, row_j, state_j, t, horizon, ri, rj, params):
+    """Earliest tau in [0, horizon] at which balls i and j touch while approaching (or inf).
+
+    |d0 + dv tau + da tau^2 / 2|^2 = (ri + rj)^2 is a quartic in tau when either ball
+    decelerates; roots.first_entry solves it without closed-form quartic formulas.
+    """
+    xi, yi, vxi, vyi, axi, ayi = trajectory(row_i, state_i, t, ri, params)
+    xj, yj, vxj, vyj, axj, ayj = trajectory(row_j, state_j, t, rj, params)
+    return distance_entry(xj - xi, yj - yi, vxj - vxi, vyj - vyi, axj - axi, ayj - ayi, ri + rj, horizon)
+
+
+@njit(cache=True)
+def distance_entry(dx, dy, dvx, dvy, dax, day, reach, horizon):
+    """First tau in [0, horizon] at which a point moving as d0 + dv tau + da tau^2/2 (relative
+    to a target) comes within `reach` of it while approaching; inf if never."""
+    hx, hy = 0.5 * dax, 0.5 * day
+    c4 = hx * hx + hy * hy
+    c3 = 2.0 * (hx * dvx + hy * dvy)
+    c2 = dvx * dvx + dvy * dvy + 2.0 * (hx * dx + hy * dy)
+    c1 = 2.0 * (dvx * dx + dvy * dy)
+    # (|d| - reach)(|d| + reach) keeps the gap's sign exact for touching balls.
+    dist = math.hypot(dx, dy)
+    c0 = (dist - reach) * (dist + reach)
+    # f' = 2 d.dv = -2 |d| (approach speed) at contact.
+    return first_entry(c0, c1, c2, c3, c4, horizon, 2.0 * reach * MIN_APPROACH)
+
+
+@njit(cache=True)
+def _normal_impulse(bi, bj, nx, ny, mi, mj, e):
+    """Apply the restitution impulse along n; returns its magnitude (0 if not approaching)."""
+    approach = (bi[VX] - bj[VX]) * nx + (bi[VY] - bj[VY]) * ny
+    if approach <= 0.0:
+        return 0.0
+    jn = (1.0 + e) * approach * mi * mj / (mi + mj)
+    bi[VX] -= jn / mi * nx
+    bi[VY] -= jn / mi * ny
+    bj[VX] += jn / mj * nx
+    bj[VY] += jn / mj * ny
+    return jn
+
+
+@njit(cache=True)
+def seed(bi, bj, nx, ny, ri, rj, mi, mj, params):
+    """The report's model (its eq. 3.4 and code listing 5): normal components exchanged by the
+    1-D elastic formula, then scaled by e; tangential components kept; no spin transfer, and
+    both balls leave rolling (the report's stated simplification)."""
+    e = params[P_E_B]
+    vi_n = bi[VX] * nx + bi[VY] * ny
+    vj_n = bj[VX] * nx + bj[VY] * ny
+    if vi_n - vj_n <= 0.0:
+        return
+    vi_n_after = e * (vi_n * (mi - mj) + 2.0 * mj * vj_n) / (mi + mj)
+    vj_n_after = e * (vj_n * (mj - mi) + 2.0 * mi * vi_n) / (mi + mj)
+    bi[VX] += (vi_n_after - vi_n) * nx
+    bi[VY] += (vi_n_after - vi_n) * ny
+    bj[VX] += (vj_n_after - vj_n) * nx
+    bj[VY] += (vj_n_after - vj_n) * ny
+    _roll(bi, ri)
+    _roll(bj, rj)
+
+
+@njit(cache=True)
+def _roll(b, r):
+    """Set the spin of a ball to rolling without slipping at its current velocity."""
+    b[WX] = -b[VY] / r
+    b[WY] = b[VX] / r
+    b[WZ] = 0.0
+
+
+@njit(cache=True)
+def elastic(bi, bj, nx, ny, ri, rj, mi, mj, params):
+    """Frictionless contact: restitution e_b along the line of centres, spins untouched."""
+    _normal_impulse(bi, bj, nx, ny, mi, mj, params[P_E_B])
+
+
+@njit(cache=True)
+def frictional(bi, bj, nx, ny, ri, rj, mi, mj, params):
+    """Restitution e_b along n plus Coulomb friction at the contact point with Alciatore's
+    speed-dependent coefficient: gives cut-induced throw and spin transfer.
+
+    The friction impulse P = (P_t, P_z) acts on ball i in the contact plane (t = z x n, and
+    z), -P on ball j. Per unit impulse the slip changes by k_t = 7/2 (1/mi + 1/mj) along t
+    (translation plus spin) and k_z = 5/2 (1/mi + 1/mj) along z (spin only: the cloth holds
+    the balls down). If the impulse that stops the slip is within mu * J_n the surfaces
+    stick; otherwise they slide with |P| = mu * J_n against the slip. Both branches dissipate
+    energy (see docs/physics.md).
+    """
+    jn = _normal_impulse(bi, bj, nx, ny, mi, mj, params[P_E_B])
+    if jn == 0.0:
+        return
+    tx, ty = -ny, nx
+    # Slip of i's surface over j's at the contact point (the normal impulse leaves it alone).
+    s_t = (bi[VX] - bj[VX]) * tx + (bi[VY] - bj[VY]) * ty + ri * bi[WZ] + rj * bj[WZ]
+    s_z = ri * (bi[WX] * ny - bi[WY] * nx) + rj * (bj[WX] * ny - bj[WY] * nx)
+    s = math.hypot(s_t, s_z)
+    if s == 0.0:
+        return
+    inv = 1.0 / mi + 1.0 / mj
+    k_t, k_z = 3.5 * inv, 2.5 * inv
+    mu = ALCIATORE_A + ALCIATORE_B * math.exp(-ALCIATORE_C * s)
+    p_t, p_z = -s_t / k_t, -s_z / k_z
+    if math.hypot(p_t, p_z) > mu * jn:
+        p_t, p_z = -mu * jn * s_t / s, -mu * jn * s_z / s
+    # Ball i: dv = P_t t / m, dw = R (P_t z - P_z t) / I; ball j gets the opposite impulse
+    # at -R n, which turns its spin the same way.
+    ii = 0.4 * mi * ri * ri
+    ij = 0.4 * mj * rj * rj
+    bi[VX] += p_t * tx / mi
+    bi[VY] += p_t * ty / mi
+    bj[VX] -= p_t * tx / mj
+    bj[VY] -= p_t * ty / mj
+    _spin_kick(bi, ri / ii, p_t, p_z, tx, ty)
+    _spin_kick(bj, rj / ij, p_t, p_z, tx, ty)
+
+
+@njit(cache=True)
+def _spin_kick(b, r_over_i, p_t, p_z, tx, ty):
+    """dw = (R / I) (P_t z - P_z t): the friction impulse's moment about the centre."""
+    b[WX] -= r_over_i * p_z * tx
+    b[WY] -= r_over_i * p_z * ty
+    b[WZ] += r_over_i * p_t
+
+
+@njit(cache=True)
+def resolve(model, bi, bj, ri, rj, mi, mj, params):
+    """Apply ball-ball model `model` to two touching balls (rows at the contact time)."""
+    dx, dy = bj[X] - bi[X], bj[Y] - bi[Y]
+    d = math.hypot(dx, dy)
+    nx, ny = dx / d, dy / d
+    if model == SEED:
+        seed(bi, bj, nx, ny, ri, rj, mi, mj, params)
+    elif model == ELASTIC:
+        elastic(bi, bj, nx, ny, ri, rj, mi, mj, params)
+    else:
+        frictional(bi, bj, nx, ny, ri, rj, mi, mj, params)

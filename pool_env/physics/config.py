@@ -1,0 +1,91 @@
+"""Physics configuration: model switches and cloth/ball-contact coefficients, with presets."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+# Model names accepted by the engine, in the order of their numeric ids (the id is
+# what the compiled engine dispatches on).
+BALL_BALL_MODELS = ("seed", "elastic", "frictional")
+CUSHION_MODELS = ("seed", "restitution", "han2005")
+
+# The seed report's rolling-resistance angle (table 3.1): the rolling ball decelerates
+# at 5/7 g theta (report eq. 2.11), so the equivalent rolling coefficient is 5/7 theta.
+SEED_THETA = 0.01
+
+
+@dataclasses.dataclass(frozen=True)
+class Physics:
+    """How balls move and collide. Frozen: derive variants with `dataclasses.replace`.
+
+    | field | meaning | unit |
+    | --- | --- | --- |
+    | `ball_ball` | ball-ball model: `seed`, `elastic` or `frictional` | name |
+    | `cushion` | ball-cushion model: `seed`, `restitution` or `han2005` | name |
+    | `mu_s` | sliding friction, ball on cloth | 1 |
+    | `mu_r` | rolling resistance: a rolling ball decelerates at `mu_r * g` | 1 |
+    | `mu_sp` | spinning friction: z-spin decays at `5 mu_sp g / (2 R)` | 1 |
+    | `e_b` | ball-ball coefficient of restitution | 1 |
+    | `e_c` | ball-cushion coefficient of restitution | 1 |
+    | `f_c` | ball-cushion friction (han2005) | 1 |
+    | `g` | gravitational acceleration | m/s^2 |
+    | `spin` | track z-spin (English) and the spinning state; off means z-spin is dropped | bool |
+    """
+
+    ball_ball: str = "frictional"
+    cushion: str = "han2005"
+    mu_s: float = 0.2
+    mu_r: float = 0.01
+    mu_sp: float = 0.01
+    e_b: float = 0.95
+    e_c: float = 0.85
+    f_c: float = 0.2
+    g: float = 9.81
+    spin: bool = True
+
+    def __post_init__(self):
+        if self.ball_ball not in BALL_BALL_MODELS:
+            raise ValueError(
+                f"unknown ball_ball model {self.ball_ball!r}; choose one of {', '.join(BALL_BALL_MODELS)}"
+            )
+        if self.cushion not in CUSHION_MODELS:
+            raise ValueError(f"unknown cushion model {self.cushion!r}; choose one of {', '.join(CUSHION_MODELS)}")
+        for name in ("mu_s", "mu_r", "mu_sp", "g"):
+            value = getattr(self, name)
+            if not (math.isfinite(value) and value > 0):
+                raise ValueError(f"Physics.{name} must be a finite number > 0, got {value!r}")
+        for name in ("e_b", "e_c"):
+            value = getattr(self, name)
+            if not (math.isfinite(value) and 0 <= value <= 1):
+                raise ValueError(f"Physics.{name} must be in [0, 1], got {value!r}")
+        if not (math.isfinite(self.f_c) and self.f_c >= 0):
+            raise ValueError(f"Physics.f_c must be a finite number >= 0, got {self.f_c!r}")
+
+    @classmethod
+    def seed(cls) -> Physics:
+        """The seed report's model, exactly: centre hits, no spin transfer, balls roll after
+        every collision, e_b = 0.97, e_c = 0.5, rolling deceleration 5/7 g theta with
+        theta = 0.01 rad. The report gives no sliding friction; mu_s = 0.2 is our choice."""
+        return cls(
+            ball_ball="seed", cushion="seed", mu_s=0.2, mu_r=5.0 / 7.0 * SEED_THETA,
+            mu_sp=0.01, e_b=0.97, e_c=0.5, f_c=0.0, g=9.81, spin=False,
+        )
+
+    @classmethod
+    def standard(cls) -> Physics:
+        """The realistic default: Alciatore's frictional ball-ball contact (throw and spin
+        transfer), Han (2005) cushion with height and friction, spin tracked, and common cloth
+        values (mu_s 0.2, mu_r 0.01; cf. the defaults of pooltool and Alciatore's
+        "Illustrated Principles of Pool and Billiards", appendix)."""
+        return cls()
+
+    def can_create_spin(self) -> bool:
+        """True when a collision model can give a ball z-spin it did not have."""
+        return self.ball_ball == "frictional" or self.cushion == "han2005"
+
+    def as_array(self):
+        """The coefficients in the order the compiled engine reads them (see motion.P_*)."""
+        import numpy as np
+
+        return np.array([self.mu_s, self.mu_r, self.mu_sp, self.g, self.e_b, self.e_c, self.f_c], dtype=np.float64)

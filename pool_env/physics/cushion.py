@@ -1,0 +1,139 @@
+"""Ball-cushion events: when a ball reaches a rail or a pocket jaw, and the cushion models.
+
+Rails are straight segments on the cushion nose line (a ball touches one when its centre is
+R away); jaw points are the rail ends at a pocket mouth (a ball touches one when its centre
+is R away from the point). Every model takes the ball's row at contact (updated in place)
+and the unit normal n pointing from the cushion into the table.
+"""
+
+import math
+
+from numba import njit
+
+from .ball_ball import MIN_APPROACH, distance_entry
+from .motion import P_E_C, P_F_C, VX, VY, WX, WY, WZ, trajectory
+from .roots import first_entry
+
+SEED, RESTITUTION, HAN2005 = 0, 1, 2
+
+# Rail rows in the table arrays: [x1, y1, x2, y2, nx, ny], n the unit normal into the table.
+
+
+@njit(cache=True)
+def rail_time(row, state, t, horizon, radius, params, rail):
+    """Earliest tau in [0, horizon] at which the ball meets `rail` moving into it (or inf).
+
+    The signed gap n.(p(tau) - p1) - R is a quadratic in tau; the contact counts only if the
+    ball's centre is then alongside the segment (beyond its ends the jaw points take over).
+    """
+    x, y, vx, vy, ax, ay = trajectory(row, state, t, radius, params)
+    nx, ny = rail[4], rail[5]
+    gap = nx * (x - rail[0]) + ny * (y - rail[1]) - radius
+    tau = first_entry(gap, nx * vx + ny * vy, 0.5 * (nx * ax + ny * ay), 0.0, 0.0, horizon, MIN_APPROACH)
+    if tau == math.inf:
+        return tau
+    px = x + vx * tau + 0.5 * ax * tau * tau - rail[0]
+    py = y + vy * tau + 0.5 * ay * tau * tau - rail[1]
+    dx, dy = rail[2] - rail[0], rail[3] - rail[1]
+    along = (px * dx + py * dy) / (dx * dx + dy * dy)
+    if along < 0.0 or along > 1.0:
+        return math.inf
+    return tau
+
+
+@njit(cache=True)
+def point_time(row, state, t, horizon, radius, params, px, py, reach):
+    """Earliest tau at which the ball's centre comes within `reach` of the fixed point (px, py)
+    while approaching: a jaw point (reach = R) or a pocket's capture circle."""
+    x, y, vx, vy, ax, ay = trajectory(row, state, t, radius, params)
+    return distance_entry(x - px, y - py, vx, vy, ax, ay, reach, horizon)
+
+
+@njit(cache=True)
+def seed(b, nx, ny, radius, params):
+    """The report's model (eq. 3.9 and code listing 6): mirror the velocity in the rail, then
+    scale the whole velocity by e_c; the ball leaves rolling."""
+    vn = b[VX] * nx + b[VY] * ny
+    if vn >= 0.0:
+        return
+    e = params[P_E_C]
+    b[VX] = e * (b[VX] - 2.0 * vn * nx)
+    b[VY] = e * (b[VY] - 2.0 * vn * ny)
+    b[WX] = -b[VY] / radius
+    b[WY] = b[VX] / radius
+    b[WZ] = 0.0
+
+
+@njit(cache=True)
+def restitution(b, nx, ny, radius, params):
+    """Normal component reversed and scaled by e_c, tangential component and spin kept."""
+    vn = b[VX] * nx + b[VY] * ny
+    if vn >= 0.0:
+        return
+    k = (1.0 + params[P_E_C]) * vn
+    b[VX] -= k * nx
+    b[VY] -= k * ny
+
+
+@njit(cache=True)
+def han2005(b, nx, ny, radius, params, height):
+    """Han (2005) cushion: the rail touches the ball above its equator, at height h, so the
+    impulse acts along a line tilted by theta = asin(h/R - 1); restitution e_c on the normal
+    part, Coulomb friction f_c (stick or slide) on the tangential slip at the contact point.
+    (H. Han, "Dynamics in carom and three cushion billiards", J. Mech. Sci. Tech. 19, 2005;
+    formulation as summarised by Mathavan et al. 2010 and pooltool's documentation.)
+
+    Frame: x' into the cushion (-n), y' along it (z x x'), z up. The contact point is at
+    R (cos th, 0, sin th) from the centre; the normal impulse P_n = (1+e) m vx' cos th, the
+    tangential effective inverse mass is 7/(2m). The cloth absorbs the vertical impulse.
+    """
+    ex, ey = -nx, -ny  # x' axis
+    fx, fy = -ey, ex  # y' = z x x'
+    vx = b[VX] * ex + b[VY] * ey
+    vy = b[VX] * fx + b[VY] * fy
+    wx = b[WX] * ex + b[WY] * ey
+    wy = b[WX] * fx + b[WY] * fy
+    wz = b[WZ]
+    sin_t = min(max(height / radius - 1.0, -1.0), 1.0)
+    cos_t = math.sqrt(1.0 - sin_t * sin_t)
+    approach = vx * cos_t
+    if approach <= 0.0:
+        return
+    e, f = params[P_E_C], params[P_F_C]
+    # Tangential slip of the contact point (its two components in the contact plane).
+    s1 = vx * sin_t + radius * wy
+    s2 = vy + radius * (wz * cos_t - wx * sin_t)
+    pn = (1.0 + e) * approach  # per unit mass
+    f1, f2 = -s1 / 3.5, -s2 / 3.5  # impulse per unit mass that stops the slip
+    s = math.hypot(s1, s2)
+    if s > 0.0 and math.hypot(f1, f2) > f * pn:
+        f1, f2 = -f * pn * s1 / s, -f * pn * s2 / s
+    px = -pn * cos_t + f1 * sin_t
+    py = f2
+    pz = -pn * sin_t - f1 * cos_t
+    k = 2.5 / radius  # R m / I per unit mass
+    vx += px
+    vy += py
+    wx += -k * sin_t * py
+    wy += k * (sin_t * px - cos_t * pz)
+    wz += k * cos_t * py
+    # Cushions push the ball out: with tiny e_c and a high rail the normal speed could stay
+    # inward (e_c < tan^2 theta); the rail then absorbs it rather than let the ball sink in.
+    if vx > 0.0:
+        vx = 0.0
+    b[VX] = vx * ex + vy * fx
+    b[VY] = vx * ey + vy * fy
+    b[WX] = wx * ex + wy * fx
+    b[WY] = wx * ey + wy * fy
+    b[WZ] = wz
+
+
+@njit(cache=True)
+def resolve(model, b, nx, ny, radius, params, height):
+    """Apply cushion model `model` to a ball touching a cushion with inward normal n."""
+    if model == SEED:
+        seed(b, nx, ny, radius, params)
+    elif model == RESTITUTION:
+        restitution(b, nx, ny, radius, params)
+    else:
+        han2005(b, nx, ny, radius, params, height)

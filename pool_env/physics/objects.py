@@ -1,0 +1,256 @@
+"""The things on the table: `Balls` (positions, velocities, spins) and `Table` (rails, pockets), and `rack`."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+# Regulation pool ball (WPA equipment specifications): 2.25 in diameter, 5.5-6 oz.
+BALL_RADIUS = 0.028575
+BALL_MASS = 0.170097
+# The seed report's ball (its table 3.1).
+SEED_RADIUS = 0.025
+SEED_MASS = 0.15
+
+# Balls may touch within this tolerance (m): a frozen rack computed in floating point sits a
+# few ulps either side of exact contact.
+CONTACT_TOLERANCE = 1e-9
+
+
+def _readonly(a):
+    a.setflags(write=False)
+    return a
+
+
+def _per_ball(value, n, name):
+    arr = np.asarray(value, dtype=np.float64)
+    if arr.ndim == 0:
+        if not (math.isfinite(float(arr)) and float(arr) > 0):
+            raise ValueError(f"ball {name} must be a finite number > 0, got {float(arr)!r}")
+        return float(arr), np.full(n, float(arr))
+    if arr.shape != (n,):
+        raise ValueError(f"ball {name} must be a number or an array of shape ({n},), got shape {arr.shape}")
+    bad = np.flatnonzero(~(np.isfinite(arr) & (arr > 0)))
+    if bad.size:
+        raise ValueError(f"ball {bad[0]} has {name} {arr[bad[0]]!r}; it must be finite and > 0")
+    return _readonly(arr.copy()), arr.copy()
+
+
+def _array(value, n, cols, name):
+    if value is None:
+        return np.zeros((n, cols))
+    arr = np.array(value, dtype=np.float64)
+    if arr.shape != (n, cols):
+        raise ValueError(f"{name} must have shape ({n}, {cols}), got {arr.shape}")
+    bad = np.argwhere(~np.isfinite(arr))
+    if bad.size:
+        i = bad[0, 0]
+        raise ValueError(f"ball {i} has a non-finite {name}: {arr[i].tolist()}")
+    return arr
+
+
+class Balls:
+    """A set of balls: ball 0 is the cue ball. SI units; arrays are read-only.
+
+    | attribute | shape | meaning |
+    | --- | --- | --- |
+    | `xy` | (N, 2) | centre positions (m), origin at a table corner |
+    | `v` | (N, 2) | velocities (m/s) |
+    | `w` | (N, 3) | angular velocities (rad/s); z up, a ball rolling along +x has w_y = v/R |
+    | `radius`, `mass` | float or (N,) | radius (m) and mass (kg) |
+    | `pocketed` | (N,) bool | off the table |
+    """
+
+    __slots__ = ("xy", "v", "w", "radius", "mass", "pocketed", "_radii", "_masses")
+
+    def __init__(self, xy, v=None, w=None, radius=BALL_RADIUS, mass=BALL_MASS, pocketed=None):
+        xy = np.array(xy, dtype=np.float64)
+        if xy.ndim != 2 or xy.shape[1] != 2 or xy.shape[0] == 0:
+            raise ValueError(f"xy must have shape (N, 2) with N >= 1, got {xy.shape}")
+        n = xy.shape[0]
+        xy = _array(xy, n, 2, "position")
+        v = _array(v, n, 2, "velocity")
+        w = _array(w, n, 3, "angular velocity")
+        self.radius, radii = _per_ball(radius, n, "radius")
+        self.mass, masses = _per_ball(mass, n, "mass")
+        if pocketed is None:
+            pocketed = np.zeros(n, dtype=bool)
+        pocketed = np.array(pocketed, dtype=bool)
+        if pocketed.shape != (n,):
+            raise ValueError(f"pocketed must have shape ({n},), got {pocketed.shape}")
+        _check_overlaps(xy, radii, pocketed)
+        self._set(xy, v, w, pocketed, radii, masses)
+
+    def _set(self, xy, v, w, pocketed, radii, masses):
+        self.xy, self.v, self.w = _readonly(xy), _readonly(v), _readonly(w)
+        self.pocketed = _readonly(pocketed)
+        self._radii, self._masses = radii, masses
+
+    @classmethod
+    def _trusted(cls, xy, v, w, pocketed, like):
+        """Balls from arrays the engine produced (already valid): no checks, no copies."""
+        out = cls.__new__(cls)
+        out.radius, out.mass = like.radius, like.mass
+        out._set(xy, v, w, pocketed, like._radii, like._masses)
+        return out
+
+    def __len__(self):
+        return self.xy.shape[0]
+
+    def __repr__(self):
+        moving = int(np.count_nonzero(np.any(self.v != 0, axis=1)))
+        return f"Balls(n={len(self)}, moving={moving}, pocketed={int(self.pocketed.sum())})"
+
+    @property
+    def radii(self) -> np.ndarray:
+        """Radius of every ball, shape (N,)."""
+        return self._radii
+
+    @property
+    def masses(self) -> np.ndarray:
+        """Mass of every ball, shape (N,)."""
+        return self._masses
+
+    def energy(self) -> float:
+        """Kinetic energy (translation and rotation) of the balls on the table (J)."""
+        on = ~self.pocketed
+        m, r = self._masses[on], self._radii[on]
+        lin = 0.5 * m * np.sum(self.v[on] ** 2, axis=1)
+        rot = 0.5 * 0.4 * m * r**2 * np.sum(self.w[on] ** 2, axis=1)
+        return float(np.sum(lin + rot))
+
+
+def _check_overlaps(xy, radii, pocketed):
+    on = np.flatnonzero(~pocketed)
+    if on.size < 2:
+        return
+    p = xy[on]
+    d = np.sqrt(np.sum((p[:, None, :] - p[None, :, :]) ** 2, axis=-1))
+    overlap = radii[on][:, None] + radii[on][None, :] - d
+    np.fill_diagonal(overlap, -np.inf)
+    a, b = np.unravel_index(np.argmax(overlap), overlap.shape)
+    if overlap[a, b] > CONTACT_TOLERANCE:
+        i, j = sorted((on[a], on[b]))
+        raise ValueError(f"balls {i} and {j} overlap by {overlap[a, b] * 1000:.3g} mm")
+
+
+class Table:
+    """A rectangular pool table: playing area `length` x `width` (m) inside the cushion noses.
+
+    `pockets` is a sequence of (x, y, mouth): a pocket centred at a corner or on a rail, with
+    the given mouth width (m, between the jaw points). Rails run between pockets; the rail
+    ends at a mouth are jaw points a ball can hit. A ball drops when its centre enters the
+    pocket's capture circle, which passes through the jaw points (radius mouth/2 on a rail;
+    mouth/sqrt(2) at a corner, where the jaws sit that far along each rail from the corner).
+    """
+
+    def __init__(self, length, width, pockets=(), cushion_height=0.0363):
+        self.length, self.width = float(length), float(width)
+        if not (math.isfinite(self.length) and math.isfinite(self.width) and self.length > 0 and self.width > 0):
+            raise ValueError(f"table size must be finite and > 0, got {length!r} x {width!r}")
+        self.cushion_height = float(cushion_height)
+        if not (math.isfinite(self.cushion_height) and self.cushion_height > 0):
+            raise ValueError(f"cushion_height must be finite and > 0, got {cushion_height!r}")
+        L, W = self.length, self.width
+        # Each side: start corner, direction along it, inward normal, length.
+        sides = [((0.0, 0.0), (1.0, 0.0), (0.0, 1.0), L), ((L, W), (-1.0, 0.0), (0.0, -1.0), L),
+                 ((0.0, W), (0.0, -1.0), (1.0, 0.0), W), ((L, 0.0), (0.0, 1.0), (-1.0, 0.0), W)]
+        cuts = [[] for _ in sides]
+        circles, jaws = [], []
+        for number, pocket in enumerate(pockets):
+            x, y, mouth = (float(c) for c in pocket)
+            if not (all(math.isfinite(c) for c in (x, y, mouth)) and mouth > 0):
+                raise ValueError(f"pocket {number} must be finite (x, y, mouth > 0), got {pocket!r}")
+            touching = []
+            for s, (start, along, _, span) in enumerate(sides):
+                rel = (x - start[0]) * along[0] + (y - start[1]) * along[1]
+                off = (x - start[0]) * along[1] - (y - start[1]) * along[0]
+                if abs(off) < 1e-12 and -1e-12 <= rel <= span + 1e-12:
+                    touching.append((s, rel))
+            if not touching:
+                raise ValueError(f"pocket {number} at ({x}, {y}) is not on a rail or corner of the table")
+            corner = len(touching) == 2
+            half = mouth / math.sqrt(2.0) if corner else mouth / 2.0
+            circles.append((x, y, half))
+            for s, rel in touching:
+                start, along, _, span = sides[s]
+                lo, hi = max(rel - half, 0.0), min(rel + half, span)
+                cuts[s].append((lo, hi, number))
+                for edge in (lo, hi):
+                    if 0.0 < edge < span:
+                        jaws.append((start[0] + edge * along[0], start[1] + edge * along[1]))
+        rails = []
+        for s, (start, along, normal, span) in enumerate(sides):
+            pos = 0.0
+            for lo, hi, number in sorted(cuts[s]):
+                if lo < pos - 1e-12:
+                    raise ValueError(f"pocket {number} overlaps another pocket's mouth")
+                if lo > pos:
+                    rails.append(_rail(start, along, normal, pos, lo))
+                pos = hi
+            if pos < span:
+                rails.append(_rail(start, along, normal, pos, span))
+        self.rails = _readonly(np.array(rails, dtype=np.float64).reshape(-1, 6))
+        self.jaws = _readonly(np.array(jaws, dtype=np.float64).reshape(-1, 2))
+        self.pockets = _readonly(np.array(circles, dtype=np.float64).reshape(-1, 3))
+
+    def __repr__(self):
+        return f"Table({self.length} x {self.width} m, {len(self.pockets)} pockets)"
+
+    @classmethod
+    def seed(cls) -> Table:
+        """The seed report's table: 2.24 x 1.12 m, four straight rails, no pockets."""
+        return cls(2.24, 1.12)
+
+    @classmethod
+    def eight_foot(cls) -> Table:
+        """The same 2.24 x 1.12 m playing area with six regulation pockets: corner mouths
+        4.5625 in (0.1159 m) and side mouths 5.0625 in (0.1286 m), the middles of the WPA
+        ranges (corner 4.5-4.625 in, side 5-5.125 in; WPA Equipment Specifications), and a
+        cushion nose at 63.5 % of the ball's diameter (same source)."""
+        L, W = 2.24, 1.12
+        corner, side = 0.1159, 0.1286
+        pockets = [(0.0, 0.0, corner), (L, 0.0, corner), (0.0, W, corner), (L, W, corner),
+                   (L / 2, 0.0, side), (L / 2, W, side)]
+        return cls(L, W, pockets, cushion_height=0.635 * 2 * BALL_RADIUS)
+
+
+def _rail(start, along, normal, a, b):
+    x1, y1 = start[0] + a * along[0], start[1] + a * along[1]
+    x2, y2 = start[0] + b * along[0], start[1] + b * along[1]
+    return (x1, y1, x2, y2, normal[0], normal[1])
+
+
+# The standard 8-ball rack read from the apex row by row (8 in the middle, a solid and a
+# stripe in the back corners).
+RACK_ORDER = ((1,), (9, 2), (10, 8, 3), (11, 7, 14, 4), (5, 13, 15, 6, 12))
+
+
+def rack(table: Table, seed=None, jitter=None, radius=BALL_RADIUS, mass=BALL_MASS, cue_xy=None) -> Balls:
+    """The report's triangle of 15 object balls with its apex on the foot spot (3/4 of the
+    length, mid-width) and the cue ball on the head spot (1/4 of the length) unless `cue_xy`.
+
+    `jitter` (m) is how far each object ball may sit from its ideal spot, drawn uniformly in a
+    disc from `numpy.random.default_rng(seed)`; the ideal spots are spaced 2R + 2 jitter, so
+    jittered balls never overlap. It defaults to 0.2 mm when a seed is given and to 0 (a
+    perfect frozen rack, every neighbour touching) when it is not.
+    """
+    if jitter is None:
+        jitter = 2e-4 if seed is not None else 0.0
+    if not (math.isfinite(jitter) and jitter >= 0):
+        raise ValueError(f"jitter must be finite and >= 0, got {jitter!r}")
+    spacing = 2.0 * radius + 2.0 * jitter
+    apex_x, mid_y = 0.75 * table.length, 0.5 * table.width
+    xy = np.zeros((16, 2))
+    xy[0] = cue_xy if cue_xy is not None else (0.25 * table.length, mid_y)
+    for row, numbers in enumerate(RACK_ORDER):
+        for k, number in enumerate(numbers):
+            xy[number] = (apex_x + row * spacing * math.sqrt(3.0) / 2.0, mid_y + (k - row / 2.0) * spacing)
+    if jitter > 0:
+        rng = np.random.default_rng(seed)
+        angle = rng.uniform(0.0, 2.0 * math.pi, 15)
+        dist = jitter * np.sqrt(rng.uniform(0.0, 1.0, 15))
+        xy[1:, 0] += dist * np.cos(angle)
+        xy[1:, 1] += dist * np.sin(angle)
+    return Balls(xy, radius=radius, mass=mass)
