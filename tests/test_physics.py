@@ -7,7 +7,17 @@ import numpy as np
 import pytest
 
 from pool_env.physics import (
-    BALL_MASS, BALL_RADIUS, EVENT_KINDS, Balls, Event, Physics, SimulationError, Table, rack, simulate, strike,
+    BALL_MASS,
+    BALL_RADIUS,
+    EVENT_KINDS,
+    Balls,
+    Event,
+    Physics,
+    SimulationError,
+    Table,
+    rack,
+    simulate,
+    strike,
 )
 
 R, M = BALL_RADIUS, BALL_MASS
