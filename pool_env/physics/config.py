@@ -5,6 +5,8 @@ from __future__ import annotations
 import dataclasses
 import math
 
+import numpy as np
+
 # Model names accepted by the engine, in the order of their numeric ids (the id is
 # what the compiled engine dispatches on).
 BALL_BALL_MODELS = ("seed", "elastic", "frictional")
@@ -61,6 +63,9 @@ class Physics:
                 raise ValueError(f"Physics.{name} must be in [0, 1], got {value!r}")
         if not (math.isfinite(self.f_c) and self.f_c >= 0):
             raise ValueError(f"Physics.f_c must be a finite number >= 0, got {self.f_c!r}")
+        # The engine's view of the coefficients, built once (see motion.P_*).
+        params = np.array([self.mu_s, self.mu_r, self.mu_sp, self.g, self.e_b, self.e_c, self.f_c])
+        object.__setattr__(self, "_params", params)
 
     @classmethod
     def seed(cls) -> Physics:
@@ -84,8 +89,6 @@ class Physics:
         """True when a collision model can give a ball z-spin it did not have."""
         return self.ball_ball == "frictional" or self.cushion == "han2005"
 
-    def as_array(self):
+    def as_array(self) -> np.ndarray:
         """The coefficients in the order the compiled engine reads them (see motion.P_*)."""
-        import numpy as np
-
-        return np.array([self.mu_s, self.mu_r, self.mu_sp, self.g, self.e_b, self.e_c, self.f_c], dtype=np.float64)
+        return self._params

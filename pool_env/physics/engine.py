@@ -52,13 +52,39 @@ COUNTERS = (
 )
 C_BB, C_BB_REJ, C_CU, C_CU_REJ, C_PO, C_PO_REJ, C_TR, C_REST = range(8)
 
-# Loop exit codes.
-DONE, EVENT_CAP = 0, 1
+# Loop exit codes: finished; hit the caller's event cap; ran out of output buffer (the
+# caller retries with larger buffers: the simulation is deterministic).
+DONE, EVENT_CAP, BUFFER_FULL = 0, 1, 2
 
 
 @njit(cache=True, inline="always")
 def _moving(state):
     return state == SLIDING or state == ROLLING
+
+
+@njit(cache=True)
+def _out_of_reach(dx, dy, dvx, dvy, dax, day, horizon, reach):
+    """True if the path d(tau) = d0 + dv tau + da tau^2 / 2, tau in [0, horizon], stays
+    farther than `reach` from the origin: the broad phase that spares most quartics.
+
+    The path lies within |da| horizon^2 / 8 (the parabola's sagitta) of its chord from d(0)
+    to d(horizon), so if the chord clears reach + sagitta so does the path. A straight
+    decelerating path that does not reverse (a rolling ball against a resting one) is its
+    own chord.
+    """
+    ex = dx + dvx * horizon + 0.5 * dax * horizon * horizon
+    ey = dy + dvy * horizon + 0.5 * day * horizon * horizon
+    cx, cy = ex - dx, ey - dy
+    span = cx * cx + cy * cy
+    u = 0.0 if span == 0.0 else min(max(-(dx * cx + dy * cy) / span, 0.0), 1.0)
+    gap = math.hypot(dx + u * cx, dy + u * cy) - reach
+    acc = math.hypot(dax, day)
+    if acc == 0.0:
+        return gap > 0.0
+    straight = abs(dvx * day - dvy * dax) <= 1e-12 * acc * math.hypot(dvx, dvy) and (
+        (dvx + dax * horizon) * dvx + (dvy + day * horizon) * dvy >= 0.0)
+    sagitta = 0.0 if straight else 0.125 * acc * horizon * horizon
+    return gap > sagitta + 1e-12
 
 
 @njit(cache=True)
@@ -69,15 +95,15 @@ def _predict_pair(S, st, R, params, t_tr, i, k, now, counters):
         counters[C_REST] += 1
         return np.inf
     horizon = max(min(t_tr[i], t_tr[k]) - now, 0.0)
-    # Where both balls are at `now`, and the farthest either can go before the horizon.
-    xi, yi, _, _, _, _ = trajectory(S[i], st[i], now, R[i], params)
-    xk, yk, _, _, _, _ = trajectory(S[k], st[k], now, R[k], params)
-    reach = max_travel(S[i], st[i], now, horizon, R[i], params) + max_travel(S[k], st[k], now, horizon, R[k], params)
-    if math.hypot(xk - xi, yk - yi) - (R[i] + R[k]) > reach:
+    xi, yi, vxi, vyi, axi, ayi = trajectory(S[i], st[i], now, R[i], params)
+    xk, yk, vxk, vyk, axk, ayk = trajectory(S[k], st[k], now, R[k], params)
+    dx, dy, dvx, dvy, dax, day = xk - xi, yk - yi, vxk - vxi, vyk - vyi, axk - axi, ayk - ayi
+    reach = R[i] + R[k]
+    if _out_of_reach(dx, dy, dvx, dvy, dax, day, horizon, reach):
         counters[C_BB_REJ] += 1
         return np.inf
     counters[C_BB] += 1
-    return now + ball_ball.collision_time(S[i], st[i], S[k], st[k], now, horizon, R[i], R[k], params)
+    return now + ball_ball.distance_entry(dx, dy, dvx, dvy, dax, day, reach, horizon)
 
 
 @njit(cache=True)
@@ -88,7 +114,7 @@ def _predict_cushion(S, st, R, params, t_tr, i, now, rails, jaws, counters):
         return best, which
     horizon = max(t_tr[i] - now, 0.0)
     travel = max_travel(S[i], st[i], now, horizon, R[i], params)
-    x, y, _, _, _, _ = trajectory(S[i], st[i], now, R[i], params)
+    x, y, vx, vy, ax, ay = trajectory(S[i], st[i], now, R[i], params)
     for c in range(rails.shape[0]):
         rail = rails[c]
         if rail[4] * (x - rail[0]) + rail[5] * (y - rail[1]) - R[i] > travel:
@@ -99,7 +125,7 @@ def _predict_cushion(S, st, R, params, t_tr, i, now, rails, jaws, counters):
         if t < best:
             best, which = t, c
     for p in range(jaws.shape[0]):
-        if math.hypot(x - jaws[p, 0], y - jaws[p, 1]) - R[i] > travel:
+        if _out_of_reach(x - jaws[p, 0], y - jaws[p, 1], vx, vy, ax, ay, horizon, R[i]):
             counters[C_CU_REJ] += 1
             continue
         counters[C_CU] += 1
@@ -116,10 +142,9 @@ def _predict_pocket(S, st, R, params, t_tr, i, now, pockets, counters):
     if not _moving(st[i]):
         return best, which
     horizon = max(t_tr[i] - now, 0.0)
-    travel = max_travel(S[i], st[i], now, horizon, R[i], params)
-    x, y, _, _, _, _ = trajectory(S[i], st[i], now, R[i], params)
+    x, y, vx, vy, ax, ay = trajectory(S[i], st[i], now, R[i], params)
     for p in range(pockets.shape[0]):
-        if math.hypot(x - pockets[p, 0], y - pockets[p, 1]) - pockets[p, 2] > travel:
+        if _out_of_reach(x - pockets[p, 0], y - pockets[p, 1], vx, vy, ax, ay, horizon, pockets[p, 2]):
             counters[C_PO_REJ] += 1
             continue
         counters[C_PO] += 1
@@ -198,6 +223,8 @@ def run(S, st, R, M, params, bb_model, cu_model, rails, jaws, pockets, height, s
         if n_ev >= max_events:
             ev_t[n_ev], ev_kind[n_ev], ev_i[n_ev], ev_j[n_ev] = best, kind, bi, bj
             return n_ev, n_hist, EVENT_CAP
+        if n_ev + 1 >= ev_t.shape[0] or n_hist + 2 > hist.shape[0]:
+            return n_ev, n_hist, BUFFER_FULL
         now = max(best, now)
 
         # Bring the balls involved to `now` and resolve.

@@ -26,8 +26,8 @@ class Result:
         self._balls, self.physics, self.table = balls, physics, table
         self._ev_t, self._ev_kind, self._ev_i, self._ev_j = event_arrays
         self._hist, self._hist_ball = history
-        self.final = final
-        self.stats = stats
+        self._final_fn, self._final = final, None
+        self._stats_fn, self._stats = stats, None
         self._kinds = kinds
         self._sampler = sampler
         self._events = None
@@ -42,6 +42,22 @@ class Result:
                 for t, k, i, j in zip(self._ev_t, self._ev_kind, self._ev_i, self._ev_j)
             ]
         return self._events
+
+    @property
+    def final(self):
+        """The balls when everything rests (Balls; `.pocketed` marks balls off the table)."""
+        if self._final is None:
+            self._final = self._final_fn()
+        return self._final
+
+    @property
+    def stats(self) -> dict:
+        """Counters: events by kind, predictions computed and rejected by kind (ball_ball,
+        ball_cushion, ball_pocket), resting pairs skipped, whether spin was tracked, the
+        number of pockets, and the wall time of the simulation (s)."""
+        if self._stats is None:
+            self._stats = self._stats_fn()
+        return self._stats
 
     @property
     def event_times(self) -> np.ndarray:

@@ -70,28 +70,14 @@ def _bracket_root(c0, c1, c2, c3, c4, lo, hi, flo, derivative):
 
 
 @njit(cache=True)
-def _critical_points(c1, c2, c3, c4, horizon, out):
-    """Roots of f' in (0, horizon), ascending, written to out; returns how many."""
-    n = 0
-    if c4 == 0.0 and c3 == 0.0:
-        if c2 != 0.0:
-            t = -c1 / (2.0 * c2)
-            if 0.0 < t < horizon:
-                out[0] = t
-                n = 1
-        return n
-    # Split (0, horizon) where f'' = 0 (a quadratic, solved in its cancellation-free form).
+def _inflections(c2, c3, c4, horizon):
+    """The roots of f'' = 12 c4 t^2 + 6 c3 t + 2 c2 inside (0, horizon), ascending; inf
+    for a missing one. The quadratic is solved in its cancellation-free form."""
     a, b, c = 12.0 * c4, 6.0 * c3, 2.0 * c2
-    knots = np.empty(4)
-    k = 0
-    knots[k] = 0.0
-    k += 1
+    r1, r2 = np.inf, np.inf
     if a == 0.0:
         if b != 0.0:
-            t = -c / b
-            if 0.0 < t < horizon:
-                knots[k] = t
-                k += 1
+            r1 = -c / b
     else:
         disc = b * b - 4.0 * a * c
         if disc > 0.0:
@@ -99,28 +85,54 @@ def _critical_points(c1, c2, c3, c4, horizon, out):
             r1, r2 = q / a, (c / q if q != 0.0 else q / a)
             if r1 > r2:
                 r1, r2 = r2, r1
-            if 0.0 < r1 < horizon:
-                knots[k] = r1
-                k += 1
-            if 0.0 < r2 < horizon and r2 != r1:
-                knots[k] = r2
-                k += 1
-    knots[k] = horizon
-    k += 1
-    # On each piece f' is monotone: a sign change there is exactly one critical point.
-    lo = knots[0]
+    if not (0.0 < r2 < horizon):
+        r2 = np.inf
+    if not (0.0 < r1 < horizon):
+        r1, r2 = r2, np.inf
+    return r1, r2
+
+
+@njit(cache=True)
+def _slope_root(c1, c2, c3, c4, lo, hi, last):
+    """The critical point of f on a piece [lo, hi] where f' is monotone (inf if none). A zero
+    of f' exactly at an interior knot counts once, as the end of the piece before it."""
     dlo = _df(c1, c2, c3, c4, lo)
-    for m in range(1, k):
-        hi = knots[m]
-        dhi = _df(c1, c2, c3, c4, hi)
-        if (dlo > 0.0 and dhi < 0.0) or (dlo < 0.0 and dhi > 0.0):
-            out[n] = _bracket_root(0.0, c1, c2, c3, c4, lo, hi, dlo, 1)
-            n += 1
-        elif dhi == 0.0 and m < k - 1:
-            out[n] = hi
-            n += 1
-        lo, dlo = hi, dhi
-    return n
+    dhi = _df(c1, c2, c3, c4, hi)
+    if (dlo > 0.0 and dhi < 0.0) or (dlo < 0.0 and dhi > 0.0):
+        return _bracket_root(0.0, c1, c2, c3, c4, lo, hi, dlo, 1)
+    if dhi == 0.0 and not last:
+        return hi
+    return np.inf
+
+
+@njit(cache=True)
+def _critical_points(c1, c2, c3, c4, horizon):
+    """Up to three roots of f' in (0, horizon), ascending, inf-padded (no heap allocation:
+    this runs for every pair the broad phase lets through)."""
+    if c4 == 0.0 and c3 == 0.0:
+        t = -c1 / (2.0 * c2) if c2 != 0.0 else np.inf
+        return (t if 0.0 < t < horizon else np.inf), np.inf, np.inf
+    k1, k2 = _inflections(c2, c3, c4, horizon)
+    # On each piece between inflections f' is monotone: a sign change is one critical point.
+    out0, out1, out2 = np.inf, np.inf, np.inf
+    lo = 0.0
+    for m in range(3):
+        hi = k1 if m == 0 else (k2 if m == 1 else horizon)
+        last = hi == horizon
+        if hi == np.inf:
+            hi, last = horizon, True
+        t = _slope_root(c1, c2, c3, c4, lo, hi, last)
+        if t != np.inf:
+            if out0 == np.inf:
+                out0 = t
+            elif out1 == np.inf:
+                out1 = t
+            else:
+                out2 = t
+        if last:
+            break
+        lo = hi
+    return out0, out1, out2
 
 
 @njit(cache=True)
@@ -137,17 +149,20 @@ def first_entry(c0, c1, c2, c3, c4, horizon, min_slope):
         return np.inf
     if c0 <= 0.0 and c1 < -min_slope:
         return 0.0
-    crit = np.empty(3)
-    n = _critical_points(c1, c2, c3, c4, horizon, crit)
+    crit0, crit1, crit2 = _critical_points(c1, c2, c3, c4, horizon)
     lo = 0.0
     flo = c0
-    for m in range(n + 1):
-        hi = crit[m] if m < n else horizon
+    for m in range(4):
+        hi = crit0 if m == 0 else (crit1 if m == 1 else (crit2 if m == 2 else horizon))
+        if hi == np.inf:
+            hi = horizon
         fhi = _f(c0, c1, c2, c3, c4, hi)
         if flo > 0.0 and fhi <= 0.0:
             root = _bracket_root(c0, c1, c2, c3, c4, lo, hi, flo, 0)
             if _df(c1, c2, c3, c4, root) < -min_slope:
                 return root
             # A graze: f only touches zero. Keep looking further on.
+        if hi == horizon:
+            break
         lo, flo = hi, fhi
     return np.inf

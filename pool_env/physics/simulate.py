@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import math
 import time
 
 import numpy as np
+from numba import njit
 
 from . import engine
 from .config import BALL_BALL_MODELS, CUSHION_MODELS, Physics
@@ -22,26 +24,52 @@ def default_event_cap(n_balls: int) -> int:
     return 10_000 + 1_000 * n_balls
 
 
+@njit(cache=True)
+def _first_off_table(xy, radii, pocketed, length, width, pockets, tol):
+    """(1, ball, -1) for a ball outside the rails, (2, ball, pocket) for one over a pocket,
+    (0, -1, -1) if every ball on the table is where it may be."""
+    for i in range(xy.shape[0]):
+        if pocketed[i]:
+            continue
+        x, y, r = xy[i, 0], xy[i, 1], radii[i]
+        if x < r - tol or x > length - r + tol or y < r - tol or y > width - r + tol:
+            return 1, i, -1
+        for k in range(pockets.shape[0]):
+            if math.hypot(x - pockets[k, 0], y - pockets[k, 1]) < pockets[k, 2]:
+                return 2, i, k
+    return 0, -1, -1
+
+
+@njit(cache=True)
+def _pack(xy, v, w, pocketed):
+    """The engine's state rows [x, y, vx, vy, wx, wy, wz, t0 = 0], state codes (pocketed or
+    to be classified), and whether any ball has z-spin."""
+    n = xy.shape[0]
+    S = np.zeros((n, 8))
+    st = np.zeros(n, dtype=np.int64)
+    any_z_spin = False
+    for i in range(n):
+        S[i, 0], S[i, 1], S[i, 2], S[i, 3] = xy[i, 0], xy[i, 1], v[i, 0], v[i, 1]
+        S[i, 4], S[i, 5], S[i, 6] = w[i, 0], w[i, 1], w[i, 2]
+        any_z_spin = any_z_spin or w[i, 2] != 0.0
+        if pocketed[i]:
+            st[i] = POCKETED
+    return S, st, any_z_spin
+
+
 def check_on_table(balls: Balls, table: Table) -> None:
     """Raise ValueError for a ball outside the rails or resting over a pocket."""
-    on = ~balls.pocketed
-    r = balls.radii
-    x, y = balls.xy[:, 0], balls.xy[:, 1]
-    tol = CONTACT_TOLERANCE
-    outside = on & ((x < r - tol) | (x > table.length - r + tol) | (y < r - tol) | (y > table.width - r + tol))
-    if outside.any():
-        i = int(np.flatnonzero(outside)[0])
+    code, i, k = _first_off_table(balls.xy, balls.radii, balls.pocketed, table.length, table.width,
+                                  table.pockets, CONTACT_TOLERANCE)
+    if code == 0:
+        return
+    x, y = balls.xy[i]
+    if code == 1:
         raise ValueError(
-            f"ball {i} at ({x[i]:.4f}, {y[i]:.4f}) m is outside the rails of the {table.length} x {table.width} m "
-            f"table (its centre must be at least R = {r[i]} m from every rail)"
+            f"ball {i} at ({x:.4f}, {y:.4f}) m is outside the rails of the {table.length} x {table.width} m "
+            f"table (its centre must be at least R = {balls.radii[i]} m from every rail)"
         )
-    if table.pockets.shape[0]:
-        p = table.pockets
-        d = np.hypot(x[:, None] - p[None, :, 0], y[:, None] - p[None, :, 1]) - p[None, :, 2]
-        over = on[:, None] & (d < 0)
-        if over.any():
-            i, k = (int(a[0]) for a in np.nonzero(over))
-            raise ValueError(f"ball {i} at ({x[i]:.4f}, {y[i]:.4f}) m sits over pocket {k}")
+    raise ValueError(f"ball {i} at ({x:.4f}, {y:.4f}) m sits over pocket {k}")
 
 
 def simulate(balls: Balls, table: Table, physics: Physics | None = None, method: str = "events",
@@ -71,40 +99,46 @@ def _run_events(balls, table, physics, max_events):
     cap = default_event_cap(n) if max_events is None else int(max_events)
     if cap < 0:
         raise ValueError(f"max_events must be >= 0, got {max_events!r}")
-    S = np.empty((n, 8))
-    S[:, 0:2] = balls.xy
-    S[:, 2:4] = balls.v
-    S[:, 4:7] = balls.w
-    S[:, 7] = 0.0
-    st = np.where(balls.pocketed, POCKETED, 0).astype(np.int64)
-    spin = bool(physics.spin and (physics.can_create_spin() or np.any(balls.w[:, 2] != 0)))
+    S0, st0, any_z_spin = _pack(balls.xy, balls.v, balls.w, balls.pocketed)
+    spin = bool(physics.spin and (any_z_spin or physics.can_create_spin()))
     R, M = balls.radii, balls.masses
     params = physics.as_array()
-    ev_t = np.empty(cap + 1)
-    ev_kind = np.empty(cap + 1, dtype=np.int64)
-    ev_i = np.empty(cap + 1, dtype=np.int64)
-    ev_j = np.empty(cap + 1, dtype=np.int64)
-    hist = np.empty((n + 2 * cap, 9))
-    hist_ball = np.empty(n + 2 * cap, dtype=np.int64)
-    counters = np.zeros(len(engine.COUNTERS), dtype=np.int64)
-    n_ev, n_hist, code = engine.run(
-        S, st, R, M, params, BALL_BALL_MODELS.index(physics.ball_ball), CUSHION_MODELS.index(physics.cushion),
-        table.rails, table.jaws, table.pockets, table.cushion_height, spin, cap,
-        ev_t, ev_kind, ev_i, ev_j, hist, hist_ball, counters,
-    )
+    models = (BALL_BALL_MODELS.index(physics.ball_ball), CUSHION_MODELS.index(physics.cushion))
+    # Output buffers start small (a break takes ~100 events) and grow on demand; a rerun from
+    # the start is exact because the simulation is deterministic.
+    size = min(cap, 256 + 16 * n)
+    while True:
+        S, st = S0.copy(), st0.copy()  # the engine works in place
+        ev_t = np.empty(size + 1)
+        ev_ids = np.empty((3, size + 1), dtype=np.int64)
+        hist = np.empty((n + 2 * size + 2, 9))
+        hist_ball = np.empty(n + 2 * size + 2, dtype=np.int64)
+        counters = np.zeros(len(engine.COUNTERS), dtype=np.int64)
+        n_ev, n_hist, code = engine.run(
+            S, st, R, M, params, models[0], models[1], table.rails, table.jaws, table.pockets,
+            table.cushion_height, spin, cap, ev_t, ev_ids[0], ev_ids[1], ev_ids[2], hist, hist_ball, counters,
+        )
+        if code != engine.BUFFER_FULL:
+            break
+        size = min(cap, 4 * size)
+    ev_kind, ev_i, ev_j = ev_ids
     if code == engine.EVENT_CAP:
         raise SimulationError(_cap_message(cap, ev_t, ev_kind, ev_i, ev_j, n_ev))
-    ev_t, ev_kind, ev_i, ev_j = ev_t[:n_ev], ev_kind[:n_ev], ev_i[:n_ev], ev_j[:n_ev]
     hist, hist_ball = hist[:n_hist], hist_ball[:n_hist]
-    final = Balls._trusted(S[:, 0:2].copy(), S[:, 2:4].copy(), S[:, 4:7].copy(), st == POCKETED, balls)
+    wall = time.perf_counter() - wall
 
-    by_kind = np.bincount(ev_kind, minlength=len(engine.EVENT_KINDS))
-    stats = {kind: int(c) for kind, c in zip(engine.EVENT_KINDS, by_kind)}
-    stats["events"] = int(n_ev)
-    stats.update({name: int(c) for name, c in zip(engine.COUNTERS, counters)})
-    stats["spin_tracked"] = spin
-    stats["pockets"] = int(table.pockets.shape[0])
-    stats["wall_time"] = time.perf_counter() - wall
+    def final():
+        return Balls._trusted(S[:, 0:2].copy(), S[:, 2:4].copy(), S[:, 4:7].copy(), st == POCKETED, balls)
+
+    def stats():
+        by_kind = np.bincount(ev_kind[:n_ev], minlength=len(engine.EVENT_KINDS))
+        out = {kind: int(c) for kind, c in zip(engine.EVENT_KINDS, by_kind)}
+        out["events"] = int(n_ev)
+        out.update({name: int(c) for name, c in zip(engine.COUNTERS, counters)})
+        out["spin_tracked"] = spin
+        out["pockets"] = int(table.pockets.shape[0])
+        out["wall_time"] = wall
+        return out
 
     def sampler(times):
         rows = np.empty((times.size, n, 8))
@@ -112,8 +146,8 @@ def _run_events(balls, table, physics, max_events):
         engine.sample(hist, hist_ball, n_hist, n, times, R, params, rows, states)
         return rows, states
 
-    return Result(balls, physics, table, (ev_t, ev_kind, ev_i, ev_j), (hist, hist_ball), final, stats,
-                  engine.EVENT_KINDS, sampler)
+    events = (ev_t[:n_ev], ev_kind[:n_ev], ev_i[:n_ev], ev_j[:n_ev])
+    return Result(balls, physics, table, events, (hist, hist_ball), final, stats, engine.EVENT_KINDS, sampler)
 
 
 def _cap_message(cap, ev_t, ev_kind, ev_i, ev_j, n_ev):
