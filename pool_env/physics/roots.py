@@ -34,38 +34,49 @@ def _ddf(c2, c3, c4, t):
     return (12.0 * c4 * t + 6.0 * c3) * t + 2.0 * c2
 
 
+@njit(cache=True, inline="always")
+def _value_slope(c0, c1, c2, c3, c4, t, derivative):
+    if derivative == 0:
+        return _f(c0, c1, c2, c3, c4, t), _df(c1, c2, c3, c4, t)
+    return _df(c1, c2, c3, c4, t), _ddf(c2, c3, c4, t)
+
+
 @njit(cache=True)
 def _bracket_root(c0, c1, c2, c3, c4, lo, hi, flo, derivative):
     """Root of f (derivative=0) or f' (derivative=1) in [lo, hi], where the function is
-    monotone and changes sign. Returns the endpoint of the final bracket on the side of `lo`
-    (for f that is the last instant before contact: the gap is never negative)."""
+    monotone and changes sign (f(lo) = flo on one side of zero).
+
+    Newton's method, kept inside the shrinking bracket (a step that would leave it bisects
+    instead), stopping when the step falls to round-off: quadratic convergence on simple
+    roots, guaranteed progress on double ones. For f the result is then moved to the `lo`
+    side of the root by at most a few ulps, so the returned instant is the last one before
+    contact: the gap there is never negative.
+    """
+    x = 0.5 * (lo + hi)
     for _ in range(_MAX_ITER):
-        if hi - lo <= 4e-16 * max(abs(hi), 1e-300):
+        fx, slope = _value_slope(c0, c1, c2, c3, c4, x, derivative)
+        if fx == 0.0:
             break
-        mid = 0.5 * (lo + hi)
-        # One Newton step from the midpoint; fall back to the midpoint if it leaves the bracket.
-        if derivative == 0:
-            fm = _f(c0, c1, c2, c3, c4, mid)
-            slope = _df(c1, c2, c3, c4, mid)
+        if (fx > 0.0) == (flo > 0.0):
+            lo = x
         else:
-            fm = _df(c1, c2, c3, c4, mid)
-            slope = _ddf(c2, c3, c4, mid)
-        if fm == 0.0:
-            return mid
-        if (fm > 0.0) == (flo > 0.0):
-            lo = mid
-        else:
-            hi = mid
-        if slope != 0.0:
-            guess = mid - fm / slope
-            if lo < guess < hi:
-                fg = _f(c0, c1, c2, c3, c4, guess) if derivative == 0 else _df(c1, c2, c3, c4, guess)
-                if fg == 0.0:
-                    return guess
-                if (fg > 0.0) == (flo > 0.0):
-                    lo = guess
-                else:
-                    hi = guess
+            hi = x
+        step = fx / slope if slope != 0.0 else np.inf
+        nxt = x - step
+        if not (min(lo, hi) < nxt < max(lo, hi)):
+            nxt = 0.5 * (lo + hi)
+        if abs(nxt - x) <= 2e-16 * abs(x) or nxt == x:
+            x = nxt
+            break
+        x = nxt
+    if derivative == 1:
+        return x
+    # Land on the side where f has the sign of f(lo) (no contact yet).
+    for _ in range(8):
+        fx = _f(c0, c1, c2, c3, c4, x)
+        if fx == 0.0 or (fx > 0.0) == (flo > 0.0):
+            return x
+        x = np.nextafter(x, lo)
     return lo
 
 
