@@ -1,0 +1,456 @@
+"""`PoolBreakEnv`: the Gymnasium environment (one shot per step, simulated exactly until every ball rests)."""
+
+from __future__ import annotations
+
+import math
+
+import gymnasium as gym
+import numpy as np
+from gymnasium import logger, spaces
+
+from .physics import BALL_MASS, BALL_RADIUS, EVENT_KINDS, Physics, SimulationError, Table, rack, simulate, strike
+from .render import TableRenderer, integrate_orientation
+
+N_BALLS = 16
+CONTACT_TIME = 0.005  # s, the seed report's cue contact time
+MAX_SPEED = 12.0  # m/s, cue-ball speed at |a| = 1: a strong break
+MAX_FORCE = MAX_SPEED * BALL_MASS / CONTACT_TIME  # N (about 408 N)
+MIN_MAGNITUDE = 0.02  # weaker actions are raised to this (0.24 m/s)
+MAX_TIP_OFFSET = 0.5  # in ball radii
+SHAPING_CONTACT = 0.1  # shaping: + for hitting an object ball, - for missing them all
+SHAPING_SPREAD = 0.5  # shaping: weight of the spread gain on a table with pockets
+BALL_BALL, BALL_POCKET = EVENT_KINDS.index("ball_ball"), EVENT_KINDS.index("ball_pocket")
+ORIENTATION_SUBSTEPS = 4  # orientation integration steps per rendered frame
+
+
+def decode_observation(obs, table: Table):
+    """Invert the observation: (xy (16, 2) in metres, on_table (16,) bool). Pocketed balls get xy = NaN."""
+    obs = np.asarray(obs, dtype=np.float64)
+    balls = obs[: 3 * N_BALLS].reshape(N_BALLS, 3)
+    on_table = balls[:, 2] > 0
+    xy = np.empty((N_BALLS, 2))
+    xy[:, 0] = (balls[:, 0] + 1.0) * 0.5 * table.length
+    xy[:, 1] = (balls[:, 1] + 1.0) * 0.5 * table.width
+    xy[~on_table] = np.nan
+    return xy, on_table
+
+
+def spread(xy, on_table, table: Table) -> float:
+    """Mean nearest-neighbour distance of the object balls on the table, in units of
+    sqrt(L W / 15) (the spacing of 15 balls on a square grid covering the table); 0 with fewer than two."""
+    p = np.asarray(xy)[1:][np.asarray(on_table)[1:]]
+    if len(p) < 2:
+        return 0.0
+    d = np.hypot(p[:, None, 0] - p[None, :, 0], p[:, None, 1] - p[None, :, 1])
+    np.fill_diagonal(d, np.inf)
+    return float(d.min(axis=1).mean() / math.sqrt(table.length * table.width / (N_BALLS - 1)))
+
+
+def cue_force(action, spin: bool):
+    """Map an action to (force (2,) in N, tip offset (2,) in ball radii); see PoolBreakEnv."""
+    a = np.asarray(action, dtype=np.float64).reshape(-1)
+    size = 4 if spin else 2
+    if a.shape != (size,):
+        raise ValueError(f"action must have {size} entries, got shape {np.shape(action)}")
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"action must be finite, got {a.tolist()}")
+    a = np.clip(a, -1.0, 1.0)
+    d = a[:2]
+    magnitude = math.hypot(d[0], d[1])
+    if magnitude == 0.0:
+        d = np.array([MIN_MAGNITUDE, 0.0])
+    elif magnitude > 1.0:
+        d = d / magnitude
+    elif magnitude < MIN_MAGNITUDE:
+        d = d * (MIN_MAGNITUDE / magnitude)
+    offset = np.zeros(2)
+    if spin:
+        offset = MAX_TIP_OFFSET * a[2:4]
+        length = math.hypot(offset[0], offset[1])
+        if length > MAX_TIP_OFFSET:
+            offset *= MAX_TIP_OFFSET / length
+    return MAX_FORCE * d, offset
+
+
+def quaternion_rotations(q) -> np.ndarray:
+    """Rotation matrices (n, 3, 3) of quaternions (n, 4) (w, x, y, z), normalised first; random
+    normal quaternions give uniformly random rotations."""
+    q = np.asarray(q, dtype=np.float64)
+    q = q / np.linalg.norm(q, axis=1, keepdims=True)
+    w, x, y, z = q.T
+    return np.stack([
+        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)], axis=1),
+        np.stack([2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)], axis=1),
+        np.stack([2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], axis=1),
+    ], axis=1)
+
+
+def _event_arrays(result):
+    """(kind ids, i, j) of a Result's events as arrays: the Result keeps them (private), and
+    building its list of Event tuples would cost about 0.1 ms a shot."""
+    try:
+        return result._ev_kind, result._ev_i, result._ev_j
+    except AttributeError:  # a Result without the arrays: build them from the public list
+        events = result.events
+        return (np.array([EVENT_KINDS.index(e.kind) for e in events], dtype=np.int64),
+                np.array([e.i for e in events], dtype=np.int64), np.array([e.j for e in events], dtype=np.int64))
+
+
+class PoolBreakEnv(gym.Env):
+    """
+    ## Description
+
+    Pool with exact physics: every `step` is one cue shot, simulated continuously (event by
+    event, no time step) until every ball rests or drops. The scene starts as the seed
+    report's triangle rack of 15 object balls with the cue ball behind the head string.
+    `PoolBreak-v0` is the break alone (one shot); `PoolBreakRun-v0` plays on from where the
+    balls stop, up to `max_shots` shots. The physics is `pool_env.physics` (see docs/physics.md):
+    sliding and rolling friction, frictional ball-ball contact with throw and spin transfer,
+    Han (2005) cushions and six regulation pockets by default.
+
+    ## Action Space
+
+    `Box(-1, 1, (2,), float32)`: the cue force, direction and strength, in the table frame
+    (x along the length, y along the width). With `spin=True` it is `Box(-1, 1, (4,), float32)`,
+    and the last two entries place the cue tip on the ball.
+
+    | index | meaning | mapping |
+    | --- | --- | --- |
+    | 0, 1 | cue force (fx, fy) | force = `MAX_FORCE` * a[0:2] N, `MAX_FORCE` = 12 m/s * m / 0.005 s = 408 N |
+    | 2, 3 | tip offset (side, top), only with `spin=True` | offset = 0.5 * a[2:4] ball radii |
+
+    Entries are clipped to [-1, 1]. A force part longer than 1 is scaled to length 1, so
+    |a[0:2]| = 1 is the strongest shot: the cue ball leaves at 12 m/s (a strong break) after
+    the report's 5 ms contact. Lengths below 0.02 are raised to 0.02 (0.24 m/s); the zero
+    action strikes along +x at 0.02. The tip offset is in units of the ball radius, seen from
+    behind the cue: side > 0 is right English, top > 0 follow, top < 0 draw; an offset longer
+    than 0.5 is scaled to 0.5 (no miscues). A non-finite action raises `ValueError`.
+
+    ## Observation Space
+
+    `Box(-1, 1, (49,), float32)`: three numbers per ball, balls in order 0 (cue ball) to 15,
+    then the shot counter.
+
+    | index | observation | on the table | pocketed |
+    | --- | --- | --- | --- |
+    | 3 i | ball i's x: 2 x / L - 1 | in (-1, 1) | 0 |
+    | 3 i + 1 | ball i's y: 2 y / W - 1 | in (-1, 1) | 0 |
+    | 3 i + 2 | ball i on the table | +1 | -1 |
+    | 48 | shots taken: 2 shots / max_shots - 1 | -1 after reset, +1 after the last shot | |
+
+    L x W is the playing area inside the cushion noses (2.24 x 1.12 m by default), origin at a
+    corner. `pool_env.env.decode_observation(obs, table)` returns positions in metres and the
+    on-table flags.
+
+    ## Rewards
+
+    | event (per shot) | reward |
+    | --- | --- |
+    | each object ball (1-15) pocketed | +1 |
+    | cue ball pocketed (a scratch) | -`scratch_penalty` (default -1) |
+    | on a table without pockets (e.g. `Table.seed()`) | the spread gain (below), instead of the two rows above |
+    | `shaping=True`: the cue ball hits an object ball / hits none | +0.1 / -0.1 |
+    | `shaping=True` on a table with pockets | + 0.5 * the spread gain |
+
+    The spread of a table is the mean nearest-neighbour distance of the object balls on it,
+    divided by sqrt(L W / 15) (the spacing of 15 balls on a square grid covering the table):
+    about 0.14 for the frozen rack and about 0.5 for balls scattered uniformly at random.
+    The spread gain of a shot is the spread after it minus the spread before it, clipped to
+    [-1, 1]; over an episode the gains add up to the final spread minus the rack's. Shaping is
+    off by default. Rewards are Python floats.
+
+    ## Starting State
+
+    The triangle rack (`pool_env.physics.rack`): the apex ball on the foot spot (3/4 of the
+    length, mid-width), each object ball jittered by up to 0.2 mm (seeded from the env's
+    `np_random`), and the cue ball on the head spot (1/4 of the length, mid-width). With
+    `randomize_cue=True` the cue ball is placed uniformly in the kitchen region
+    x in [0.05 L, 0.25 L], y in [0.1 W, 0.9 W] (redrawn if it would sit over a pocket). Each
+    ball also gets a random orientation, which only the rendered rotation markers show.
+    `reset(seed=...)` is fully deterministic.
+
+    ## Episode End
+
+    | condition | result |
+    | --- | --- |
+    | `max_shots=1` (`PoolBreak-v0`): after the shot | `terminated=True` |
+    | every object ball is pocketed | `terminated=True` |
+    | the cue ball is pocketed (a scratch) | `terminated=True` |
+    | `max_shots` shots taken without the above (`PoolBreakRun-v0`: 30) | `truncated=True` |
+    | the simulator fails (`SimulationError`, event cap exceeded) | `truncated=True`, reward 0, `info["error"]` |
+
+    On a simulator failure the balls stay where they were before the shot, the message is
+    also logged with `gymnasium.logger.warn`, and the episode must be reset. Stepping a
+    finished episode raises `RuntimeError`.
+
+    `info` after every step holds: `pocketed` (list of the ball numbers that dropped this
+    shot, in order), `first_contact` (the first ball the cue ball hit, -1 for none),
+    `cushion_hits` (ball-cushion contacts of all balls this shot), `scratch` (bool),
+    `events` (simulator events this shot), `shot_duration` (simulated seconds until every
+    ball rested) and `balls_left` (object balls on the table). There are no wall-clock figures,
+    so infos of identical runs are identical.
+
+    ## Arguments
+
+    | argument | default | meaning |
+    | --- | --- | --- |
+    | `render_mode` | None | `"rgb_array"` (the table now) or `"rgb_array_list"` (every frame of the last shot) |
+    | `table` | `Table.eight_foot()` | the table; `Table.seed()` is the report's pocketless one |
+    | `physics` | `Physics.standard()` | the physics; `Physics.seed()` is the report's model |
+    | `max_shots` | 1 | shots per episode |
+    | `spin` | False | add the tip offset (side, top) to the action |
+    | `randomize_cue` | False | random cue-ball start in the kitchen |
+    | `shaping` | False | add the shaping terms to the reward |
+    | `render_size` | (640, 360) | (width, height) of rendered frames in pixels |
+    | `scratch_penalty` | 1.0 | penalty for pocketing the cue ball |
+
+    The balls are regulation pool balls (57.15 mm, 170 g) on every table.
+
+    ```python
+    import gymnasium as gym
+    import pool_env
+
+    env = gym.make("PoolBreak-v0", render_mode="rgb_array")
+    obs, info = env.reset(seed=0)
+    obs, reward, terminated, truncated, info = env.step([1.0, 0.0])  # full-power break along +x
+    frame = env.render()  # (360, 640, 3) uint8
+    pool_env.record_video("PoolBreak-v0", None, "break.mp4")  # a random break as a video
+    ```
+
+    ## Rendering
+
+    Top-down frames (uint8, H x W x 3): cloth, rails, pockets, numbered balls in the standard
+    colours with stripes, and a dot on every ball showing its rotation (integrated from the
+    exact angular velocities). `"rgb_array_list"` returns the last shot sampled from the exact
+    trajectory at `metadata["render_fps"]`, first frame (the shot's start) to last (every ball
+    at rest); after `reset` it is the single starting frame. `shot_frames(fps)` gives the same
+    at any frame rate in every render mode; `pool_env.record_video` and
+    `pool_env.video.ShotVideoRecorder` write whole shots to .mp4. Without a render mode the
+    rotation markers are only tracked through shots whose frames are asked for (it costs
+    time), so they may jump between shots.
+    """
+
+    metadata = {"render_modes": ["rgb_array", "rgb_array_list"], "render_fps": 30}
+
+    def __init__(self, render_mode=None, table=None, physics=None, max_shots=1, spin=False, randomize_cue=False,
+                 shaping=False, render_size=(640, 360), scratch_penalty=1.0):
+        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
+            raise ValueError(f"render_mode must be None or one of {self.metadata['render_modes']}, got {render_mode!r}")
+        self.render_mode = render_mode
+        self.table = Table.eight_foot() if table is None else table
+        if not isinstance(self.table, Table):
+            raise TypeError(f"table must be pool_env.physics.Table, got {type(self.table).__name__}")
+        self.physics = Physics.standard() if physics is None else physics
+        if not isinstance(self.physics, Physics):
+            raise TypeError(f"physics must be pool_env.physics.Physics, got {type(self.physics).__name__}")
+        if int(max_shots) != max_shots or max_shots < 1:
+            raise ValueError(f"max_shots must be an integer >= 1, got {max_shots!r}")
+        self.max_shots = int(max_shots)
+        self.spin = bool(spin)
+        self.randomize_cue = bool(randomize_cue)
+        self.shaping = bool(shaping)
+        self.scratch_penalty = float(scratch_penalty)
+        if not math.isfinite(self.scratch_penalty):
+            raise ValueError(f"scratch_penalty must be finite, got {scratch_penalty!r}")
+        self.render_size = (int(render_size[0]), int(render_size[1]))
+        if min(self.render_size) <= 0:
+            raise ValueError(f"render_size must be positive (width, height), got {render_size!r}")
+        if self.render_size[0] < 8 or self.render_size[1] < 8:
+            raise ValueError(f"render_size must be at least 8 x 8 pixels, got {render_size!r}")
+        self.pocketless = self.table.pockets.shape[0] == 0
+
+        self.action_space = spaces.Box(-1.0, 1.0, (4 if self.spin else 2,), np.float32)
+        self.observation_space = spaces.Box(-1.0, 1.0, (3 * N_BALLS + 1,), np.float32)
+
+        self._balls = None
+        self._shots = 0
+        self._done = True
+        self._orientation = None
+        self._shot = None  # (Result, orientation at its start or None for the reset's) of the last shot
+        self._tracks = {}  # fps -> (frame times, xy, pocketed, orientations) of the last shot
+        self._quaternions = None
+        self._rotated = True  # whether self._orientation is at the end of the last shot
+        self._renderer = None
+
+    # --- Gymnasium API ----------------------------------------------------------------------
+    def reset(self, *, seed=None, options=None):
+        super().reset(seed=seed)
+        rng = self.np_random
+        cue_xy = self._cue_start(rng) if self.randomize_cue else None
+        self._balls = rack(self.table, seed=int(rng.integers(2**63 - 1)), cue_xy=cue_xy)
+        self._quaternions = rng.normal(size=(N_BALLS, 4))  # random orientations, made matrices when drawn
+        self._orientation = None
+        self._shots = 0
+        self._done = False
+        self._shot = None
+        self._tracks = {}
+        return self._observation(), {}
+
+    def step(self, action):
+        if self._balls is None:
+            raise RuntimeError("call reset() before step()")
+        if self._done:
+            raise RuntimeError("the episode is over; call reset()")
+        force, offset = cue_force(action, self.spin)
+        before = self._balls
+        self._shots += 1
+        try:
+            result = simulate(strike(before, force, offset, CONTACT_TIME), self.table, self.physics)
+        except (SimulationError, ValueError) as error:
+            return self._failed(error)
+        after = result.final
+        kind, ei, ej = _event_arrays(result)
+        pocketed = ei[kind == BALL_POCKET].tolist()
+        cue_hits = np.flatnonzero((kind == BALL_BALL) & ((ei == 0) | (ej == 0)))
+        first_contact = -1 if not cue_hits.size else int(ei[cue_hits[0]] + ej[cue_hits[0]])
+        scratch = bool(after.pocketed[0])
+        balls_left = int(N_BALLS - 1 - np.count_nonzero(after.pocketed[1:]))
+
+        if self.pocketless:
+            reward = self._spread_gain(before, after)
+        else:
+            reward = float(sum(1 for b in pocketed if b != 0)) - (self.scratch_penalty if scratch else 0.0)
+        if self.shaping:
+            reward += SHAPING_CONTACT if first_contact >= 0 else -SHAPING_CONTACT
+            if not self.pocketless:
+                reward += SHAPING_SPREAD * self._spread_gain(before, after)
+
+        terminated = self.max_shots == 1 or scratch or (not self.pocketless and balls_left == 0)
+        truncated = not terminated and self._shots >= self.max_shots
+        self._done = terminated or truncated
+        self._balls = after
+        self._shot = (result, self._orientation)
+        self._tracks = {}
+        self._rotated = False
+        if self.render_mode is not None:
+            self._track(self.metadata["render_fps"])
+        info = {
+            "pocketed": pocketed,
+            "first_contact": int(first_contact),
+            "cushion_hits": int(result.stats["ball_cushion"]),
+            "scratch": scratch,
+            "events": int(kind.size),
+            "shot_duration": result.duration,
+            "balls_left": balls_left,
+        }
+        return self._observation(), float(reward), bool(terminated), bool(truncated), info
+
+    def render(self):
+        if self.render_mode is None:
+            gym.logger.warn("render() called without a render_mode; pass render_mode='rgb_array' to the env")
+            return None
+        if self._balls is None:
+            raise RuntimeError("call reset() before render()")
+        if self.render_mode == "rgb_array":
+            return self._draw(self._balls.xy, self._balls.pocketed, self._orientation_now())
+        return self.shot_frames()
+
+    def close(self):
+        self._renderer = None
+        self._tracks = {}
+
+    # --- frames -------------------------------------------------------------------------------
+    def shot_frames(self, fps=None) -> list[np.ndarray]:
+        """The frames of the last shot sampled from the exact trajectory at `fps` (default
+        `metadata["render_fps"]`), from its start to every ball at rest; after `reset` the
+        single starting frame. Works in every render mode."""
+        if self._balls is None:
+            raise RuntimeError("call reset() before shot_frames()")
+        if self._shot is None:
+            return [self._draw(self._balls.xy, self._balls.pocketed, self._orientation_now())]
+        _, xy, pocketed, orientation = self._track(self.metadata["render_fps"] if fps is None else fps)
+        return [self._draw(xy[k], pocketed[k], orientation[k]) for k in range(len(xy))]
+
+    def _track(self, fps):
+        """(times (F,), xy (F, 16, 2), pocketed (F, 16), orientation (F, 16, 3, 3)) of the last shot."""
+        fps = float(fps)
+        if not (math.isfinite(fps) and fps > 0):
+            raise ValueError(f"fps must be finite and > 0, got {fps!r}")
+        cached = self._tracks.get(fps)
+        if cached is not None:
+            return cached
+        result, start = self._shot
+        start = quaternion_rotations(self._quaternions) if start is None else start
+        duration = result.duration
+        times = np.arange(int(math.floor(duration * fps)) + 1) / fps
+        if times[-1] < duration:
+            times = np.append(times, duration)
+        # Angular velocity at the midpoints of ORIENTATION_SUBSTEPS substeps per frame interval:
+        # the midpoint rule is exact while w changes linearly about a fixed axis (sliding, rolling).
+        k = ORIENTATION_SUBSTEPS
+        edges = times[:-1, None] + np.diff(times)[:, None] * (np.arange(k) + 0.5)[None, :] / k
+        mids = edges.reshape(-1)
+        rows, states = result.sample(np.concatenate([times, mids]))
+        frames = len(times)
+        xy = rows[:frames, :, 0:2]
+        pocketed = states[:frames] == 4
+        w = np.nan_to_num(rows[frames:, :, 4:7])
+        dt = np.repeat(np.diff(times) / k, k)
+        steps = integrate_orientation(np.broadcast_to(np.eye(3), (w.shape[0] * N_BALLS, 3, 3)),
+                                      (w * dt[:, None, None]).reshape(-1, 3), 1.0).reshape(-1, N_BALLS, 3, 3)
+        orientation = np.empty((frames, N_BALLS, 3, 3))
+        current = start
+        orientation[0] = current
+        for f in range(1, frames):
+            for s in range((f - 1) * k, f * k):
+                current = steps[s] @ current
+            orientation[f] = current
+        orientation[-1] = integrate_orientation(orientation[-1], np.zeros((N_BALLS, 3)), 0.0)  # re-orthonormalise
+        track = (times, xy, pocketed, orientation)
+        self._tracks[fps] = track
+        if not self._rotated:  # the first track of a shot also advances the balls' orientation
+            self._orientation, self._rotated = orientation[-1], True
+        return track
+
+    def _orientation_now(self):
+        """The balls' orientations (16, 3, 3) now (or at the last shot's start, if it was not tracked)."""
+        if self._orientation is None:
+            self._orientation = quaternion_rotations(self._quaternions)
+        return self._orientation
+
+    def _draw(self, xy, pocketed, orientation):
+        if self._renderer is None:
+            self._renderer = TableRenderer(self.table.length, self.table.width, self.table.pockets,
+                                           float(np.max(self._balls.radii)), self.render_size)
+        return self._renderer.draw(xy, pocketed, orientation)
+
+    # --- helpers ------------------------------------------------------------------------------
+    def _observation(self):
+        balls = self._balls
+        o = np.empty((N_BALLS, 3))
+        o[:, 0] = 2.0 * balls.xy[:, 0] / self.table.length - 1.0
+        o[:, 1] = 2.0 * balls.xy[:, 1] / self.table.width - 1.0
+        o[:, 2] = 1.0
+        o[balls.pocketed] = (0.0, 0.0, -1.0)
+        obs = np.empty(3 * N_BALLS + 1, dtype=np.float32)
+        obs[:-1] = o.reshape(-1)
+        obs[-1] = 2.0 * self._shots / self.max_shots - 1.0
+        return np.clip(obs, -1.0, 1.0, out=obs)
+
+    def _spread_gain(self, before, after) -> float:
+        gain = spread(after.xy, ~after.pocketed, self.table) - spread(before.xy, ~before.pocketed, self.table)
+        return float(min(1.0, max(-1.0, gain)))
+
+    def _cue_start(self, rng):
+        L, W, r = self.table.length, self.table.width, BALL_RADIUS
+        pockets = self.table.pockets
+        for _ in range(1000):
+            x = rng.uniform(max(0.05 * L, r), 0.25 * L)
+            y = rng.uniform(max(0.1 * W, r), min(0.9 * W, W - r))
+            if not pockets.shape[0] or np.all(np.hypot(pockets[:, 0] - x, pockets[:, 1] - y) > pockets[:, 2] + r):
+                return (x, y)
+        return (0.25 * L, 0.5 * W)
+
+    def _failed(self, error):
+        """End the episode as truncated after a simulator failure; the balls stay put."""
+        message = f"{type(error).__name__}: {error}"
+        logger.warn(f"PoolBreakEnv: the shot could not be simulated and the episode is truncated ({message})")
+        self._done = True
+        self._shot = None
+        self._tracks = {}
+        info = {
+            "pocketed": [], "first_contact": -1, "cushion_hits": 0, "scratch": False, "events": 0,
+            "shot_duration": 0.0, "balls_left": int(N_BALLS - 1 - np.count_nonzero(self._balls.pocketed[1:])),
+            "error": message,
+        }
+        return self._observation(), 0.0, False, True, info
