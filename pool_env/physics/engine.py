@@ -107,51 +107,45 @@ def _predict_pair(S, st, R, params, t_tr, i, k, now, counters):
 
 
 @njit(cache=True)
-def _predict_cushion(S, st, R, params, t_tr, i, now, rails, jaws, counters):
-    """Next rail or jaw contact of ball i: (absolute time, cushion id); jaws follow rails."""
-    best, which = np.inf, -1
+def _predict_boundary(S, st, R, params, t_tr, i, now, rails, jaws, jaw_pockets, pockets, counters):
+    """Next rail or jaw contact (time, cushion id; jaws numbered after rails) and next pocket
+    capture (time, pocket id) of ball i."""
+    t_cu, cu = np.inf, -1
+    t_po, po = np.inf, -1
     if not _moving(st[i]):
-        return best, which
+        return t_cu, cu, t_po, po
+    r = R[i]
     horizon = max(t_tr[i] - now, 0.0)
-    travel = max_travel(S[i], st[i], now, horizon, R[i], params)
-    x, y, vx, vy, ax, ay = trajectory(S[i], st[i], now, R[i], params)
+    travel = max_travel(S[i], st[i], now, horizon, r, params)
+    x, y, vx, vy, ax, ay = trajectory(S[i], st[i], now, r, params)
     for c in range(rails.shape[0]):
         rail = rails[c]
-        if rail[4] * (x - rail[0]) + rail[5] * (y - rail[1]) - R[i] > travel:
+        if rail[4] * (x - rail[0]) + rail[5] * (y - rail[1]) - r > travel:
             counters[C_CU_REJ] += 1
             continue
         counters[C_CU] += 1
-        t = now + cushion.rail_time(S[i], st[i], now, horizon, R[i], params, rail)
-        if t < best:
-            best, which = t, c
-    for p in range(jaws.shape[0]):
-        if _out_of_reach(x - jaws[p, 0], y - jaws[p, 1], vx, vy, ax, ay, horizon, R[i]):
-            counters[C_CU_REJ] += 1
-            continue
-        counters[C_CU] += 1
-        t = now + cushion.point_time(S[i], st[i], now, horizon, R[i], params, jaws[p, 0], jaws[p, 1], R[i])
-        if t < best:
-            best, which = t, rails.shape[0] + p
-    return best, which
-
-
-@njit(cache=True)
-def _predict_pocket(S, st, R, params, t_tr, i, now, pockets, counters):
-    """Next pocket capture of ball i: (absolute time, pocket id)."""
-    best, which = np.inf, -1
-    if not _moving(st[i]):
-        return best, which
-    horizon = max(t_tr[i] - now, 0.0)
-    x, y, vx, vy, ax, ay = trajectory(S[i], st[i], now, R[i], params)
-    for p in range(pockets.shape[0]):
-        if _out_of_reach(x - pockets[p, 0], y - pockets[p, 1], vx, vy, ax, ay, horizon, pockets[p, 2]):
+        t = now + cushion.rail_time(S[i], st[i], now, horizon, r, params, rail)
+        if t < t_cu:
+            t_cu, cu = t, c
+    for k in range(pockets.shape[0]):
+        # A pocket's jaw points lie on its capture circle: a ball that cannot come within
+        # (capture radius + R) of the centre meets neither the pocket nor its jaws.
+        px, py, pr = pockets[k, 0], pockets[k, 1], pockets[k, 2]
+        if _out_of_reach(x - px, y - py, vx, vy, ax, ay, horizon, pr + r):
             counters[C_PO_REJ] += 1
             continue
         counters[C_PO] += 1
-        t = now + pocket.capture_time(S[i], st[i], now, horizon, R[i], params, pockets[p])
-        if t < best:
-            best, which = t, p
-    return best, which
+        t = now + pocket.capture_time(S[i], st[i], now, horizon, r, params, pockets[k])
+        if t < t_po:
+            t_po, po = t, k
+        for p in range(jaws.shape[0]):
+            if jaw_pockets[p] != k:
+                continue
+            counters[C_CU] += 1
+            t = now + cushion.point_time(S[i], st[i], now, horizon, r, params, jaws[p, 0], jaws[p, 1], r)
+            if t < t_cu:
+                t_cu, cu = t, rails.shape[0] + p
+    return t_cu, cu, t_po, po
 
 
 @njit(cache=True)
@@ -165,7 +159,7 @@ def _record(S, st, i, hist, hist_ball, n_hist):
 
 
 @njit(cache=True)
-def run(S, st, R, M, params, bb_model, cu_model, rails, jaws, pockets, height, spin,
+def run(S, st, R, M, params, bb_model, cu_model, rails, jaws, jaw_pockets, pockets, height, spin,
         max_events, ev_t, ev_kind, ev_i, ev_j, hist, hist_ball, counters):
     """Simulate from the rows S (all at t = 0) until every ball rests or is pocketed.
 
@@ -194,8 +188,8 @@ def run(S, st, R, M, params, bb_model, cu_model, rails, jaws, pockets, height, s
         counters[C_TR] += 1
         t_tr[i] = transition_time(S[i], st[i], R[i], params)
     for i in range(n):
-        t_cu[i], cu_id[i] = _predict_cushion(S, st, R, params, t_tr, i, now, rails, jaws, counters)
-        t_po[i], po_id[i] = _predict_pocket(S, st, R, params, t_tr, i, now, pockets, counters)
+        t_cu[i], cu_id[i], t_po[i], po_id[i] = _predict_boundary(
+            S, st, R, params, t_tr, i, now, rails, jaws, jaw_pockets, pockets, counters)
         for k in range(i + 1, n):
             pair[i, k] = pair[k, i] = _predict_pair(S, st, R, params, t_tr, i, k, now, counters)
 
@@ -270,8 +264,8 @@ def run(S, st, R, M, params, bb_model, cu_model, rails, jaws, pockets, height, s
             t_tr[i] = transition_time(S[i], st[i], R[i], params)
         for m in range(n_touched):
             i = touched[m]
-            t_cu[i], cu_id[i] = _predict_cushion(S, st, R, params, t_tr, i, now, rails, jaws, counters)
-            t_po[i], po_id[i] = _predict_pocket(S, st, R, params, t_tr, i, now, pockets, counters)
+            t_cu[i], cu_id[i], t_po[i], po_id[i] = _predict_boundary(
+                S, st, R, params, t_tr, i, now, rails, jaws, jaw_pockets, pockets, counters)
             for k in range(n):
                 if k != i and not (m == 1 and k == touched[0]):
                     pair[i, k] = pair[k, i] = _predict_pair(S, st, R, params, t_tr, i, k, now, counters)

@@ -157,7 +157,7 @@ class Table:
         sides = [((0.0, 0.0), (1.0, 0.0), (0.0, 1.0), L), ((L, W), (-1.0, 0.0), (0.0, -1.0), L),
                  ((0.0, W), (0.0, -1.0), (1.0, 0.0), W), ((L, 0.0), (0.0, 1.0), (-1.0, 0.0), W)]
         cuts = [[] for _ in sides]
-        circles, jaws = [], []
+        circles, jaws, jaw_pockets = [], [], []
         for number, pocket in enumerate(pockets):
             x, y, mouth = (float(c) for c in pocket)
             if not (all(math.isfinite(c) for c in (x, y, mouth)) and mouth > 0):
@@ -180,6 +180,7 @@ class Table:
                 for edge in (lo, hi):
                     if 0.0 < edge < span:
                         jaws.append((start[0] + edge * along[0], start[1] + edge * along[1]))
+                        jaw_pockets.append(number)
         rails = []
         for s, (start, along, normal, span) in enumerate(sides):
             pos = 0.0
@@ -194,6 +195,9 @@ class Table:
         self.rails = _readonly(np.array(rails, dtype=np.float64).reshape(-1, 6))
         self.jaws = _readonly(np.array(jaws, dtype=np.float64).reshape(-1, 2))
         self.pockets = _readonly(np.array(circles, dtype=np.float64).reshape(-1, 3))
+        # The pocket each jaw point belongs to: the engine skips a pocket's jaws along with
+        # the pocket when a ball cannot come near it.
+        self.jaw_pockets = _readonly(np.array(jaw_pockets, dtype=np.int64))
 
     def __repr__(self):
         return f"Table({self.length} x {self.width} m, {len(self.pockets)} pockets)"

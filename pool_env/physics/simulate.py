@@ -115,7 +115,7 @@ def _run_events(balls, table, physics, max_events):
         hist_ball = np.empty(n + 2 * size + 2, dtype=np.int64)
         counters = np.zeros(len(engine.COUNTERS), dtype=np.int64)
         n_ev, n_hist, code = engine.run(
-            S, st, R, M, params, models[0], models[1], table.rails, table.jaws, table.pockets,
+            S, st, R, M, params, models[0], models[1], table.rails, table.jaws, table.jaw_pockets, table.pockets,
             table.cushion_height, spin, cap, ev_t, ev_ids[0], ev_ids[1], ev_ids[2], hist, hist_ball, counters,
         )
         if code != engine.BUFFER_FULL:
