@@ -57,7 +57,7 @@ C_BB, C_BB_REJ, C_CU, C_CU_REJ, C_PO, C_PO_REJ, C_TR, C_REST = range(8)
 DONE, EVENT_CAP, BUFFER_FULL = 0, 1, 2
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _moving(state):
     return state == SLIDING or state == ROLLING
 

@@ -31,7 +31,7 @@ EPS_V = 1e-12
 EPS_W = 1e-10
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def spin_decel(radius, params):
     """Angular deceleration of z-spin from spinning friction (rad/s^2)."""
     return 5.0 * params[P_MU_SP] * params[P_G] / (2.0 * radius)

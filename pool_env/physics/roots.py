@@ -19,22 +19,22 @@ from numba import njit
 _MAX_ITER = 100
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _f(c0, c1, c2, c3, c4, t):
     return (((c4 * t + c3) * t + c2) * t + c1) * t + c0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _df(c1, c2, c3, c4, t):
     return ((4.0 * c4 * t + 3.0 * c3) * t + 2.0 * c2) * t + c1
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _ddf(c2, c3, c4, t):
     return (12.0 * c4 * t + 6.0 * c3) * t + 2.0 * c2
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _value_slope(c0, c1, c2, c3, c4, t, derivative):
     if derivative == 0:
         return _f(c0, c1, c2, c3, c4, t), _df(c1, c2, c3, c4, t)
