@@ -76,7 +76,8 @@ def simulate(balls: Balls, table: Table, physics: Physics | None = None, method:
              max_events: int | None = None, **options) -> Result:
     """Simulate until every ball rests or is pocketed.
 
-    `method="events"` (the default) is the exact continuous-time engine. Raises ValueError for
+    `method="events"` (the default) is the exact continuous-time engine; `method="fixed"` steps
+    in frames (options dt, detection, recheck: see pool_env.physics.fixed). Raises ValueError for
     an invalid scene and SimulationError if more than `max_events` events happen (a generous
     default cap), naming the balls most involved.
     """
@@ -85,8 +86,13 @@ def simulate(balls: Balls, table: Table, physics: Physics | None = None, method:
         raise TypeError(f"balls must be pool_env.physics.Balls, got {type(balls).__name__}")
     if not isinstance(table, Table):
         raise TypeError(f"table must be pool_env.physics.Table, got {type(table).__name__}")
+    if method == "fixed":
+        from .fixed import simulate_fixed
+
+        check_on_table(balls, table)
+        return simulate_fixed(balls, table, physics, max_events, **options)
     if method != "events":
-        raise ValueError(f"unknown method {method!r}; available: 'events'")
+        raise ValueError(f"unknown method {method!r}; available: 'events', 'fixed'")
     if options:
         raise TypeError(f"method 'events' takes no options, got {sorted(options)}")
     check_on_table(balls, table)
