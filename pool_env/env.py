@@ -8,7 +8,19 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import logger, spaces
 
-from .physics import BALL_MASS, BALL_RADIUS, EVENT_KINDS, Physics, SimulationError, Table, rack, simulate, strike
+from .physics import (
+    BALL_MASS,
+    BALL_RADIUS,
+    EVENT_KINDS,
+    Balls,
+    Physics,
+    SimulationError,
+    Table,
+    rack,
+    simulate,
+    strike,
+)
+from .physics.simulate import check_on_table
 from .render import TableRenderer, integrate_orientation
 
 N_BALLS = 16
@@ -167,7 +179,9 @@ class PoolBreakEnv(gym.Env):
     `randomize_cue=True` the cue ball is placed uniformly in the kitchen region
     x in [0.05 L, 0.25 L], y in [0.1 W, 0.9 W] (redrawn if it would sit over a pocket). Each
     ball also gets a random orientation, which only the rendered rotation markers show.
-    `reset(seed=...)` is fully deterministic.
+    `reset(seed=...)` is fully deterministic. `reset(options={"balls": balls})` starts from a
+    given layout instead: a `pool_env.physics.Balls` of 16 balls at rest, the cue ball on the
+    table (pocketed object balls are allowed), e.g. to practise one shot.
 
     ## Episode End
 
@@ -277,9 +291,12 @@ class PoolBreakEnv(gym.Env):
         super().reset(seed=seed)
         rng = self.np_random
         cue_xy = self._cue_start(rng) if self.randomize_cue else None
-        self._balls = rack(self.table, seed=int(rng.integers(2**63 - 1)), cue_xy=cue_xy)
+        rack_seed = int(rng.integers(2**63 - 1))
         self._quaternions = rng.normal(size=(N_BALLS, 4))  # random orientations, made matrices when drawn
+        balls = (options or {}).get("balls")
+        self._balls = rack(self.table, seed=rack_seed, cue_xy=cue_xy) if balls is None else self._check_balls(balls)
         self._orientation = None
+        self._rotated = True
         self._shots = 0
         self._done = False
         self._shot = None
@@ -402,6 +419,15 @@ class PoolBreakEnv(gym.Env):
             self._orientation, self._rotated = orientation[-1], True
         return track
 
+    @property
+    def renderer(self) -> TableRenderer:
+        """The frame renderer (made on first use); `renderer.world_to_pixel` maps metres to pixels."""
+        radius = BALL_RADIUS if self._balls is None else float(np.max(self._balls.radii))
+        if self._renderer is None or self._renderer.ball_radius != radius:
+            self._renderer = TableRenderer(self.table.length, self.table.width, self.table.pockets, radius,
+                                           self.render_size)
+        return self._renderer
+
     def _orientation_now(self):
         """The balls' orientations (16, 3, 3) now (or at the last shot's start, if it was not tracked)."""
         if self._orientation is None:
@@ -409,10 +435,7 @@ class PoolBreakEnv(gym.Env):
         return self._orientation
 
     def _draw(self, xy, pocketed, orientation):
-        if self._renderer is None:
-            self._renderer = TableRenderer(self.table.length, self.table.width, self.table.pockets,
-                                           float(np.max(self._balls.radii)), self.render_size)
-        return self._renderer.draw(xy, pocketed, orientation)
+        return self.renderer.draw(xy, pocketed, orientation)
 
     # --- helpers ------------------------------------------------------------------------------
     def _observation(self):
@@ -430,6 +453,16 @@ class PoolBreakEnv(gym.Env):
     def _spread_gain(self, before, after) -> float:
         gain = spread(after.xy, ~after.pocketed, self.table) - spread(before.xy, ~before.pocketed, self.table)
         return float(min(1.0, max(-1.0, gain)))
+
+    def _check_balls(self, balls):
+        if not isinstance(balls, Balls) or len(balls) != N_BALLS:
+            raise ValueError(f"options['balls'] must be pool_env.physics.Balls with {N_BALLS} balls, got {balls!r}")
+        if np.any(balls.v) or np.any(balls.w):
+            raise ValueError("options['balls'] must be at rest (zero velocities and spins)")
+        if balls.pocketed[0]:
+            raise ValueError("options['balls']: the cue ball (ball 0) must be on the table")
+        check_on_table(balls, self.table)
+        return balls
 
     def _cue_start(self, rng):
         L, W, r = self.table.length, self.table.width, BALL_RADIUS

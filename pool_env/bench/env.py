@@ -1,0 +1,114 @@
+"""`python -m pool_env.bench env`: environment steps/s without rendering, and rendering frames/s."""
+
+from __future__ import annotations
+
+import argparse
+import time
+import warnings
+
+import gymnasium as gym
+import numpy as np
+
+import pool_env  # noqa: F401  (registers the ids)
+
+STEP_TARGET = 1000.0  # steps/s, PoolBreak-v0 on one core
+FRAME_TARGET = 500.0  # frames/s at the default size
+
+
+class _Clock:
+    """Wall time and this process's CPU time since creation (CPU time is what one core gives,
+    even when other processes share the machine)."""
+
+    def __init__(self):
+        self._wall, self._cpu = time.perf_counter(), time.process_time()
+
+    def wall(self):
+        return time.perf_counter() - self._wall
+
+    def cpu(self):
+        return time.process_time() - self._cpu
+
+
+def _steps_per_second(env_id, seconds, seed):
+    """Random actions, resetting whenever an episode ends (resets are counted in the time)."""
+    env = gym.make(env_id)
+    env.action_space.seed(seed)
+    env.reset(seed=seed)
+    env.step(np.array([1.0, 0.0], dtype=np.float32))  # load the compiled engine before timing
+    env.reset(seed=seed)
+    steps = episodes = failures = 0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # a failed shot is counted below, not printed
+        clock = _Clock()
+        while clock.wall() < seconds:
+            _, _, terminated, truncated, info = env.step(env.action_space.sample())
+            steps += 1
+            failures += "error" in info
+            if terminated or truncated:
+                episodes += 1
+                env.reset()
+        wall, cpu = clock.wall(), clock.cpu()
+    env.close()
+    return steps / cpu, steps / wall, steps, episodes, failures
+
+
+def _frames_per_second(mode, seconds, seed, size):
+    """rgb_array: render() of a table after a break. rgb_array_list: whole shots, from the exact
+    trajectory (sampling, orientation integration and drawing), counted per frame."""
+    env = gym.make("PoolBreakRun-v0", render_mode=mode, render_size=size)
+    env.action_space.seed(seed)
+    env.reset(seed=seed)
+    env.step(np.array([1.0, 0.0], dtype=np.float32))
+    env.render()
+    frames = 0
+    if mode == "rgb_array":
+        clock = _Clock()
+        while clock.wall() < seconds:
+            for _ in range(50):
+                frames += env.render().shape[0] > 0
+        wall, cpu = clock.wall(), clock.cpu()
+    else:
+        base = env.unwrapped
+        env.reset(seed=seed)
+        action = np.array([1.0, 0.0], dtype=np.float32)  # a break, then random shots
+        wall = cpu = 0.0
+        while wall < seconds:
+            _, _, terminated, truncated, _ = env.step(action)  # the physics is not timed
+            base._tracks = {}  # time the trajectory sampling and orientation too, not only the drawing
+            clock = _Clock()
+            frames += len(env.render())
+            wall, cpu = wall + clock.wall(), cpu + clock.cpu()
+            if terminated or truncated:
+                env.reset()
+            action = env.action_space.sample()
+    env.close()
+    return frames / cpu, frames / wall, frames
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m pool_env.bench env", description=__doc__)
+    parser.add_argument("--seconds", type=float, default=3.0, help="time per measurement (default 3)")
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--size", default="640x360", help="frame size WxH (default 640x360)")
+    args = parser.parse_args(argv)
+    size = tuple(int(v) for v in args.size.lower().split("x"))
+
+    rows = []
+    for env_id in ("PoolBreak-v0", "PoolBreakRun-v0"):
+        cpu, wall, steps, episodes, failures = _steps_per_second(env_id, args.seconds, args.seed)
+        target = STEP_TARGET if env_id == "PoolBreak-v0" else None
+        note = f"{steps} steps, {episodes} episodes" + (f", {failures} failed shots" if failures else "")
+        rows.append((f"{env_id} steps/s, no rendering", cpu, wall, target, note))
+    for mode, what in (("rgb_array", "render() of the table"), ("rgb_array_list", "whole shots, per frame")):
+        cpu, wall, frames = _frames_per_second(mode, args.seconds, args.seed, size)
+        rows.append((f"{mode} frames/s at {size[0]}x{size[1]}", cpu, wall, FRAME_TARGET, f"{what}, {frames} frames"))
+
+    print("pool_env environment benchmark: one process on one core, random actions")
+    print("(per CPU second of this process, and per wall second, which other load on the machine lowers)\n")
+    print(f"| {'measure':<40} | {'per CPU s':>9} | {'per wall s':>10} | {'target':>8} | {'':<4} | notes")
+    print(f"| {'-' * 40} | {'-' * 9} | {'-' * 10} | {'-' * 8} | {'-' * 4} | -----")
+    for name, cpu, wall, target, note in rows:
+        verdict = "" if target is None else ("ok" if cpu >= target else "MISS")
+        shown = "" if target is None else f">= {target:.0f}"
+        print(f"| {name:<40} | {cpu:>9.0f} | {wall:>10.0f} | {shown:>8} | {verdict:<4} | {note}")
+    return 0
