@@ -96,7 +96,7 @@ DONE, EVENT_CAP, BUFFER_FULL, STEP_CAP = engine.DONE, engine.EVENT_CAP, engine.B
 MAX_SIMULATED_TIME = 1000.0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _moving(state):
     return state == SLIDING or state == ROLLING
 
@@ -176,7 +176,7 @@ def _positions(S, st, t, R, params, PX, PY, VXa, VYa):
             PX[i], PY[i], VXa[i], VYa[i] = S[i, X], S[i, Y], 0.0, 0.0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _near_edge(x, y, margin, length, width):
     """Whether a centre is within `margin` of the table's outline (only there can a rail, a jaw
     or a pocket be reached)."""
@@ -200,7 +200,7 @@ def _cushion_depths(S, st, R, PX, PY, rails, jaws, length, width, fst):
                 fst[MAX_CUSHION] = max(fst[MAX_CUSHION], depth)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _along(rail, x, y):
     """Whether the centre (x, y) is alongside the rail segment (beyond its ends the jaws act)."""
     dx, dy = rail[2] - rail[0], rail[3] - rail[1]
