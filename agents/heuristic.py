@@ -1,0 +1,200 @@
+"""Geometric baselines: a break rule and a ghost-ball potting player. No learning, no simulation."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from pool_env.env import MAX_SPEED, MAX_TIP_OFFSET, decode_observation
+from pool_env.physics import BALL_RADIUS, Physics, Table
+
+from . import geometry as geo
+from .base import Agent
+
+
+def _action(direction, speed: float, spin: bool, tip=(0.0, 0.0)) -> np.ndarray:
+    """The env action for a centre (or `tip` = (side, top) in ball radii) hit at `speed` m/s."""
+    force = np.asarray(direction, dtype=np.float64) * min(speed / MAX_SPEED, 1.0)
+    if not spin:
+        return force.astype(np.float32)
+    return np.concatenate([force, np.asarray(tip, dtype=np.float64) / MAX_TIP_OFFSET]).astype(np.float32)
+
+
+class BreakAgent(Agent):
+    """The break: full power at the head ball (the object ball nearest the cue ball), aimed
+    `offset` ball radii to the left of its centre as seen from the cue ball.
+
+    A dead-centre hit leaves the cue ball parked where the exploding rack sends balls back at
+    it: it is pocketed in about half of the breaks. A hit a tenth of a radius (3 mm) off-centre
+    moves it out of the way. With `spin=True` the tip is also placed `tip` = (side, top) ball
+    radii off centre, by default a fifth of a radius above (a little follow). The defaults come
+    from a scan of offsets, speeds and tip positions over 300 jittered racks each, checked on
+    1,000 fresh ones (PoolBreak-v0, standard physics):
+
+    | break | reward | balls pocketed | scratch rate |
+    | --- | --- | --- | --- |
+    | uniformly random action | -0.26 | 0.17 | 0.42 |
+    | full power, dead centre | 0.76 | 1.30 | 0.55 |
+    | full power, offset 0.1 R (the default) | 1.02 | 1.08 | 0.06 |
+    | same with 0.2 R follow (default with `spin=True`) | 1.35 | 1.48 | 0.12 |
+    """
+
+    name = "heuristic"
+
+    def __init__(self, table: Table | None = None, spin: bool = False, offset: float = 0.1, speed: float = MAX_SPEED,
+                 tip=None, radius: float = BALL_RADIUS):
+        self.table = Table.eight_foot() if table is None else table
+        self.spin = bool(spin)
+        self.offset, self.speed, self.radius = float(offset), float(speed), float(radius)
+        self.tip = ((0.0, 0.2) if self.spin else (0.0, 0.0)) if tip is None else tuple(tip)
+
+    @classmethod
+    def from_env(cls, env, **kwargs) -> BreakAgent:
+        env = env.unwrapped
+        return cls(table=env.table, spin=env.spin, **kwargs)
+
+    def act(self, observation) -> np.ndarray:
+        xy, on_table = decode_observation(observation, self.table)
+        return self.break_shot(xy, on_table)
+
+    def break_shot(self, xy, on_table) -> np.ndarray:
+        cue = xy[0]
+        objects = np.flatnonzero(on_table[1:]) + 1
+        if not on_table[0] or objects.size == 0:
+            return _action((1.0, 0.0), self.speed, self.spin, self.tip)
+        head = xy[objects[np.argmin(np.hypot(*(xy[objects] - cue).T))]]
+        d = geo.unit(head - cue)
+        aim = head + self.offset * self.radius * np.array([-d[1], d[0]])
+        return _action(geo.unit(aim - cue), self.speed, self.spin, self.tip)
+
+
+@dataclass(frozen=True)
+class Shot:
+    """A planned pot: ball `ball` into pocket `pocket`, the cue ball sent along `direction` at `speed` m/s."""
+
+    ball: int
+    pocket: int
+    direction: np.ndarray
+    speed: float
+    cut: float  # cut angle (rad)
+    score: float
+    scratch_risk: bool
+
+
+class GhostBallAgent(Agent):
+    """Pots balls by the ghost-ball method, for the multi-shot env (`PoolBreakRun-v0`).
+
+    The first shot of an episode (the shot counter in the observation reads 0) is the break,
+    played by `BreakAgent`. After that, for every object ball and pocket:
+
+    1. aim the object ball at the middle of the open part of the pocket mouth (skip the pocket
+       if jaws, rails or other balls close it);
+    2. put the ghost ball (where the cue ball must be at contact) two radii behind the object
+       ball on that line, turned by the throw the contact friction will cause;
+    3. skip the shot if the cue ball's path to the ghost ball is blocked, the ghost ball is off
+       the cloth, or the cut is thinner than `max_cut`;
+    4. choose the speed that brings the object ball to the pocket at `arrival_speed` m/s, given
+       sliding and rolling friction on the way (cue ball to contact, then object ball to pocket);
+    5. score it by cut, distances and how open the pocket is, and penalise shots whose cue ball
+       would follow into a pocket.
+
+    The best-scoring shot is played; with none, the cue ball is sent full into the nearest
+    object ball it can reach at `fallback_speed` m/s (a break-out shot).
+    """
+
+    name = "heuristic"
+
+    def __init__(self, table: Table | None = None, physics: Physics | None = None, spin: bool = False,
+                 max_cut: float = 75.0, arrival_speed: float = 0.3, fallback_speed: float = 6.0,
+                 radius: float = BALL_RADIUS, break_agent: BreakAgent | None = None):
+        self.table = Table.eight_foot() if table is None else table
+        self.physics = Physics.standard() if physics is None else physics
+        self.spin = bool(spin)
+        self.max_cut = math.radians(max_cut)
+        self.arrival_speed, self.fallback_speed, self.radius = float(arrival_speed), float(fallback_speed), radius
+        self.pockets = geo.pockets_of(self.table)
+        self.breaker = BreakAgent(self.table, spin=self.spin, radius=radius) if break_agent is None else break_agent
+
+    @classmethod
+    def from_env(cls, env, **kwargs) -> GhostBallAgent:
+        env = env.unwrapped
+        return cls(table=env.table, physics=env.physics, spin=env.spin, **kwargs)
+
+    def act(self, observation) -> np.ndarray:
+        observation = np.asarray(observation)
+        xy, on_table = decode_observation(observation, self.table)
+        if observation[-1] <= -1.0 + 1e-6:  # no shot taken yet: the break
+            return self.breaker.break_shot(xy, on_table)
+        shot = self.best_shot(xy, on_table)
+        if shot is None:
+            return self.fallback(xy, on_table)
+        return _action(shot.direction, shot.speed, self.spin)
+
+    # --- planning ---------------------------------------------------------------------------
+    def shots(self, xy, on_table) -> list[Shot]:
+        """Every feasible pot, unsorted."""
+        if not on_table[0]:
+            return []
+        objects = np.flatnonzero(on_table[1:]) + 1
+        out = []
+        for i in objects:
+            others = xy[objects[objects != i]]
+            for pocket in self.pockets:
+                shot = self._plan(xy[0], int(i), xy[i], pocket, others)
+                if shot is not None:
+                    out.append(shot)
+        return out
+
+    def best_shot(self, xy, on_table) -> Shot | None:
+        shots = self.shots(xy, on_table)
+        return max(shots, key=lambda s: s.score) if shots else None
+
+    def _plan(self, cue, ball, obj, pocket, others) -> Shot | None:
+        R, phys, table = self.radius, self.physics, self.table
+        aim = geo.pocket_aim(obj, pocket, table, R, others)
+        if aim is None:
+            return None
+        target, open_fraction = aim
+        u = geo.unit(target - obj)
+        d2 = float(np.hypot(*(target - obj)))
+        v_obj = geo.start_speed(self.arrival_speed, d2, phys)
+        n = u
+        for _ in range(4):  # fixed point: the throw depends on the contact normal
+            ghost = obj - 2.0 * R * n
+            to_ghost = ghost - cue
+            d1 = float(np.hypot(*to_ghost))
+            if d1 < 1e-9:
+                return None
+            d = to_ghost / d1
+            t = np.array([-n[1], n[0]])
+            dn, dt = float(d @ n), float(d @ t)
+            if dn < math.cos(self.max_cut):
+                return None
+            v_impact = v_obj / (0.5 * (1.0 + phys.e_b) * dn)
+            speed = geo.start_speed(v_impact, d1, phys)
+            roll = geo.forward_spin_after(speed, d1, R, phys)
+            on, ot, cn, ct = geo.collision(v_impact, roll, dn, dt, phys)
+            n = geo.rotate(u, -math.atan2(ot, on))
+        if speed > MAX_SPEED:
+            return None
+        if not (R <= ghost[0] <= table.length - R and R <= ghost[1] <= table.width - R):
+            return None
+        if not geo.path_clear(cue, ghost, others, 2.0 * R * 1.02):
+            return None
+        # Where the cue ball goes after contact: does it follow or glance into a pocket?
+        path = geo.cue_path(ghost, cn * n + ct * t, roll * d, phys, table, R)
+        scratch = geo.enters_pocket(path, self.pockets)
+        score = dn * open_fraction / ((d1 + 0.5) * (d2 + 0.5)) * (0.1 if scratch else 1.0)
+        return Shot(ball, pocket.index, d, speed, math.acos(min(dn, 1.0)), score, scratch)
+
+    def fallback(self, xy, on_table) -> np.ndarray:
+        """No pot on: full into the nearest object ball with a clear path (or straight up the table)."""
+        cue = xy[0]
+        objects = np.flatnonzero(on_table[1:]) + 1
+        for i in objects[np.argsort(np.hypot(*(xy[objects] - cue).T))]:
+            others = xy[objects[objects != i]]
+            if geo.path_clear(cue, xy[i], others, 2.0 * self.radius * 1.02):
+                return _action(geo.unit(xy[i] - cue), self.fallback_speed, self.spin)
+        return _action((1.0, 0.0), self.fallback_speed, self.spin)
