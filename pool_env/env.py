@@ -31,7 +31,7 @@ MIN_MAGNITUDE = 0.02  # weaker actions are raised to this (0.24 m/s)
 MAX_TIP_OFFSET = 0.5  # in ball radii
 SHAPING_CONTACT = 0.1  # shaping: + for hitting an object ball, - for missing them all
 SHAPING_SPREAD = 0.5  # shaping: weight of the spread gain on a table with pockets
-BALL_BALL, BALL_POCKET = EVENT_KINDS.index("ball_ball"), EVENT_KINDS.index("ball_pocket")
+BALL_BALL, BALL_CUSHION, BALL_POCKET = (EVENT_KINDS.index(k) for k in ("ball_ball", "ball_cushion", "ball_pocket"))
 ORIENTATION_SUBSTEPS = 4  # orientation integration steps per rendered frame
 
 
@@ -344,7 +344,7 @@ class PoolBreakEnv(gym.Env):
         info = {
             "pocketed": pocketed,
             "first_contact": int(first_contact),
-            "cushion_hits": int(result.stats["ball_cushion"]),
+            "cushion_hits": int(np.count_nonzero(kind == BALL_CUSHION)),
             "scratch": scratch,
             "events": int(kind.size),
             "shot_duration": result.duration,
@@ -440,15 +440,14 @@ class PoolBreakEnv(gym.Env):
     # --- helpers ------------------------------------------------------------------------------
     def _observation(self):
         balls = self._balls
-        o = np.empty((N_BALLS, 3))
-        o[:, 0] = 2.0 * balls.xy[:, 0] / self.table.length - 1.0
-        o[:, 1] = 2.0 * balls.xy[:, 1] / self.table.width - 1.0
-        o[:, 2] = 1.0
-        o[balls.pocketed] = (0.0, 0.0, -1.0)
         obs = np.empty(3 * N_BALLS + 1, dtype=np.float32)
-        obs[:-1] = o.reshape(-1)
+        per_ball = obs[:-1].reshape(N_BALLS, 3)
+        # Centres lie at least R inside the rails, so these are within (-1, 1).
+        per_ball[:, 0:2] = balls.xy * (2.0 / self.table.length, 2.0 / self.table.width) - 1.0
+        per_ball[:, 2] = 1.0
+        per_ball[balls.pocketed] = (0.0, 0.0, -1.0)
         obs[-1] = 2.0 * self._shots / self.max_shots - 1.0
-        return np.clip(obs, -1.0, 1.0, out=obs)
+        return obs
 
     def _spread_gain(self, before, after) -> float:
         gain = spread(after.xy, ~after.pocketed, self.table) - spread(before.xy, ~before.pocketed, self.table)
