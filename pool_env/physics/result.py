@@ -61,7 +61,14 @@ class Result:
 
     @property
     def event_times(self) -> np.ndarray:
+        """The event times (s), ascending."""
         return self._ev_t
+
+    @property
+    def event_arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """The events as arrays (times, kind ids into EVENT_KINDS, i, j): what `events` holds,
+        without building a Python object per event."""
+        return self._ev_t, self._ev_kind, self._ev_i, self._ev_j
 
     @property
     def duration(self) -> float:
