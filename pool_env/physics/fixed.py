@@ -19,15 +19,16 @@ Detection (the seed report's section 3.1 and chapter 5; see docs/accuracy.md):
 - `priori` (report 3.1.2, its eq. 3.1 with (r1 + r2)^2): at the start of the frame every
   pair's contact time is predicted from the current positions and velocities as if the
   velocities were constant, |dp + dv t|^2 = (r1 + r2)^2, taking the smaller root. The
-  earliest contact inside the frame is resolved at its predicted time (the pair is brought
-  there on the closed-form laws, so the curvature and deceleration the quadratic ignores
-  show up as a small gap or overlap at contact). The report then leaves later collisions to
-  the next frame ("Naestkommande kollisioner beraknas ... i naesta tidsuppdatering"), so at
-  most ONE ball-ball collision is resolved per frame. A pair that ends a frame overlapping
-  has its smaller root in the past and is never resolved: the balls pass through each
-  other, the report's "missed" second collision in a cluster (its chapter 5). With
-  `recheck=True` the prediction is repeated after every collision until the frame is used
-  up: the fix the report proposes in chapter 5.
+  earliest contact inside the frame is resolved at its predicted time: the pair is brought
+  there on the closed-form laws and then, as the report does (its code listing 3), placed
+  exactly in contact along the line of centres, closing the small gap or overlap left by
+  the curvature and deceleration the quadratic ignores. The report leaves later collisions
+  to the next frame ("subsequent collisions are then computed in the next time update"),
+  so at most ONE ball-ball collision is resolved per frame. A pair that ends a frame
+  overlapping has its smaller root in the past and is never resolved: the balls pass
+  through each other, the report's "missed" second collision in a cluster (its chapter 5).
+  With `recheck=True` the prediction is repeated after every collision until the frame is
+  used up: the fix the report proposes in chapter 5.
   Two choices the report leaves open: (1) a pair overlapping by less than the quadratic's
   own error bound over one frame (2 max(mu_s, mu_r) g dt^2, from ignoring friction) counts
   as touching, so the closed-form motion between predictions cannot by itself turn a hit
@@ -209,6 +210,17 @@ def _along(rail, x, y):
 
 
 @njit(cache=True)
+def _place(S, i, k, nx, ny, depth, M):
+    """Move balls i and k apart along n (from i to k) by `depth` (together if negative), each by
+    the other's mass share: the centre of mass and the line of centres stay put."""
+    share_i, share_k = M[k] / (M[i] + M[k]), M[i] / (M[i] + M[k])
+    S[i, X] -= nx * depth * share_i
+    S[i, Y] -= ny * depth * share_i
+    S[k, X] += nx * depth * share_k
+    S[k, Y] += ny * depth * share_k
+
+
+@njit(cache=True)
 def _posteriori(t, S, st, R, M, params, bb_model, cu_model, rails, jaws, height, length, width, spin, t_tr,
                 PX, PY, scratch, max_events, ev_t, ev_kind, ev_i, ev_j, hist, hist_ball, cnt, fst):
     """Find and fix the overlaps standing at the frame end t: push apart, then collide."""
@@ -237,11 +249,7 @@ def _posteriori(t, S, st, R, M, params, bb_model, cu_model, rails, jaws, height,
                 nx, ny = dx / d, dy / d
             else:  # concentric: any normal will do
                 nx, ny = 1.0, 0.0
-            share_i, share_k = M[k] / (M[i] + M[k]), M[i] / (M[i] + M[k])
-            S[i, X] -= nx * depth * share_i
-            S[i, Y] -= ny * depth * share_i
-            S[k, X] += nx * depth * share_k
-            S[k, Y] += ny * depth * share_k
+            _place(S, i, k, nx, ny, depth, M)
             PX[i], PY[i], PX[k], PY[k] = S[i, X], S[i, Y], S[k, X], S[k, Y]
             approach = (S[i, VX] - S[k, VX]) * nx + (S[i, VY] - S[k, VY]) * ny
             if approach > ball_ball.MIN_APPROACH:
@@ -399,10 +407,15 @@ def _priori_frame(t0, t1, S, st, R, M, params, bb_model, cu_model, rails, jaws, 
             _rebase(S, st, j, now, R, params, scratch)
             dx, dy = S[j, X] - S[i, X], S[j, Y] - S[i, Y]
             d = math.hypot(dx, dy)
+            nx, ny = dx / d, dy / d
             fst[MAX_OVERLAP] = max(fst[MAX_OVERLAP], R[i] + R[j] - d)
-            approach = ((S[i, VX] - S[j, VX]) * dx + (S[i, VY] - S[j, VY]) * dy) / d
             # A transition inside the frame (a ball stopping) can undo the predicted approach.
-            if approach > ball_ball.MIN_APPROACH:
+            if (S[i, VX] - S[j, VX]) * nx + (S[i, VY] - S[j, VY]) * ny > ball_ball.MIN_APPROACH:
+                # The report moves the pair "next to each other" before resolving (its code
+                # listing 3). Here it closes the gap or overlap the straight-line prediction
+                # left, so that a pair kept pressed together (a sliding ball driving into
+                # another) cannot creep into overlap frame after frame.
+                _place(S, i, j, nx, ny, R[i] + R[j] - d, M)
                 ball_ball.resolve(bb_model, S[i], S[j], R[i], R[j], M[i], M[j], params)
                 _event(now, kind, i, j, max_events, ev_t, ev_kind, ev_i, ev_j, cnt)
                 # Without the re-check the rest of the frame sees no ball-ball collision.
@@ -420,6 +433,8 @@ def _priori_frame(t0, t1, S, st, R, M, params, bb_model, cu_model, rails, jaws, 
                 depth = R[i] - d
             fst[MAX_CUSHION] = max(fst[MAX_CUSHION], depth)
             if S[i, VX] * nx + S[i, VY] * ny < -ball_ball.MIN_APPROACH:
+                S[i, X] += nx * depth  # to the contact, as for a pair
+                S[i, Y] += ny * depth
                 cushion.resolve(cu_model, S[i], nx, ny, R[i], params, height)
                 _event(now, kind, i, j, max_events, ev_t, ev_kind, ev_i, ev_j, cnt)
             _settle(S, st, i, now, R, params, spin, t_tr, hist, hist_ball, cnt)
