@@ -43,12 +43,13 @@ class BreakAgent(Agent):
 
     name = "heuristic"
 
-    def __init__(self, table: Table | None = None, spin: bool = False, offset: float = 0.1, speed: float = MAX_SPEED,
-                 tip=None, radius: float = BALL_RADIUS):
+    def __init__(self, table: Table | None = None, spin: bool = False, row: int = 3, offset: float = 1.3,
+                 speed: float = MAX_SPEED, tip=None, radius: float = BALL_RADIUS):
         self.table = Table.eight_foot() if table is None else table
+        self.row = int(row)
         self.spin = bool(spin)
         self.offset, self.speed, self.radius = float(offset), float(speed), float(radius)
-        self.tip = ((0.0, 0.2) if self.spin else (0.0, 0.0)) if tip is None else tuple(tip)
+        self.tip = ((0.3, 0.0) if self.spin else (0.0, 0.0)) if tip is None else tuple(tip)
 
     @classmethod
     def from_env(cls, env, **kwargs) -> BreakAgent:
@@ -64,10 +65,27 @@ class BreakAgent(Agent):
         objects = np.flatnonzero(on_table[1:]) + 1
         if not on_table[0] or objects.size == 0:
             return _action((1.0, 0.0), self.speed, self.spin, self.tip)
-        head = xy[objects[np.argmin(np.hypot(*(xy[objects] - cue).T))]]
-        d = geo.unit(head - cue)
-        aim = head + self.offset * self.radius * np.array([-d[1], d[0]])
+        target = xy[self.target_ball(xy, objects)]
+        d = geo.unit(target - cue)
+        aim = target + self.offset * self.radius * np.array([-d[1], d[0]])
         return _action(geo.unit(aim - cue), self.speed, self.spin, self.tip)
+
+    def target_ball(self, xy, objects) -> int:
+        """The outermost ball, on the left as seen from the cue ball, of rack row `row` (1 is
+        the head ball); rows are counted along the line from the head ball to the rack's centroid."""
+        cue = xy[0]
+        head = objects[np.argmin(np.hypot(*(xy[objects] - cue).T))]
+        if self.row <= 1 or objects.size < 2:
+            return int(head)
+        axis = geo.unit(xy[objects].mean(axis=0) - xy[head])
+        rel = xy[objects] - xy[head]
+        rows = np.rint(rel @ axis / (math.sqrt(3.0) * self.radius)).astype(int) + 1
+        in_row = objects[rows == self.row]
+        if in_row.size == 0:
+            return int(head)
+        view = geo.unit(xy[head] - cue)
+        left = np.array([-view[1], view[0]])
+        return int(in_row[np.argmax(xy[in_row] @ left)])
 
 
 @dataclass(frozen=True)
