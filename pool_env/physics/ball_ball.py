@@ -11,11 +11,15 @@ from numba import njit
 
 from .motion import P_E_B, VX, VY, WX, WY, WZ, X, Y, trajectory
 from .roots import first_entry
+from .settle import pressed, settle
 
 # Contacts approaching slower than this (m/s) are tangent touches, not collisions. It is far
 # below anything physical (the hard-case suite collides balls at 1e-6 m/s) and far above the
 # round-off in a relative velocity, so a resolved pair is never re-detected at once.
 MIN_APPROACH = 1e-12
+# A slow crossing (approach below MIN_APPROACH) is a graze unless the paths go on to overlap
+# by more than this (m); it is also how deep a pressed pair may sink before it is resolved.
+MIN_DEPTH = 1e-10
 
 SEED, ELASTIC, FRICTIONAL = 0, 1, 2
 
@@ -50,7 +54,8 @@ def distance_entry(dx, dy, dvx, dvy, dax, day, reach, horizon):
     dist = math.hypot(dx, dy)
     c0 = (dist - reach) * (dist + reach)
     # f' = 2 d.dv = -2 |d| (approach speed) at contact.
-    return first_entry(c0, c1, c2, c3, c4, horizon, 2.0 * reach * MIN_APPROACH)
+    # f ~ 2 reach (|d| - reach) near contact: the thresholds in f's units.
+    return first_entry(c0, c1, c2, c3, c4, horizon, 2.0 * reach * MIN_APPROACH, 2.0 * reach * MIN_DEPTH)
 
 
 @njit(cache=True)
@@ -151,13 +156,19 @@ def _spin_kick(b, r_over_i, p_t, p_z, tx, ty):
 
 @njit(cache=True)
 def resolve(model, bi, bj, ri, rj, mi, mj, params):
-    """Apply ball-ball model `model` to two touching balls (rows at the contact time)."""
+    """Apply ball-ball model `model` to two touching balls (rows at the contact time), or
+    settle them if the contact is a pressed one (settle.pressed). True if it settled: the
+    cloth took part, so momentum is not conserved at this instant."""
     dx, dy = bj[X] - bi[X], bj[Y] - bi[Y]
     d = math.hypot(dx, dy)
     nx, ny = dx / d, dy / d
+    if pressed(bi, bj, nx, ny, ri, rj, params):
+        settle(bi, bj, nx, ny, ri, rj, mi, mj, params, ri + rj - d)
+        return True
     if model == SEED:
         seed(bi, bj, nx, ny, ri, rj, mi, mj, params)
     elif model == ELASTIC:
         elastic(bi, bj, nx, ny, ri, rj, mi, mj, params)
     else:
         frictional(bi, bj, nx, ny, ri, rj, mi, mj, params)
+    return False

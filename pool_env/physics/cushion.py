@@ -10,9 +10,10 @@ import math
 
 from numba import njit
 
-from .ball_ball import MIN_APPROACH, distance_entry
+from .ball_ball import MIN_APPROACH, MIN_DEPTH, distance_entry
 from .motion import P_E_C, P_F_C, VX, VY, WX, WY, WZ, trajectory
 from .roots import first_entry
+from .settle import pressed_cushion, settle_cushion
 
 SEED, RESTITUTION, HAN2005 = 0, 1, 2
 
@@ -29,7 +30,8 @@ def rail_time(row, state, t, horizon, radius, params, rail):
     x, y, vx, vy, ax, ay = trajectory(row, state, t, radius, params)
     nx, ny = rail[4], rail[5]
     gap = nx * (x - rail[0]) + ny * (y - rail[1]) - radius
-    tau = first_entry(gap, nx * vx + ny * vy, 0.5 * (nx * ax + ny * ay), 0.0, 0.0, horizon, MIN_APPROACH)
+    tau = first_entry(gap, nx * vx + ny * vy, 0.5 * (nx * ax + ny * ay), 0.0, 0.0, horizon, MIN_APPROACH,
+                      MIN_DEPTH)
     if tau == math.inf:
         return tau
     px = x + vx * tau + 0.5 * ax * tau * tau - rail[0]
@@ -130,8 +132,11 @@ def han2005(b, nx, ny, radius, params, height):
 
 @njit(cache=True)
 def resolve(model, b, nx, ny, radius, params, height):
-    """Apply cushion model `model` to a ball touching a cushion with inward normal n."""
-    if model == SEED:
+    """Apply cushion model `model` to a ball touching a cushion with inward normal n, or
+    settle it if it is pressed against the cushion (settle.pressed_cushion)."""
+    if pressed_cushion(b, nx, ny, radius, params):
+        settle_cushion(b, nx, ny, radius)
+    elif model == SEED:
         seed(b, nx, ny, radius, params)
     elif model == RESTITUTION:
         restitution(b, nx, ny, radius, params)

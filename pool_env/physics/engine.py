@@ -40,8 +40,11 @@ EVENT_KINDS = (
     "ball_ball", "ball_cushion", "ball_pocket",
     "sliding_rolling", "rolling_spinning", "rolling_stationary", "spinning_stationary",
     "sliding_stationary", "sliding_spinning",
+    # A pressed contact, resolved with the cloth's help (see settle.py): not a collision,
+    # momentum is not conserved.
+    "ball_ball_settle",
 )
-BALL_BALL, BALL_CUSHION, BALL_POCKET = 0, 1, 2
+BALL_BALL, BALL_CUSHION, BALL_POCKET, BALL_BALL_SETTLE = 0, 1, 2, 9
 
 # Counters written by the loop (see Result.stats).
 COUNTERS = (
@@ -231,7 +234,8 @@ def run(S, st, R, M, params, bb_model, cu_model, rails, jaws, jaw_pockets, pocke
             touched[1] = bj
             state_at(S[bj], st[bj], now, R[bj], params, scratch)
             S[bj, :] = scratch
-            ball_ball.resolve(bb_model, S[bi], S[bj], R[bi], R[bj], M[bi], M[bj], params)
+            if ball_ball.resolve(bb_model, S[bi], S[bj], R[bi], R[bj], M[bi], M[bj], params):
+                kind = BALL_BALL_SETTLE
         elif kind == BALL_CUSHION:
             if bj < rails.shape[0]:
                 nx, ny = rails[bj, 4], rails[bj, 5]

@@ -79,6 +79,23 @@ def trajectory(row, state, t, radius, params):
 
 
 @njit(cache=True)
+def acceleration(row, radius, params):
+    """Acceleration (ax, ay) of the centre in the motion state the row's velocities imply
+    (the state `classify` gives, without snapping the row): friction against the slip while
+    sliding, rolling resistance against the velocity while rolling, zero otherwise."""
+    ux, uy = slip(row[VX], row[VY], row[WX], row[WY], radius)
+    un = math.hypot(ux, uy)
+    if un > EPS_V:
+        a = params[P_MU_S] * params[P_G]
+        return -a * ux / un, -a * uy / un
+    speed = math.hypot(row[VX], row[VY])
+    if speed > EPS_V:
+        a = params[P_MU_R] * params[P_G]
+        return -a * row[VX] / speed, -a * row[VY] / speed
+    return 0.0, 0.0
+
+
+@njit(cache=True)
 def state_at(row, state, t, radius, params, out):
     """Write the full state row of a ball at absolute time t into `out` (closed form)."""
     tau = t - row[T0]
@@ -130,6 +147,18 @@ def classify(row, radius):
     if abs(row[WZ]) > EPS_W:
         return SPINNING
     row[WZ] = 0.0
+    return STATIONARY
+
+
+@njit(cache=True)
+def state_of(row, radius):
+    """The motion state `classify` would give the row, without snapping it (stationary
+    stands for spinning too)."""
+    ux, uy = slip(row[VX], row[VY], row[WX], row[WY], radius)
+    if math.hypot(ux, uy) > EPS_V:
+        return SLIDING
+    if math.hypot(row[VX], row[VY]) > EPS_V:
+        return ROLLING
     return STATIONARY
 
 

@@ -17,6 +17,10 @@ import numpy as np
 from numba import njit
 
 _MAX_ITER = 100
+# f within this many min_depths below zero is touching (in contact up to round-off and the
+# engine's sub-nanometre tolerances); deeper is a ball past a rail's line beside a pocket
+# mouth, where the contact is still at f = 0.
+TOUCH_DEPTHS = 10.0
 
 
 @njit(cache=True)
@@ -147,33 +151,54 @@ def _critical_points(c1, c2, c3, c4, horizon):
 
 
 @njit(cache=True)
-def first_entry(c0, c1, c2, c3, c4, horizon, min_slope):
+def first_entry(c0, c1, c2, c3, c4, horizon, min_slope, min_depth):
     """Earliest tau in [0, horizon] at which f(tau) = c0 + c1 tau + ... + c4 tau^4 enters
-    f <= 0 falling faster than `min_slope`; inf if it never does.
+    f <= 0 falling faster than `min_slope`, or sinks more than `min_depth` below zero however
+    slowly; inf if it never does.
 
     A contact counts only if f is decreasing there by more than min_slope (the caller's
     approach-speed threshold): touching balls that are separating, at rest against each
     other, or meeting at a tangent do not collide. The same threshold is what makes a
     resolved collision never be found again at the same instant.
+
+    Touching (c0 <= 0: in contact, up to round-off) is measured from where f is now: the
+    contact is found again when f falls back below c0 after rising (balls that barely
+    separate, then re-approach while still in contact: rising only by round-off, f never
+    turns positive, so entry into f <= 0 would never be seen), or when f sinks min_depth
+    below c0 from the start (pressed together at second order: f'(0) = 0, f'' < 0). The
+    latter returns the instant the depth is reached, never 0, so time always advances.
+    A slow crossing that goes on sinking deeper than min_depth is a contact, not a graze.
     """
     if not (horizon >= 0.0):
         return np.inf
-    if c0 <= 0.0 and c1 < -min_slope:
-        return 0.0
+    level = 0.0
+    if c0 <= 0.0:
+        if c1 < -min_slope:
+            return 0.0
+        if c0 >= -TOUCH_DEPTHS * min_depth:
+            level = c0
+    h0 = c0 - level
     crit0, crit1, crit2 = _critical_points(c1, c2, c3, c4, horizon)
     lo = 0.0
-    flo = c0
+    hlo = h0
     for m in range(4):
         hi = crit0 if m == 0 else (crit1 if m == 1 else (crit2 if m == 2 else horizon))
         if hi == np.inf:
             hi = horizon
-        fhi = _f(c0, c1, c2, c3, c4, hi)
-        if flo > 0.0 and fhi <= 0.0:
-            root = _bracket_root(c0, c1, c2, c3, c4, lo, hi, flo, 0)
+        hhi = _f(h0, c1, c2, c3, c4, hi)
+        if hlo > 0.0 and hhi <= 0.0:
+            root = _bracket_root(h0, c1, c2, c3, c4, lo, hi, hlo, 0)
             if _df(c1, c2, c3, c4, root) < -min_slope:
                 return root
-            # A graze: f only touches zero. Keep looking further on.
+            if hhi < -min_depth:
+                # Crossing too slowly to count, but sinking on: pressed together. Found
+                # where the depth is reached (a time the caller can resolve and move past).
+                return _bracket_root(h0 + min_depth, c1, c2, c3, c4, root, hi, min_depth, 0)
+            # A graze: f only touches zero (a shallow dip at most). Keep looking further on.
+        elif lo == 0.0 and hlo == 0.0 and hhi < -min_depth:
+            # Touching and sinking from the start: the instant the depth is reached.
+            return _bracket_root(h0 + min_depth, c1, c2, c3, c4, lo, hi, min_depth, 0)
         if hi == horizon:
             break
-        lo, flo = hi, fhi
+        lo, hlo = hi, hhi
     return np.inf
