@@ -9,7 +9,7 @@ import math
 
 from numba import njit
 
-from .motion import P_E_B, VX, VY, WX, WY, WZ, X, Y, trajectory
+from .motion import P_E_B, SLIDING, VX, VY, WX, WY, WZ, X, Y, reroll, state_of, trajectory
 from .roots import first_entry
 from .settle import pressed, settle
 
@@ -157,18 +157,26 @@ def _spin_kick(b, r_over_i, p_t, p_z, tx, ty):
 @njit(cache=True)
 def resolve(model, bi, bj, ri, rj, mi, mj, params):
     """Apply ball-ball model `model` to two touching balls (rows at the contact time), or
-    settle them if the contact is a pressed one (settle.pressed). True if it settled: the
-    cloth took part, so momentum is not conserved at this instant."""
+    settle them if the contact is a pressed one (settle.pressed). A ball rolling before a
+    gentle contact is left rolling (motion.reroll). True if the cloth took part (a settle or
+    a reroll): momentum is then not conserved at this instant."""
     dx, dy = bj[X] - bi[X], bj[Y] - bi[Y]
     d = math.hypot(dx, dy)
     nx, ny = dx / d, dy / d
     if pressed(bi, bj, nx, ny, ri, rj, params):
         settle(bi, bj, nx, ny, ri, rj, mi, mj, params, ri + rj - d)
         return True
+    rolled_i = state_of(bi, ri) != SLIDING
+    rolled_j = state_of(bj, rj) != SLIDING
     if model == SEED:
         seed(bi, bj, nx, ny, ri, rj, mi, mj, params)
     elif model == ELASTIC:
         elastic(bi, bj, nx, ny, ri, rj, mi, mj, params)
     else:
         frictional(bi, bj, nx, ny, ri, rj, mi, mj, params)
-    return False
+    cloth = False
+    if rolled_i:
+        cloth = reroll(bi, ri, params) or cloth
+    if rolled_j:
+        cloth = reroll(bj, rj, params) or cloth
+    return cloth

@@ -11,7 +11,7 @@ import math
 from numba import njit
 
 from .ball_ball import MIN_APPROACH, MIN_DEPTH, distance_entry
-from .motion import P_E_C, P_F_C, VX, VY, WX, WY, WZ, trajectory
+from .motion import P_E_C, P_F_C, SLIDING, VX, VY, WX, WY, WZ, reroll, state_of, trajectory
 from .roots import first_entry
 from .settle import pressed_cushion, settle_cushion
 
@@ -133,12 +133,17 @@ def han2005(b, nx, ny, radius, params, height):
 @njit(cache=True)
 def resolve(model, b, nx, ny, radius, params, height):
     """Apply cushion model `model` to a ball touching a cushion with inward normal n, or
-    settle it if it is pressed against the cushion (settle.pressed_cushion)."""
+    settle it if it is pressed against the cushion (settle.pressed_cushion). A ball rolling
+    before a gentle contact is left rolling (motion.reroll)."""
     if pressed_cushion(b, nx, ny, radius, params):
         settle_cushion(b, nx, ny, radius)
-    elif model == SEED:
+        return
+    rolled = state_of(b, radius) != SLIDING
+    if model == SEED:
         seed(b, nx, ny, radius, params)
     elif model == RESTITUTION:
         restitution(b, nx, ny, radius, params)
     else:
         han2005(b, nx, ny, radius, params, height)
+    if rolled:
+        reroll(b, radius, params)

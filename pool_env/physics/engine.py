@@ -40,8 +40,8 @@ EVENT_KINDS = (
     "ball_ball", "ball_cushion", "ball_pocket",
     "sliding_rolling", "rolling_spinning", "rolling_stationary", "spinning_stationary",
     "sliding_stationary", "sliding_spinning",
-    # A pressed contact, resolved with the cloth's help (see settle.py): not a collision,
-    # momentum is not conserved.
+    # A ball-ball contact resolved with the cloth's help (a pressed contact, settle.py, or a
+    # gentle one that leaves a rolling ball rolling, motion.reroll): momentum is not conserved.
     "ball_ball_settle",
 )
 BALL_BALL, BALL_CUSHION, BALL_POCKET, BALL_BALL_SETTLE = 0, 1, 2, 9

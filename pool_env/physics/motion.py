@@ -30,6 +30,10 @@ P_MU_S, P_MU_R, P_MU_SP, P_G, P_E_B, P_E_C, P_F_C = range(7)
 EPS_V = 1e-12
 EPS_W = 1e-10
 
+# A contact that leaves a rolling ball a slip which sliding would remove within this time
+# (s) is gentle: the slide is taken at once (see `reroll`).
+GENTLE_TIME = 1e-5
+
 
 @njit(cache=True)
 def spin_decel(radius, params):
@@ -160,6 +164,22 @@ def state_of(row, radius):
     if math.hypot(row[VX], row[VY]) > EPS_V:
         return ROLLING
     return STATIONARY
+
+
+@njit(cache=True)
+def reroll(row, radius, params):
+    """A rolling (or resting) ball given a slip u by a gentle contact slides for
+    2|u| / (7 mu_s g) and then rolls at v - 2/7 u. If that slide is over within GENTLE_TIME
+    (its path then differs from the straight one by under a nanometre), take it at once:
+    the cloth's reaction leaves the ball rolling at v - 2/7 u now. True if it did."""
+    ux, uy = slip(row[VX], row[VY], row[WX], row[WY], radius)
+    un = math.hypot(ux, uy)
+    if un <= EPS_V or un > 3.5 * params[P_MU_S] * params[P_G] * GENTLE_TIME:
+        return False
+    row[VX] -= ux * 2.0 / 7.0
+    row[VY] -= uy * 2.0 / 7.0
+    row[WX], row[WY] = -row[VY] / radius, row[VX] / radius
+    return True
 
 
 @njit(cache=True)
