@@ -7,6 +7,7 @@ engine picks one by its id (`BALL_BALL_MODELS` in config.py gives the names).
 
 import math
 
+import numpy as np
 from numba import njit
 
 from .motion import P_E_B, SLIDING, VX, VY, WX, WY, WZ, X, Y, reroll, state_of, trajectory
@@ -121,21 +122,35 @@ def frictional(bi, bj, nx, ny, ri, rj, mi, mj, params):
     jn = _normal_impulse(bi, bj, nx, ny, mi, mj, params[P_E_B])
     if jn == 0.0:
         return
+    p_t, p_z = _friction(bi, bj, nx, ny, ri, rj, mi, mj, jn, 1.0)
+    _apply_friction(bi, bj, nx, ny, ri, rj, mi, mj, p_t, p_z)
+
+
+@njit(cache=True)
+def _friction(bi, bj, nx, ny, ri, rj, mi, mj, jn, alpha):
+    """The friction impulse (P_t, P_z) on ball i for normal impulse jn (see `frictional`),
+    with the effective inverse masses scaled by alpha >= 1 (1 for a lone contact)."""
     tx, ty = -ny, nx
     # Slip of i's surface over j's at the contact point (the normal impulse leaves it alone).
     s_t = (bi[VX] - bj[VX]) * tx + (bi[VY] - bj[VY]) * ty + ri * bi[WZ] + rj * bj[WZ]
     s_z = ri * (bi[WX] * ny - bi[WY] * nx) + rj * (bj[WX] * ny - bj[WY] * nx)
     s = math.hypot(s_t, s_z)
     if s == 0.0:
-        return
-    inv = 1.0 / mi + 1.0 / mj
+        return 0.0, 0.0
+    inv = (1.0 / mi + 1.0 / mj) * alpha
     k_t, k_z = 3.5 * inv, 2.5 * inv
     mu = ALCIATORE_A + ALCIATORE_B * math.exp(-ALCIATORE_C * s)
     p_t, p_z = -s_t / k_t, -s_z / k_z
     if math.hypot(p_t, p_z) > mu * jn:
         p_t, p_z = -mu * jn * s_t / s, -mu * jn * s_z / s
+    return p_t, p_z
+
+
+@njit(cache=True)
+def _apply_friction(bi, bj, nx, ny, ri, rj, mi, mj, p_t, p_z):
     # Ball i: dv = P_t t / m, dw = R (P_t z - P_z t) / I; ball j gets the opposite impulse
     # at -R n, which turns its spin the same way.
+    tx, ty = -ny, nx
     ii = 0.4 * mi * ri * ri
     ij = 0.4 * mj * rj * rj
     bi[VX] += p_t * tx / mi
@@ -180,3 +195,119 @@ def resolve(model, bi, bj, ri, rj, mi, mj, params):
     if rolled_j:
         cloth = reroll(bj, rj, params) or cloth
     return cloth
+
+# Simultaneous contacts (see resolve_group): the projected Gauss-Seidel solve stops when a
+# sweep changes no velocity by more than GROUP_TOL (relative to the largest speed).
+GROUP_TOL = 1e-15
+GROUP_SWEEPS = 1000
+
+
+@njit(cache=True)
+def resolve_group(model, S, R, M, params, ca, cb, n_c, e, normal_only, impulse):
+    """Resolve the contacts c = (ca[c], cb[c]), c < n_c, all at once (rows of S at the
+    contact time); impulse[c] gets each contact's normal impulse.
+
+    Normal impulses follow Poisson's hypothesis for simultaneous impacts: the compression
+    impulses P_c >= 0 are the least change of the velocities (in the kinetic-energy metric)
+    that leaves no contact approaching, the unique projection of the velocities onto the cone
+    {every contact separating or resting}; restitution then adds e times the same change.
+    This conserves momentum, changes the kinetic energy by -(1 - e^2)/2 P.W.P <= 0, does not
+    depend on the order of the contacts (symmetric inputs give symmetric outputs), and for one
+    contact is the ordinary restitution impulse. Projected Gauss-Seidel finds P.
+
+    Then, unless normal_only: `frictional` adds each contact's friction impulse, computed
+    from the same post-impact state with the effective inverse masses scaled by alpha_c, the
+    larger number of group contacts on either of its balls; that bounds the group's energy
+    change by the sum of the single-contact changes, each non-positive, so friction never
+    adds energy however the contacts share balls. `seed` exchanges normal velocities
+    elastically, scales each ball's velocity along its contact normals by e_b, and leaves
+    every ball rolling, as for one contact.
+    """
+    n = S.shape[0]
+    nx = np.empty(n_c)
+    ny = np.empty(n_c)
+    deg = np.zeros(n, dtype=np.int64)
+    for c in range(n_c):
+        a, b = ca[c], cb[c]
+        dx, dy = S[b, X] - S[a, X], S[b, Y] - S[a, Y]
+        d = math.hypot(dx, dy)
+        nx[c], ny[c] = dx / d, dy / d
+        deg[a] += 1
+        deg[b] += 1
+    v0x = S[:, VX].copy()
+    v0y = S[:, VY].copy()
+    rolled = np.zeros(n, dtype=np.bool_)
+    for k in range(n):
+        rolled[k] = deg[k] > 0 and state_of(S[k], R[k]) != SLIDING
+    scale = 0.0
+    for k in range(n):
+        if deg[k] > 0:
+            scale = max(scale, math.hypot(S[k, VX], S[k, VY]))
+    p = np.zeros(n_c)
+    for _ in range(GROUP_SWEEPS):
+        change = 0.0
+        for c in range(n_c):
+            a, b = ca[c], cb[c]
+            u = (S[b, VX] - S[a, VX]) * nx[c] + (S[b, VY] - S[a, VY]) * ny[c]
+            wcc = 1.0 / M[a] + 1.0 / M[b]
+            new = max(0.0, p[c] - u / wcc)
+            dp = new - p[c]
+            if dp != 0.0:
+                p[c] = new
+                S[a, VX] -= dp * nx[c] / M[a]
+                S[a, VY] -= dp * ny[c] / M[a]
+                S[b, VX] += dp * nx[c] / M[b]
+                S[b, VY] += dp * ny[c] / M[b]
+                change = max(change, abs(dp) * wcc)
+        if change <= GROUP_TOL * scale:
+            break
+    restitution = 1.0 if (model == SEED and not normal_only) else e
+    for k in range(n):
+        if deg[k] > 0:
+            S[k, VX] += restitution * (S[k, VX] - v0x[k])
+            S[k, VY] += restitution * (S[k, VY] - v0y[k])
+    for c in range(n_c):
+        impulse[c] = (1.0 + restitution) * p[c]
+    if not (normal_only or model == ELASTIC):
+        _group_models(model, S, R, M, ca, cb, n_c, e, impulse, nx, ny, deg)
+    cloth = False
+    for k in range(n):
+        if rolled[k]:
+            cloth = reroll(S[k], R[k], params) or cloth
+    return cloth
+
+
+@njit(cache=True)
+def _group_models(model, S, R, M, ca, cb, n_c, e, impulse, nx, ny, deg):
+    """The seed and frictional parts of resolve_group (after the normal impulses)."""
+    n = S.shape[0]
+    if model == SEED:
+        for k in range(n):
+            if deg[k] == 0:
+                continue
+            # The span of k's contact normals: one direction, or (two that differ) the plane.
+            mx, my, spread = 0.0, 0.0, False
+            for c in range(n_c):
+                if ca[c] == k or cb[c] == k:
+                    if mx == 0.0 and my == 0.0:
+                        mx, my = nx[c], ny[c]
+                    elif abs(mx * ny[c] - my * nx[c]) > 1e-12:
+                        spread = True
+            if spread:
+                S[k, VX] *= e
+                S[k, VY] *= e
+            else:
+                vn = S[k, VX] * mx + S[k, VY] * my
+                S[k, VX] -= (1.0 - e) * vn * mx
+                S[k, VY] -= (1.0 - e) * vn * my
+            _roll(S[k], R[k])
+        return
+    pt = np.empty(n_c)
+    pz = np.empty(n_c)
+    for c in range(n_c):
+        a, b = ca[c], cb[c]
+        pt[c], pz[c] = _friction(S[a], S[b], nx[c], ny[c], R[a], R[b], M[a], M[b], impulse[c],
+                                 float(max(deg[a], deg[b])))
+    for c in range(n_c):
+        a, b = ca[c], cb[c]
+        _apply_friction(S[a], S[b], nx[c], ny[c], R[a], R[b], M[a], M[b], pt[c], pz[c])

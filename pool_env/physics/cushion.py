@@ -8,6 +8,7 @@ and the unit normal n pointing from the cushion into the table.
 
 import math
 
+import numpy as np
 from numba import njit
 
 from .ball_ball import MIN_APPROACH, MIN_DEPTH, distance_entry
@@ -147,3 +148,32 @@ def resolve(model, b, nx, ny, radius, params, height):
         han2005(b, nx, ny, radius, params, height)
     if rolled:
         reroll(b, radius, params)
+
+
+# The orders in which resolve_group tries two or three simultaneous cushion contacts.
+_ORDERS2 = ((0, 1), (1, 0))
+_ORDERS3 = ((0, 1, 2), (0, 2, 1), (1, 0, 2), (1, 2, 0), (2, 0, 1), (2, 1, 0))
+
+
+@njit(cache=True)
+def resolve_group(model, b, normals, n_c, radius, params, height):
+    """A ball meeting n_c (2 or 3) cushions at once, say driven exactly into a corner.
+
+    Contacts in sequence do not commute (friction along one rail is a push into the other),
+    so the outcome is the average over every order of resolving them one after the other.
+    That does not depend on how the cushions are numbered, so symmetric inputs give
+    symmetric outputs (a ball into a corner along its diagonal leaves along it), and as the
+    kinetic energy is convex in the velocities, the average has no more energy than the
+    orders, none of which gains any.
+    """
+    start = b.copy()
+    acc = np.zeros(8)
+    trial = np.empty(8)
+    n_orders = 2 if n_c == 2 else 6
+    for o in range(n_orders):
+        trial[:] = start
+        for m in range(n_c):
+            c = _ORDERS2[o][m] if n_c == 2 else _ORDERS3[o][m]
+            resolve(model, trial, normals[c, 0], normals[c, 1], radius, params, height)
+        acc += trial
+    b[:] = acc / n_orders

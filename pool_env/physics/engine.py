@@ -15,8 +15,9 @@ import math
 import numpy as np
 from numba import njit
 
-from . import ball_ball, cushion, pocket, transition
+from . import ball_ball, cushion, pocket, settle, transition
 from .motion import (
+    P_E_B,
     POCKETED,
     ROLLING,
     SLIDING,
@@ -151,6 +152,200 @@ def _predict_boundary(S, st, R, params, t_tr, i, now, rails, jaws, jaw_pockets, 
     return t_cu, cu, t_po, po
 
 
+# Simultaneous ball-ball contacts: contacts predicted within GROUP_WINDOW (s) of the event
+# being resolved, and sharing a ball with it, are resolved with it as one group (so the order
+# of contacts that are simultaneous up to round-off does not matter). A pair that meets a
+# second time at one instant starts a cluster solve over every pair touching within
+# TOUCH_GAP (m) among the balls that met others at that instant.
+GROUP_WINDOW = 1e-12
+TOUCH_GAP = 1e-9
+
+
+@njit(cache=True)
+def _pressed(S, st, R, params, now, i, k):
+    """True if the contact of balls i and k at `now` is a pressed one (settle.pressed)."""
+    ri = np.empty(8)
+    rk = np.empty(8)
+    state_at(S[i], st[i], now, R[i], params, ri)
+    state_at(S[k], st[k], now, R[k], params, rk)
+    dx, dy = rk[X] - ri[X], rk[Y] - ri[Y]
+    d = math.hypot(dx, dy)
+    return settle.pressed(ri, rk, dx / d, dy / d, R[i], R[k], params)
+
+
+@njit(cache=True)
+def _listed(ca, cb, n_c, a, b):
+    for c in range(n_c):
+        if ca[c] == a and cb[c] == b:
+            return True
+    return False
+
+
+@njit(cache=True)
+def _touching(S, st, R, params, now, a, k):
+    xa, ya, _, _, _, _ = trajectory(S[a], st[a], now, R[a], params)
+    xk, yk, _, _, _, _ = trajectory(S[k], st[k], now, R[k], params)
+    return math.hypot(xk - xa, yk - ya) - R[a] - R[k] <= TOUCH_GAP
+
+
+@njit(cache=True)
+def _grow(S, st, R, params, now, bb_t, member, queue, tail, ca, cb, n_c):
+    """Add to the members every ball that met another at `now` and touches a member (through
+    chains of touching); each ball added is listed as a pair with the member it touches."""
+    n = S.shape[0]
+    head = 0
+    while head < tail:
+        a = queue[head]
+        head += 1
+        for k in range(n):
+            if member[k] or bb_t[k] != now or st[k] == POCKETED:
+                continue
+            if _touching(S, st, R, params, now, a, k):
+                member[k] = True
+                queue[tail] = k
+                tail += 1
+                ca[n_c], cb[n_c] = min(a, k), max(a, k)
+                n_c += 1
+    return tail, n_c
+
+
+@njit(cache=True)
+def _walls(G, ca, cb, n_c, R, rails, jaws, walls):
+    """Inward normals (up to walls.shape[0]) of the rails and jaw points touched, within
+    TOUCH_GAP, by the balls of the pairs (rows in G at the contact time); returns how many."""
+    n_walls = 0
+    for c in range(n_c):
+        for side in range(2):
+            k = ca[c] if side == 0 else cb[c]
+            x, y = G[k, X], G[k, Y]
+            for r in range(rails.shape[0]):
+                rail = rails[r]
+                dx, dy = rail[2] - rail[0], rail[3] - rail[1]
+                along = ((x - rail[0]) * dx + (y - rail[1]) * dy) / (dx * dx + dy * dy)
+                gap = rail[4] * (x - rail[0]) + rail[5] * (y - rail[1]) - R[k]
+                if 0.0 <= along <= 1.0 and gap <= TOUCH_GAP and n_walls < walls.shape[0]:
+                    walls[n_walls, 0], walls[n_walls, 1] = rail[4], rail[5]
+                    n_walls += 1
+            for p in range(jaws.shape[0]):
+                dx, dy = x - jaws[p, 0], y - jaws[p, 1]
+                d = math.hypot(dx, dy)
+                if d - R[k] <= TOUCH_GAP and n_walls < walls.shape[0]:
+                    walls[n_walls, 0], walls[n_walls, 1] = dx / d, dy / d
+                    n_walls += 1
+    return n_walls
+
+
+@njit(cache=True)
+def _cushion_normal(row, rails, jaws, c):
+    """Inward normal of cushion c (rails first, then jaw points) at a ball's row."""
+    if c < rails.shape[0]:
+        return rails[c, 4], rails[c, 5]
+    p = c - rails.shape[0]
+    dx, dy = row[X] - jaws[p, 0], row[Y] - jaws[p, 1]
+    d = math.hypot(dx, dy)
+    return dx / d, dy / d
+
+
+@njit(cache=True)
+def _cushion_contacts(row, r, params, rails, jaws, first, ids, normals):
+    """The cushions a ball meets at once (row at the contact time): cushion `first`, then
+    every other rail or jaw point it touches within TOUCH_GAP and approaches faster than
+    MIN_APPROACH (a ball driven exactly into a corner), unless the first contact is a
+    pressed one (settled alone). Ids go to ids, inward normals to normals; returns how many
+    (at most 3)."""
+    ids[0] = first
+    normals[0, 0], normals[0, 1] = _cushion_normal(row, rails, jaws, first)
+    if settle.pressed_cushion(row, normals[0, 0], normals[0, 1], r, params):
+        return 1
+    n_c = 1
+    for c in range(rails.shape[0] + jaws.shape[0]):
+        if c == first or n_c == 3:
+            continue
+        if c < rails.shape[0]:
+            rail = rails[c]
+            dx, dy = rail[2] - rail[0], rail[3] - rail[1]
+            along = ((row[X] - rail[0]) * dx + (row[Y] - rail[1]) * dy) / (dx * dx + dy * dy)
+            gap = rail[4] * (row[X] - rail[0]) + rail[5] * (row[Y] - rail[1]) - r
+            if not (0.0 <= along <= 1.0):
+                continue
+        else:
+            p = c - rails.shape[0]
+            gap = math.hypot(row[X] - jaws[p, 0], row[Y] - jaws[p, 1]) - r
+        if gap > TOUCH_GAP:
+            continue
+        nx, ny = _cushion_normal(row, rails, jaws, c)
+        if row[VX] * nx + row[VY] * ny < -ball_ball.MIN_APPROACH:
+            ids[n_c] = c
+            normals[n_c, 0], normals[n_c, 1] = nx, ny
+            n_c += 1
+    return n_c
+
+
+# How the contacts found by _gather are resolved.
+LONE, GROUP, CLUSTER, PACK = 0, 1, 2, 3
+
+
+@njit(cache=True)
+def _gather(S, st, R, params, pair, now, bi, bj, met, bb_t, ca, cb, member, queue):
+    """The contacts to resolve with the ball-ball event (bi, bj) at `now`: (count, mode),
+    the pairs in ca/cb (the event's own first), the balls in queue[:...] when grouped.
+
+    LONE: the event alone (ball_ball.resolve). A pressed contact (settle.pressed) is
+    resolved alone too, unless its pair already met at this instant: settling it again would
+    only disturb its neighbours, which would disturb it back, without end; then PACK: the
+    balls that met another at this instant and touch it (through chains of touching) roll on
+    together. GROUP: every pair predicted to touch within GROUP_WINDOW that is linked to
+    (bi, bj) through shared balls, resolved at once. CLUSTER: one of those pairs already met
+    at this instant (sequential contacts chasing each other round a touching cluster, without
+    end when restitution is low: an inelastic collapse), so every pair touching within
+    TOUCH_GAP among the balls that met others at this instant, linked to the group by
+    touching, is resolved at once.
+    """
+    n = S.shape[0]
+    for k in range(n):
+        member[k] = False
+    ca[0], cb[0] = bi, bj
+    n_c = 1
+    member[bi] = member[bj] = True
+    queue[0], queue[1] = bi, bj
+    if _pressed(S, st, R, params, now, bi, bj):
+        if met[bi, bj] != now:
+            return 1, LONE
+        tail, n_c = _grow(S, st, R, params, now, bb_t, member, queue, 2, ca, cb, n_c)
+        return n_c, PACK
+    head, tail = 0, 2
+    while head < tail:
+        a = queue[head]
+        head += 1
+        for k in range(n):
+            if k == a or not (pair[a, k] <= now + GROUP_WINDOW):
+                continue
+            lo, hi = min(a, k), max(a, k)
+            if _listed(ca, cb, n_c, lo, hi) or _pressed(S, st, R, params, now, lo, hi):
+                continue
+            ca[n_c], cb[n_c] = lo, hi
+            n_c += 1
+            if not member[k]:
+                member[k] = True
+                queue[tail] = k
+                tail += 1
+    loop = False
+    for c in range(n_c):
+        loop = loop or met[ca[c], cb[c]] == now
+    if not loop:
+        return n_c, (GROUP if n_c > 1 else LONE)
+    tail, _ = _grow(S, st, R, params, now, bb_t, member, queue, tail, ca, cb, n_c)
+    n_c = 1  # every touching pair among the members; the event's own pair stays first
+    for m in range(tail):
+        for m2 in range(m + 1, tail):
+            a, k = queue[m], queue[m2]
+            lo, hi = min(a, k), max(a, k)
+            if not (lo == bi and hi == bj) and _touching(S, st, R, params, now, a, k):
+                ca[n_c], cb[n_c] = lo, hi
+                n_c += 1
+    return n_c, CLUSTER
+
+
 @njit(cache=True)
 def _record(S, st, i, hist, hist_ball, n_hist):
     row = hist[n_hist]
@@ -197,7 +392,21 @@ def run(S, st, R, M, params, bb_model, cu_model, rails, jaws, jaw_pockets, pocke
             pair[i, k] = pair[k, i] = _predict_pair(S, st, R, params, t_tr, i, k, now, counters)
 
     n_ev = 0
-    touched = np.empty(2, dtype=np.int64)
+    touched = np.empty(n, dtype=np.int64)
+    # Simultaneous contacts: when each pair and each ball last met another ball, the group's
+    # pairs, its balls' rows at the contact time, and how many cluster solves this instant.
+    met = np.full((n, n), -np.inf)
+    bb_t = np.full(n, -np.inf)
+    ca = np.empty(n * n, dtype=np.int64)
+    cb = np.empty(n * n, dtype=np.int64)
+    impulse = np.empty(n * n)
+    member = np.zeros(n, dtype=np.bool_)
+    queue = np.empty(n, dtype=np.int64)
+    G = np.empty((n, 8))
+    walls = np.empty((8, 2))
+    clusters, cluster_t = 0, -1.0
+    rec_a = np.empty(n * n, dtype=np.int64)
+    rec_b = np.empty(n * n, dtype=np.int64)
     while True:
         # The earliest predicted event; ties go to the first found (deterministic order:
         # ball-ball by index pair, then cushions, pockets, transitions by ball index).
@@ -227,24 +436,76 @@ def run(S, st, R, M, params, bb_model, cu_model, rails, jaws, jaw_pockets, pocke
         # Bring the balls involved to `now` and resolve.
         n_touched = 1
         touched[0] = bi
-        state_at(S[bi], st[bi], now, R[bi], params, scratch)
-        S[bi, :] = scratch
+        n_rec = 1
+        rec_a[0], rec_b[0] = bi, bj
+        n_c, mode = 1, LONE
         if kind == BALL_BALL:
+            n_c, mode = _gather(S, st, R, params, pair, now, bi, bj, met, bb_t, ca, cb, member, queue)
+        if mode != LONE:
+            # Several contacts at once: resolve them together on copies of the rows, then
+            # keep the pairs that took an impulse (all of a pack's).
+            if cluster_t != now:
+                clusters, cluster_t = 0, now
+            for c in range(n_c):
+                for k in (ca[c], cb[c]):
+                    state_at(S[k], st[k], now, R[k], params, G[k])
+            if mode == PACK:
+                n_walls = _walls(G, ca, cb, n_c, R, rails, jaws, walls)
+                settle.roll_group(G, R, M, ca, cb, n_c, walls, n_walls)
+                kind = BALL_BALL_SETTLE
+            else:
+                e = params[P_E_B] if mode == GROUP or clusters == 0 else 0.0
+                clusters += mode == CLUSTER
+                if ball_ball.resolve_group(bb_model, G, R, M, params, ca, cb, n_c, e, mode == CLUSTER, impulse):
+                    kind = BALL_BALL_SETTLE
+            n_rec, n_touched = 0, 0
+            for c in range(n_c):
+                if c == 0 or mode == PACK or impulse[c] > 0.0:
+                    rec_a[n_rec], rec_b[n_rec] = ca[c], cb[c]
+                    n_rec += 1
+                    for k in (ca[c], cb[c]):
+                        seen = False
+                        for m in range(n_touched):
+                            seen = seen or touched[m] == k
+                        if not seen:
+                            touched[n_touched] = k
+                            n_touched += 1
+            if n_ev + n_rec > max_events:
+                ev_t[n_ev], ev_kind[n_ev], ev_i[n_ev], ev_j[n_ev] = best, kind, bi, bj
+                return n_ev, n_hist, EVENT_CAP
+            if n_ev + n_rec >= ev_t.shape[0] or n_hist + n_touched > hist.shape[0]:
+                return n_ev, n_hist, BUFFER_FULL
+            for m in range(n_touched):
+                S[touched[m], :] = G[touched[m]]
+        elif kind == BALL_BALL:
             n_touched = 2
             touched[1] = bj
+            state_at(S[bi], st[bi], now, R[bi], params, scratch)
+            S[bi, :] = scratch
             state_at(S[bj], st[bj], now, R[bj], params, scratch)
             S[bj, :] = scratch
             if ball_ball.resolve(bb_model, S[bi], S[bj], R[bi], R[bj], M[bi], M[bj], params):
                 kind = BALL_BALL_SETTLE
+        else:
+            state_at(S[bi], st[bi], now, R[bi], params, scratch)
+            S[bi, :] = scratch
+        if kind == BALL_BALL or kind == BALL_BALL_SETTLE:
+            for m in range(n_rec):
+                met[rec_a[m], rec_b[m]] = now
+                bb_t[rec_a[m]] = bb_t[rec_b[m]] = now
         elif kind == BALL_CUSHION:
-            if bj < rails.shape[0]:
-                nx, ny = rails[bj, 4], rails[bj, 5]
+            n_rec = _cushion_contacts(S[bi], R[bi], params, rails, jaws, bj, rec_b, walls)
+            for m in range(n_rec):
+                rec_a[m] = bi
+            if n_ev + n_rec > max_events:
+                ev_t[n_ev], ev_kind[n_ev], ev_i[n_ev], ev_j[n_ev] = best, kind, bi, bj
+                return n_ev, n_hist, EVENT_CAP
+            if n_ev + n_rec >= ev_t.shape[0]:
+                return n_ev, n_hist, BUFFER_FULL
+            if n_rec == 1:
+                cushion.resolve(cu_model, S[bi], walls[0, 0], walls[0, 1], R[bi], params, height)
             else:
-                p = bj - rails.shape[0]
-                dx, dy = S[bi, X] - jaws[p, 0], S[bi, Y] - jaws[p, 1]
-                d = math.hypot(dx, dy)
-                nx, ny = dx / d, dy / d
-            cushion.resolve(cu_model, S[bi], nx, ny, R[bi], params, height)
+                cushion.resolve_group(cu_model, S[bi], walls, n_rec, R[bi], params, height)
         elif kind == BALL_POCKET:
             pocket.capture(S[bi])
             st[bi] = POCKETED
@@ -258,8 +519,9 @@ def run(S, st, R, M, params, bb_model, cu_model, rails, jaws, jaw_pockets, pocke
                 st[i] = classify(S[i], R[i])
             S[i, T0] = now
             n_hist = _record(S, st, i, hist, hist_ball, n_hist)
-        ev_t[n_ev], ev_kind[n_ev], ev_i[n_ev], ev_j[n_ev] = now, kind, bi, bj
-        n_ev += 1
+        for m in range(n_rec):
+            ev_t[n_ev], ev_kind[n_ev], ev_i[n_ev], ev_j[n_ev] = now, kind, rec_a[m], rec_b[m]
+            n_ev += 1
 
         # Re-predict what the event changed: the touched balls against everything.
         for m in range(n_touched):

@@ -233,6 +233,42 @@ def _roll_together(bi, bj, ri, rj, mi, mj):
 
 
 @njit(cache=True)
+def roll_group(S, R, M, ca, cb, n_c, walls, n_walls):
+    """`_roll_together` for every ball of the pairs (ca[c], cb[c]), c < n_c: each rolls at
+    once (the cloth takes its slip), then all share one velocity by mass. A pack of balls
+    pressed together rolls on as one. If it touches cushions (inward normals walls[:n_walls])
+    they take the shared velocity's part into them (cyclic projections onto the cone of
+    velocities leaving every cushion alone), so a pack wedged against a rail slides along
+    it. Every step removes energy."""
+    n = S.shape[0]
+    inpack = np.zeros(n, dtype=np.bool_)
+    for c in range(n_c):
+        inpack[ca[c]] = inpack[cb[c]] = True
+    px, py, mass = 0.0, 0.0, 0.0
+    for k in range(n):
+        if inpack[k]:
+            ux, uy = slip(S[k, VX], S[k, VY], S[k, WX], S[k, WY], R[k])
+            px += M[k] * (S[k, VX] - ux * 2.0 / 7.0)
+            py += M[k] * (S[k, VY] - uy * 2.0 / 7.0)
+            mass += M[k]
+    vx, vy = px / mass, py / mass
+    for _ in range(16):
+        moved = False
+        for w in range(n_walls):
+            vn = vx * walls[w, 0] + vy * walls[w, 1]
+            if vn < 0.0:
+                vx -= vn * walls[w, 0]
+                vy -= vn * walls[w, 1]
+                moved = True
+        if not moved:
+            break
+    for k in range(n):
+        if inpack[k]:
+            S[k, VX], S[k, VY] = vx, vy
+            S[k, WX], S[k, WY] = -vy / R[k], vx / R[k]
+
+
+@njit(cache=True)
 def pressed_cushion(b, nx, ny, radius, params):
     """True if the ball is pressed against a cushion (inward normal n): its acceleration
     pushes it into the cushion and a bounce at its approach speed would rise less than
