@@ -56,7 +56,38 @@ def distance_entry(dx, dy, dvx, dvy, dax, day, reach, horizon):
     c0 = (dist - reach) * (dist + reach)
     # f' = 2 d.dv = -2 |d| (approach speed) at contact.
     # f ~ 2 reach (|d| - reach) near contact: the thresholds in f's units.
-    return first_entry(c0, c1, c2, c3, c4, horizon, 2.0 * reach * MIN_APPROACH, 2.0 * reach * MIN_DEPTH)
+    tau = first_entry(c0, c1, c2, c3, c4, horizon, 2.0 * reach * MIN_APPROACH, 2.0 * reach * MIN_DEPTH)
+    if 0.0 < tau <= horizon and dist > reach:
+        tau = _polish(dx, dy, dvx, dvy, hx, hy, reach, tau, horizon)
+    return tau
+
+
+@njit(cache=True)
+def _polish(dx, dy, dvx, dvy, hx, hy, reach, tau, horizon):
+    """Newton steps on the gap |d(tau)| - reach itself, from the quartic's root.
+
+    The quartic f = |d|^2 - reach^2 holds |d0|^2: from far away (balls metres apart on a
+    big table, or long before they meet) evaluating it near the root cancels that to the
+    last digits, an error of eps |d0|^2 / (2 reach) in the gap, 0.1 um at 5 km. The gap from
+    the positions themselves is good to eps |d|. Ends on the near side of contact (the gap
+    not negative) when that is within a few ulps, as first_entry does."""
+    for _ in range(4):
+        px, py = dx + (dvx + hx * tau) * tau, dy + (dvy + hy * tau) * tau
+        d = math.hypot(px, py)
+        slope = (px * (dvx + 2.0 * hx * tau) + py * (dvy + 2.0 * hy * tau)) / d
+        if not slope < 0.0:
+            return tau
+        step = (d - reach) / slope
+        nxt = min(max(tau - step, 0.0), horizon)
+        if nxt == tau:
+            break
+        tau = nxt
+    for _ in range(8):
+        px, py = dx + (dvx + hx * tau) * tau, dy + (dvy + hy * tau) * tau
+        if math.hypot(px, py) >= reach or tau == 0.0:
+            break
+        tau = np.nextafter(tau, 0.0)
+    return tau
 
 
 @njit(cache=True)
