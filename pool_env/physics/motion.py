@@ -167,15 +167,22 @@ def state_of(row, radius):
 
 
 @njit(cache=True)
+def is_gentle(row, radius, params):
+    """True if the ball slides, but so slightly that sliding would end within GENTLE_TIME."""
+    ux, uy = slip(row[VX], row[VY], row[WX], row[WY], radius)
+    un = math.hypot(ux, uy)
+    return EPS_V < un <= 3.5 * params[P_MU_S] * params[P_G] * GENTLE_TIME
+
+
+@njit(cache=True)
 def reroll(row, radius, params):
     """A rolling (or resting) ball given a slip u by a gentle contact slides for
     2|u| / (7 mu_s g) and then rolls at v - 2/7 u. If that slide is over within GENTLE_TIME
     (its path then differs from the straight one by under a nanometre), take it at once:
     the cloth's reaction leaves the ball rolling at v - 2/7 u now. True if it did."""
-    ux, uy = slip(row[VX], row[VY], row[WX], row[WY], radius)
-    un = math.hypot(ux, uy)
-    if un <= EPS_V or un > 3.5 * params[P_MU_S] * params[P_G] * GENTLE_TIME:
+    if not is_gentle(row, radius, params):
         return False
+    ux, uy = slip(row[VX], row[VY], row[WX], row[WY], radius)
     row[VX] -= ux * 2.0 / 7.0
     row[VY] -= uy * 2.0 / 7.0
     row[WX], row[WY] = -row[VY] / radius, row[VX] / radius
