@@ -154,10 +154,13 @@ def _predict_boundary(S, st, R, params, t_tr, i, now, rails, jaws, jaw_pockets, 
 
 # Simultaneous ball-ball contacts: contacts predicted within GROUP_WINDOW (s) of the event
 # being resolved, and sharing a ball with it, are resolved with it as one group (so the order
-# of contacts that are simultaneous up to round-off does not matter). A pair that meets a
-# second time at one instant starts a cluster solve over every pair touching within
-# TOUCH_GAP (m) among the balls that met others at that instant.
+# of contacts that are simultaneous up to round-off does not matter). A pair that meets
+# again within LOOP_WINDOW (s) is caught in a cascade (a touching cluster whose contacts chase
+# each other round; rows of balls "touching" in floating point are 1e-16 m apart, so the
+# cascade's contacts are that many seconds apart, not at one instant): that starts a cluster
+# solve over every pair touching within TOUCH_GAP (m) among the balls in the cascade.
 GROUP_WINDOW = 1e-12
+LOOP_WINDOW = 1e-9
 TOUCH_GAP = 1e-9
 
 
@@ -198,9 +201,30 @@ def _grow(S, st, R, params, now, bb_t, member, queue, tail, ca, cb, n_c):
         a = queue[head]
         head += 1
         for k in range(n):
-            if member[k] or bb_t[k] != now or st[k] == POCKETED:
+            if member[k] or bb_t[k] < now - LOOP_WINDOW or st[k] == POCKETED:
                 continue
             if _touching(S, st, R, params, now, a, k):
+                member[k] = True
+                queue[tail] = k
+                tail += 1
+                ca[n_c], cb[n_c] = min(a, k), max(a, k)
+                n_c += 1
+    return tail, n_c
+
+
+@njit(cache=True)
+def _grow_pressed(S, st, R, params, now, member, queue, tail, ca, cb, n_c):
+    """Add to the members every ball pressed (settle.pressed) against a member it touches,
+    through chains of such contacts; each listed as a pair with that member."""
+    n = S.shape[0]
+    head = 0
+    while head < tail:
+        a = queue[head]
+        head += 1
+        for k in range(n):
+            if member[k] or st[k] == POCKETED:
+                continue
+            if _touching(S, st, R, params, now, a, k) and _pressed(S, st, R, params, now, min(a, k), max(a, k)):
                 member[k] = True
                 queue[tail] = k
                 tail += 1
@@ -281,25 +305,44 @@ def _cushion_contacts(row, r, params, rails, jaws, first, ids, normals):
     return n_c
 
 
+@njit(cache=True)
+def _walled(S, st, R, params, now, i, k, rails, jaws):
+    """True if ball i or ball k touches a rail or a jaw point (within TOUCH_GAP) at `now`."""
+    for b in (i, k):
+        x, y, _, _, _, _ = trajectory(S[b], st[b], now, R[b], params)
+        for r in range(rails.shape[0]):
+            rail = rails[r]
+            dx, dy = rail[2] - rail[0], rail[3] - rail[1]
+            along = ((x - rail[0]) * dx + (y - rail[1]) * dy) / (dx * dx + dy * dy)
+            if 0.0 <= along <= 1.0 and rail[4] * (x - rail[0]) + rail[5] * (y - rail[1]) - R[b] <= TOUCH_GAP:
+                return True
+        for p in range(jaws.shape[0]):
+            if math.hypot(x - jaws[p, 0], y - jaws[p, 1]) - R[b] <= TOUCH_GAP:
+                return True
+    return False
+
+
 # How the contacts found by _gather are resolved.
 LONE, GROUP, CLUSTER, PACK = 0, 1, 2, 3
 
 
 @njit(cache=True)
-def _gather(S, st, R, params, pair, now, bi, bj, met, bb_t, ca, cb, member, queue):
+def _gather(S, st, R, params, pair, now, bi, bj, met, bb_t, ca, cb, member, queue, rails, jaws):
     """The contacts to resolve with the ball-ball event (bi, bj) at `now`: (count, mode),
     the pairs in ca/cb (the event's own first), the balls in queue[:...] when grouped.
 
     LONE: the event alone (ball_ball.resolve). A pressed contact (settle.pressed) is
-    resolved alone too, unless its pair already met at this instant: settling it again would
-    only disturb its neighbours, which would disturb it back, without end; then PACK: the
-    balls that met another at this instant and touch it (through chains of touching) roll on
-    together. GROUP: every pair predicted to touch within GROUP_WINDOW that is linked to
-    (bi, bj) through shared balls, resolved at once. CLUSTER: one of those pairs already met
-    at this instant (sequential contacts chasing each other round a touching cluster, without
-    end when restitution is low: an inelastic collapse), so every pair touching within
-    TOUCH_GAP among the balls that met others at this instant, linked to the group by
-    touching, is resolved at once.
+    resolved alone too, unless one of its balls is also pressed against a third ball, its
+    pair met within LOOP_WINDOW, or one of its balls touches a cushion (settling one contact
+    of a pressed chain, or a ball pressed between a ball and a rail, only pushes into the
+    next contact, which pushes back, without end); then PACK: the pressed chain and the balls
+    that met others within LOOP_WINDOW and touch it roll on together, the cushions they touch
+    taking the part of their velocity into them. GROUP: every pair
+    predicted to touch within GROUP_WINDOW that is linked to (bi, bj) through shared balls,
+    resolved at once. CLUSTER: one of those pairs met within LOOP_WINDOW (contacts chasing
+    each other round a touching cluster, without end when restitution is low: an inelastic
+    collapse), so every pair touching within TOUCH_GAP among the balls that met others within
+    LOOP_WINDOW, linked to the group by touching, is resolved at once.
     """
     n = S.shape[0]
     for k in range(n):
@@ -309,9 +352,10 @@ def _gather(S, st, R, params, pair, now, bi, bj, met, bb_t, ca, cb, member, queu
     member[bi] = member[bj] = True
     queue[0], queue[1] = bi, bj
     if _pressed(S, st, R, params, now, bi, bj):
-        if met[bi, bj] != now:
+        tail, n_c = _grow_pressed(S, st, R, params, now, member, queue, 2, ca, cb, n_c)
+        if n_c == 1 and met[bi, bj] < now - LOOP_WINDOW and not _walled(S, st, R, params, now, bi, bj, rails, jaws):
             return 1, LONE
-        tail, n_c = _grow(S, st, R, params, now, bb_t, member, queue, 2, ca, cb, n_c)
+        tail, n_c = _grow(S, st, R, params, now, bb_t, member, queue, tail, ca, cb, n_c)
         return n_c, PACK
     head, tail = 0, 2
     while head < tail:
@@ -331,7 +375,7 @@ def _gather(S, st, R, params, pair, now, bi, bj, met, bb_t, ca, cb, member, queu
                 tail += 1
     loop = False
     for c in range(n_c):
-        loop = loop or met[ca[c], cb[c]] == now
+        loop = loop or met[ca[c], cb[c]] >= now - LOOP_WINDOW
     if not loop:
         return n_c, (GROUP if n_c > 1 else LONE)
     tail, _ = _grow(S, st, R, params, now, bb_t, member, queue, tail, ca, cb, n_c)
@@ -440,11 +484,12 @@ def run(S, st, R, M, params, bb_model, cu_model, rails, jaws, jaw_pockets, pocke
         rec_a[0], rec_b[0] = bi, bj
         n_c, mode = 1, LONE
         if kind == BALL_BALL:
-            n_c, mode = _gather(S, st, R, params, pair, now, bi, bj, met, bb_t, ca, cb, member, queue)
+            n_c, mode = _gather(S, st, R, params, pair, now, bi, bj, met, bb_t, ca, cb, member, queue, rails,
+                                jaws)
         if mode != LONE:
             # Several contacts at once: resolve them together on copies of the rows, then
             # keep the pairs that took an impulse (all of a pack's).
-            if cluster_t != now:
+            if now - cluster_t > LOOP_WINDOW:
                 clusters, cluster_t = 0, now
             for c in range(n_c):
                 for k in (ca[c], cb[c]):
