@@ -1,0 +1,229 @@
+"""`python -m pool_env.bench stability`: random scenes through the exact engine, invariants
+checked after every event (pool_env.physics.invariants), failures counted by kind.
+
+Each shot is a random break: a rack with random jitter (sometimes frozen, every ball
+touching its neighbours), a few extra balls dropped anywhere on the cloth without overlap,
+the cue ball on the head spot or anywhere free, struck at 0.5-15 m/s with random English,
+follow or draw, aimed at the head ball or anywhere. Shot k draws everything from
+numpy.random.default_rng([seed, k]), so any shot can be rerun alone (`--first k --shots 1`).
+`--physics` picks the physics: the standard preset, the seed preset, a mix (default: half
+standard, the rest the seed preset or random model switches with realistic coefficients),
+or `extreme` (any model, restitution anywhere in [0, 1], friction from a tenth to twice the
+standard values).
+
+Reported: failures by kind (see invariants.KINDS) with the first few shots of each, events
+per shot (median, p99, max), contacts per pair (the most contacts between two bodies in one
+shot: a chattering pair shows up here), and the worst case. When pooltool is importable,
+the same breaks (standard physics, six-pocket table, balls on the table) also run through
+pooltool, and its events per shot and chattering pairs are printed beside ours.
+"""
+
+from __future__ import annotations
+
+import argparse
+import collections
+import dataclasses
+import math
+import time
+
+import numpy as np
+
+CHATTER = 20  # contacts between the same two bodies in one shot that count as chatter
+PHYSICS_CHOICES = ("standard", "seed", "mixed", "extreme")
+
+
+def random_physics(rng, kind):
+    """The physics of one shot (see the module docstring)."""
+    from pool_env.physics import Physics
+    from pool_env.physics.config import BALL_BALL_MODELS, CUSHION_MODELS
+
+    if kind == "mixed":
+        kind = rng.choice(["standard", "standard", "seed", "realistic"])
+    if kind == "standard":
+        return Physics.standard()
+    if kind == "seed":
+        return Physics.seed()
+    std = Physics.standard()
+    if kind == "realistic":
+        return dataclasses.replace(
+            std, ball_ball=str(rng.choice(BALL_BALL_MODELS)), cushion=str(rng.choice(CUSHION_MODELS)),
+            e_b=float(rng.uniform(0.8, 1.0)), e_c=float(rng.uniform(0.5, 0.95)), mu_s=float(rng.uniform(0.1, 0.3)),
+            mu_r=float(rng.uniform(0.005, 0.02)), f_c=float(rng.uniform(0.05, 0.3)), spin=bool(rng.random() < 0.9))
+    scale = lambda: float(np.exp(rng.uniform(np.log(0.1), np.log(2.0))))  # noqa: E731
+    return dataclasses.replace(
+        std, ball_ball=str(rng.choice(BALL_BALL_MODELS)), cushion=str(rng.choice(CUSHION_MODELS)),
+        e_b=float(rng.uniform(0.0, 1.0)), e_c=float(rng.uniform(0.0, 1.0)), mu_s=std.mu_s * scale(),
+        mu_r=std.mu_r * scale(), mu_sp=std.mu_sp * scale(), f_c=std.f_c * scale(), spin=bool(rng.random() < 0.9))
+
+
+def _free_spot(rng, xy, table, radius, tries=200):
+    """A uniformly random spot on the cloth where a ball overlaps no other, clears the rails
+    by 1 mm and sits over no pocket; None if none was found."""
+    for _ in range(tries):
+        p = rng.uniform((radius + 1e-3, radius + 1e-3), (table.length - radius - 1e-3, table.width - radius - 1e-3))
+        if xy.size and np.min(np.hypot(*(xy - p).T)) < 2 * radius + 1e-6:
+            continue
+        if table.pockets.size and np.any(np.hypot(*(table.pockets[:, :2] - p).T) < table.pockets[:, 2] + 1e-3):
+            continue
+        return p
+    return None
+
+
+def random_break(rng, physics="mixed"):
+    """(balls, table, physics, description) of one random shot (see the module docstring)."""
+    from pool_env.physics import BALL_MASS, BALL_RADIUS, Balls, Table, rack, strike
+
+    table = Table.eight_foot() if rng.random() < 0.8 else Table.seed()
+    jitter = float(rng.choice([0.0, 1e-6, 1e-5, 2e-4, 1e-3]))
+    balls = rack(table, seed=int(rng.integers(2**31)), jitter=jitter)
+    xy = balls.xy.copy()
+    if rng.random() < 0.3:  # the cue ball anywhere free
+        spot = _free_spot(rng, xy[1:], table, BALL_RADIUS)
+        if spot is not None:
+            xy[0] = spot
+    extra = int(rng.integers(0, 5))
+    for _ in range(extra):
+        spot = _free_spot(rng, xy, table, BALL_RADIUS)
+        if spot is not None:
+            xy = np.vstack([xy, spot])
+    balls = Balls(xy)
+    aim = xy[1] - xy[0]
+    angle = math.atan2(aim[1], aim[0]) + rng.normal(0.0, 0.05) if rng.random() < 0.8 else rng.uniform(0, 2 * math.pi)
+    speed = float(rng.uniform(0.5, 15.0))
+    force = speed * BALL_MASS / 0.005
+    r, a = 0.7 * math.sqrt(rng.random()), rng.uniform(0, 2 * math.pi)
+    offset = (r * math.cos(a), r * math.sin(a))
+    balls = strike(balls, force=(force * math.cos(angle), force * math.sin(angle)), offset=offset)
+    phys = random_physics(rng, physics)
+    description = (f"{len(xy)} balls (rack jitter {jitter:g} m, {len(xy) - 16} extra) on the "
+                   f"{table.length} x {table.width} m table with {len(table.pockets)} pockets; cue ball at "
+                   f"({xy[0, 0]:.3f}, {xy[0, 1]:.3f}) struck at {speed:.2f} m/s towards {math.degrees(angle):.1f} deg, "
+                   f"tip offset ({offset[0]:.2f}, {offset[1]:.2f}); {phys}")
+    return balls, table, phys, description
+
+
+def most_contacts(result):
+    """The most contact events between the same two bodies (balls, or a ball and a cushion)."""
+    _, kinds, ei, ej = result.event_arrays
+    from pool_env.physics import EVENT_KINDS
+
+    contact = np.isin(kinds, [EVENT_KINDS.index(k) for k in ("ball_ball", "ball_ball_settle", "ball_cushion")])
+    if not contact.any():
+        return 0
+    cushion = kinds[contact] == EVENT_KINDS.index("ball_cushion")
+    keys = np.stack([ei[contact], np.where(cushion, -1 - ej[contact], ej[contact])], axis=1)
+    return int(np.unique(keys, axis=0, return_counts=True)[1].max())
+
+
+def run(shots, seed=0, first=0, physics="mixed", rerun_every=10, show=3, verbose=True):
+    """Run the sweep; returns a summary dict (see `main` for what it prints)."""
+    from pool_env.physics import EVENT_KINDS
+    from pool_env.physics.invariants import run_checked
+
+    failures = collections.defaultdict(list)
+    events, settles, contacts = [], [], []
+    settle_kind = EVENT_KINDS.index("ball_ball_settle")
+    worst = None
+    wall = time.perf_counter()
+    for k in range(first, first + shots):
+        rng = np.random.default_rng([seed, k])
+        balls, table, phys, description = random_break(rng, physics)
+        result, violations = run_checked(balls, table, phys, rerun=rerun_every > 0 and k % rerun_every == 0)
+        for v in violations:
+            failures[v.kind].append((k, v, description))
+        if result is None:
+            continue
+        n = len(result.event_times)
+        events.append(n)
+        settles.append(int(np.count_nonzero(result.event_arrays[1] == settle_kind)))
+        contacts.append(most_contacts(result))
+        if worst is None or n > worst[1]:
+            worst = (k, n, description)
+        if verbose and (k - first + 1) % 1000 == 0:
+            print(f"  {k - first + 1} shots, {time.perf_counter() - wall:.0f} s", flush=True)
+    return {
+        "shots": shots, "seed": seed, "first": first, "physics": physics, "wall": time.perf_counter() - wall,
+        "failures": dict(failures), "events": np.array(events), "settles": np.array(settles),
+        "contacts": np.array(contacts), "worst": worst,
+    }
+
+
+def distribution(values):
+    values = np.asarray(values)
+    if values.size == 0:
+        return "none"
+    return f"median {np.median(values):.0f}, p99 {np.percentile(values, 99):.0f}, max {values.max()}"
+
+
+def pooltool_sweep(shots, seed=0, first=0):
+    """The same breaks (standard physics, six-pocket table only) through pooltool: (events per
+    shot, most contacts per pair per shot, shots skipped), or None with the reason if
+    pooltool is not importable."""
+    try:
+        import pooltool as pt  # noqa: F401
+    except Exception as exc:  # noqa: BLE001 - any import failure means: no comparison
+        return None, f"{type(exc).__name__}: {exc}"
+    from pool_env.bench.speed import _pooltool_system
+
+    events, chatter, skipped = [], [], 0
+    for k in range(first, first + shots):
+        balls, table, _, _ = random_break(np.random.default_rng([seed, k]), "standard")
+        if len(table.pockets) != 6:
+            skipped += 1
+            continue
+        system = _pooltool_system(balls, table)
+        pt.simulate(system, inplace=True)
+        pairs = collections.Counter()
+        for event in system.events:
+            kind = str(event.event_type.value)
+            if kind in ("ball_ball", "ball_linear_cushion", "ball_circular_cushion"):
+                pairs[tuple(sorted(event.ids))] += 1
+        events.append(sum(str(e.event_type.value) != "none" for e in system.events))
+        chatter.append(max(pairs.values(), default=0))
+    return (np.array(events), np.array(chatter), skipped), None
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m pool_env.bench stability", description=__doc__.split("\n")[0])
+    parser.add_argument("--shots", type=int, default=1000, help="number of random breaks (default 1000)")
+    parser.add_argument("--seed", type=int, default=0, help="sweep seed: shot k uses default_rng([seed, k])")
+    parser.add_argument("--first", type=int, default=0, help="index of the first shot (to rerun one: --shots 1)")
+    parser.add_argument("--physics", choices=PHYSICS_CHOICES, default="mixed", help="physics of the shots")
+    parser.add_argument("--rerun-every", type=int, default=10,
+                        help="re-simulate every n-th shot and require an identical result (0: never)")
+    parser.add_argument("--show", type=int, default=3, help="failing shots listed per kind")
+    parser.add_argument("--no-pooltool", action="store_true", help="skip the pooltool comparison")
+    args = parser.parse_args(argv)
+
+    print(f"stability: {args.shots} random breaks (seed {args.seed}, shots {args.first}-"
+          f"{args.first + args.shots - 1}, physics {args.physics}), invariants checked at every event")
+    s = run(args.shots, args.seed, args.first, args.physics, args.rerun_every, args.show)
+    print(f"wall time {s['wall']:.1f} s ({1e3 * s['wall'] / max(args.shots, 1):.2f} ms a shot, checks included)")
+    total = sum(len(v) for v in s["failures"].values())
+    if not total:
+        print("failures: none")
+    else:
+        failing = len({k for v in s["failures"].values() for k, _, _ in v})
+        print(f"failures: {total} in {failing} shots")
+        for kind, items in sorted(s["failures"].items()):
+            print(f"  {kind}: {len(items)}")
+            for k, v, description in items[: args.show]:
+                print(f"    shot {k}: {v.detail}\n      {description}")
+    print(f"events per shot: {distribution(s['events'])}")
+    print(f"ball_ball_settle events per shot: {distribution(s['settles'])}")
+    print(f"most contacts between two bodies in a shot: {distribution(s['contacts'])}; "
+          f"shots with {CHATTER} or more: {int(np.count_nonzero(s['contacts'] >= CHATTER))}")
+    if s["worst"] is not None:
+        k, n, description = s["worst"]
+        print(f"worst case: shot {k}, {n} events: {description}\n  rerun: python -m pool_env.bench stability "
+              f"--seed {args.seed} --first {k} --shots 1 --physics {args.physics}")
+    if not args.no_pooltool:
+        figures, reason = pooltool_sweep(args.shots, args.seed, args.first)
+        if figures is None:
+            print(f"pooltool: not importable ({reason}); comparison skipped")
+        else:
+            events, chatter, skipped = figures
+            print(f"pooltool (standard physics, {len(events)} six-pocket shots, {skipped} skipped): events per shot "
+                  f"{distribution(events)}; shots with a pair of {CHATTER}+ contacts: "
+                  f"{int(np.count_nonzero(chatter >= CHATTER))}")
+    return 1 if total else 0

@@ -1,0 +1,175 @@
+"""Invariants every simulation must satisfy, checked at every event.
+
+The hard-case suite (tests/test_hard_cases.py), the property tests and
+`python -m pool_env.bench stability` all use `check` / `run_checked`. At every event instant
+t the exact states just before t and just after it are sampled (`Result.sample` at
+`nextafter(t, -inf)` and at t; just before t = 0 is the input itself), and:
+
+- `non_finite`: every position, velocity and spin is finite;
+- `overlap`: no two balls on the table overlap by more than OVERLAP_TOL (1 nm);
+- `off_table`: no ball on the table is inside a rail or a jaw point by more than RAIL_TOL,
+  or has its centre outside the table's rectangle (a ball leaves only into a pocket);
+- `energy`: the kinetic energy (translation plus rotation) never increases from one sample
+  to the next. The seed models are the documented exception: they set a ball rolling at
+  once after a collision (as the seed report does), which recasts translational energy as
+  rotational energy and can add some, so an instant with an event of a seed model
+  (ball-ball events when `ball_ball="seed"`, cushion events when `cushion="seed"`) is not
+  checked; every other step of such a simulation is;
+- `momentum`: across an instant made only of "ball_ball" events (collisions) of a
+  momentum-conserving model (`elastic`, `frictional`), the balls' total linear momentum is
+  unchanged ("ball_ball_settle" events involve the cloth and are not collisions: see
+  settle.py);
+- `event_cap` / `error`: the simulation raised (see `run_checked`);
+- `nondeterministic`: a re-run gave different events or a different final state.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+from .engine import EVENT_KINDS
+from .motion import POCKETED
+
+OVERLAP_TOL = 1e-9  # m
+RAIL_TOL = 1e-9  # m
+ENERGY_RTOL = 1e-12  # of the initial kinetic energy
+MOMENTUM_RTOL = 1e-12  # of the sum of |m v| before and after the instant
+
+KINDS = ("non_finite", "overlap", "off_table", "energy", "momentum", "event_cap", "error", "nondeterministic")
+MOMENTUM_MODELS = ("elastic", "frictional")
+BALL_BALL, BALL_CUSHION = EVENT_KINDS.index("ball_ball"), EVENT_KINDS.index("ball_cushion")
+BALL_BALL_KINDS = [k for k, name in enumerate(EVENT_KINDS) if name.startswith("ball_ball")]
+
+
+class Violation(NamedTuple):
+    """One broken invariant: its kind (see KINDS), the time (s) and a description."""
+
+    kind: str
+    time: float
+    detail: str
+
+
+def kinetic_energy(rows, states, radii, masses):
+    """(translational, rotational) kinetic energy of the balls on the table, per sample:
+    rows (T, N, 8) and states (T, N) as `Result.sample` returns them."""
+    on = states != POCKETED
+    trans = 0.5 * masses * np.sum(rows[..., 2:4] ** 2, axis=-1)
+    rot = 0.5 * 0.4 * masses * radii**2 * np.sum(rows[..., 4:7] ** 2, axis=-1)
+    return np.sum(np.where(on, trans, 0.0), axis=-1), np.sum(np.where(on, rot, 0.0), axis=-1)
+
+
+def samples(result, balls=None):
+    """(instants, kind ids per instant, times, rows, states): the distinct event times, and
+    the states at t = 0 and just before and just after each instant (sample 2k + 1 is just
+    before instant k, 2k + 2 just after). With `balls`, the input replaces the states before
+    t = 0."""
+    ev_t, ev_kind = result.event_arrays[:2]
+    instants, first = np.unique(ev_t, return_index=True)
+    kinds = [set(g.tolist()) for g in np.split(ev_kind, first[1:])] if ev_t.size else []
+    before = np.maximum(np.nextafter(instants, -np.inf), 0.0)
+    times = np.concatenate(([0.0], np.column_stack((before, instants)).ravel()))
+    rows, states = result.sample(times)
+    if balls is not None:
+        starts = [0, 1] if instants.size and instants[0] == 0.0 else [0]
+        for s in starts:
+            rows[s, :, 0:2], rows[s, :, 2:4], rows[s, :, 4:7] = balls.xy, balls.v, balls.w
+            states[s] = np.where(balls.pocketed, POCKETED, 0)
+    return instants, kinds, times, rows, states
+
+
+def check(result, balls=None, first_only=False) -> list[Violation]:
+    """Every invariant violation of a `Result` (empty if none). `balls` is the simulated
+    input (without it, events at t = 0 are checked against the state after them). With
+    first_only, only the first violation of each kind is reported."""
+    out = []
+
+    def add(kind, t, detail):
+        if not (first_only and any(v.kind == kind for v in out)):
+            out.append(Violation(kind, float(t), detail))
+
+    physics, table = result.physics, result.table
+    radii = np.asarray(result.final.radii, dtype=np.float64)
+    masses = np.asarray(result.final.masses, dtype=np.float64)
+    instants, kinds, times, rows, states = samples(result, balls)
+
+    bad = ~np.isfinite(rows)
+    if bad.any():
+        s = int(np.argwhere(bad)[0, 0])
+        add("non_finite", times[s], f"non-finite state at t = {times[s]!r}")
+        rows = np.where(bad, 0.0, rows)
+    on = states != POCKETED
+    x, y = rows[..., 0], rows[..., 1]
+
+    n = rows.shape[1]
+    if n > 1:
+        iu, ju = np.triu_indices(n, 1)
+        d = np.hypot(x[:, iu] - x[:, ju], y[:, iu] - y[:, ju])
+        depth = np.where(on[:, iu] & on[:, ju], radii[iu] + radii[ju] - d, -np.inf)
+        s, p = np.unravel_index(np.argmax(depth), depth.shape)
+        if depth[s, p] > OVERLAP_TOL:
+            add("overlap", times[s], f"balls {iu[p]} and {ju[p]} overlap by {depth[s, p]:.3g} m at t = {times[s]!r}")
+
+    for c, (x1, y1, x2, y2, nx, ny) in enumerate(np.asarray(table.rails)):
+        gap = nx * (x - x1) + ny * (y - y1) - radii
+        along = ((x - x1) * (x2 - x1) + (y - y1) * (y2 - y1)) / ((x2 - x1) ** 2 + (y2 - y1) ** 2)
+        inside = on & (along >= 0.0) & (along <= 1.0) & (gap < -RAIL_TOL)
+        if inside.any():
+            s, i = np.argwhere(inside)[0]
+            add("off_table", times[s], f"ball {i} is {-gap[s, i]:.3g} m inside rail {c} at t = {times[s]!r}")
+    for p, (jx, jy) in enumerate(np.asarray(table.jaws)):
+        inside = on & (np.hypot(x - jx, y - jy) < radii - RAIL_TOL)
+        if inside.any():
+            s, i = np.argwhere(inside)[0]
+            add("off_table", times[s], f"ball {i} is inside jaw point {p} at t = {times[s]!r}")
+    outside = on & ((x < -RAIL_TOL) | (x > table.length + RAIL_TOL) | (y < -RAIL_TOL) | (y > table.width + RAIL_TOL))
+    if outside.any():
+        s, i = np.argwhere(outside)[0]
+        add("off_table", times[s], f"ball {i} left the table at ({x[s, i]:.6g}, {y[s, i]:.6g}) at t = {times[s]!r}")
+
+    trans, rot = kinetic_energy(rows, states, radii, masses)
+    total = trans + rot
+    rise = np.diff(total)
+    for k, ks in enumerate(kinds):  # rise[2k + 1] is across instant k
+        seeded_bb = physics.ball_ball == "seed" and any(kind in ks for kind in BALL_BALL_KINDS)
+        if seeded_bb or (physics.cushion == "seed" and BALL_CUSHION in ks):
+            rise[2 * k + 1] = 0.0
+    tol = ENERGY_RTOL * max(total[0], 1e-300) + 1e-300
+    if (rise > tol).any():
+        s = int(np.argmax(rise > tol))
+        add("energy", times[s + 1], f"kinetic energy rose by {rise[s]:.3g} J at t = {times[s + 1]!r}")
+
+    if physics.ball_ball in MOMENTUM_MODELS:
+        p = masses[:, None] * rows[..., 2:4] * on[..., None]
+        for k, ks in enumerate(kinds):
+            if ks == {BALL_BALL}:
+                change = np.hypot(*(p[2 * k + 2].sum(axis=0) - p[2 * k + 1].sum(axis=0)))
+                scale = np.abs(p[2 * k + 1]).sum() + np.abs(p[2 * k + 2]).sum()
+                if change > MOMENTUM_RTOL * scale + 1e-300:
+                    add("momentum", instants[k], f"momentum changed by {change:.3g} kg m/s at t = {instants[k]!r}")
+    return out
+
+
+def same_result(a, b) -> bool:
+    """True if two results have bit-identical events and final states."""
+    return (all(np.array_equal(x, y) for x, y in zip(a.event_arrays, b.event_arrays))
+            and all(np.array_equal(getattr(a.final, f), getattr(b.final, f)) for f in ("xy", "v", "w", "pocketed")))
+
+
+def run_checked(balls, table, physics, rerun=False, **kwargs):
+    """Simulate and check: (result or None, violations). A SimulationError (the event cap)
+    becomes an `event_cap` violation and any other exception an `error` one; with rerun, a
+    second run must give the same result (`nondeterministic` otherwise)."""
+    from .simulate import SimulationError, simulate
+
+    try:
+        result = simulate(balls, table, physics, **kwargs)
+    except SimulationError as exc:
+        return None, [Violation("event_cap", float("nan"), str(exc))]
+    except Exception as exc:  # noqa: BLE001 - a crash is a finding: reported, not swallowed
+        return None, [Violation("error", float("nan"), f"{type(exc).__name__}: {exc}")]
+    out = check(result, balls)
+    if rerun and not same_result(result, simulate(balls, table, physics, **kwargs)):
+        out.append(Violation("nondeterministic", float("nan"), "a re-run gave a different result"))
+    return result, out
