@@ -42,17 +42,22 @@ class Args:
     randomize_cue: bool = option(False, "start the cue ball anywhere in the kitchen")
     # --- hyperparameters (PPO unless marked) ---
     learning_rate: float = option(1e-3, "optimizer step size (PPO and SAC)")
+    lr_schedule: str = option("linear", "learning rate over training: constant, or linear decay to 0",
+                              choices=("constant", "linear"))
     n_steps: int = option(512, "PPO: steps per env between updates")
     batch_size: int = option(256, "minibatch size (PPO and SAC)")
     n_epochs: int = option(10, "PPO: passes over each rollout")
     gamma: float = option(0.99, "discount (matters only when an episode has more than one shot)")
     log_std_init: float = option(-1.0, "PPO: initial log standard deviation of the Gaussian policy")
+    anneal_std: bool = option(True, "PPO: anneal the log std linearly to --log-std-final instead of learning it")
+    log_std_final: float = option(-6.0, "PPO: log std at the end of training when annealing")
     net_arch: str = option("64,64", "hidden layer sizes of policy and value networks")
     # --- evaluation and outputs ---
     eval_episodes: int | None = option(None, "final evaluation episodes per agent (default 1000, 100 multi-shot)")
     eval_seed: int = option(1_000_000, "first seed of the fixed evaluation seeds (disjoint from training)")
-    curve_points: int = option(20, "deterministic evaluations during training, for the learning curve")
-    curve_episodes: int = option(100, "episodes per learning-curve evaluation")
+    curve_points: int = option(50, "deterministic evaluations during training, for the learning curve")
+    curve_episodes: int = option(200, "episodes per learning-curve evaluation")
+    keep_best: bool = option(True, "final model: the best learning-curve checkpoint (else the last)")
     video_episodes: int = option(3, "episodes of the trained agent in the video (0: no video)")
     out: str = option("runs", "parent folder of the run folder")
     run_name: str | None = option(None, "run folder name (default: timestamp, env, algo, seed)")
@@ -79,8 +84,9 @@ def main(args: Args) -> Path:
     import gymnasium as gym
     import torch
     from stable_baselines3 import PPO, SAC
-    from stable_baselines3.common.callbacks import BaseCallback
+    from stable_baselines3.common.callbacks import BaseCallback, CallbackList
     from stable_baselines3.common.env_util import make_vec_env
+    from stable_baselines3.common.utils import LinearSchedule
     from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv
 
     import pool_env
@@ -119,7 +125,10 @@ def main(args: Args) -> Path:
 
     # --- the model ---
     net_arch = [int(n) for n in args.net_arch.split(",") if n]
-    common = dict(learning_rate=args.learning_rate, batch_size=args.batch_size, gamma=args.gamma, seed=args.seed,
+    learning_rate = args.learning_rate
+    if args.lr_schedule == "linear":
+        learning_rate = LinearSchedule(args.learning_rate, 0.0, 1.0)  # SB3's own class: pickles cleanly
+    common = dict(learning_rate=learning_rate, batch_size=args.batch_size, gamma=args.gamma, seed=args.seed,
                   device="cpu", tensorboard_log=str(run_dir / "tb"), verbose=0)
     if args.algo == "ppo":
         model = PPO("MlpPolicy", envs, n_steps=args.n_steps, n_epochs=args.n_epochs,
@@ -132,6 +141,7 @@ def main(args: Args) -> Path:
         def __init__(self, every: int):
             super().__init__()
             self.every, self.next_at, self.points, self.failed_shots = every, 0, [], 0
+            self.best = None
 
         def _on_step(self) -> bool:
             self.failed_shots += sum("error" in info for info in self.locals["infos"])
@@ -146,20 +156,48 @@ def main(args: Args) -> Path:
                      "pocketed_per_shot": result["pocketed_per_shot"]["mean"],
                      "scratch_rate": result["scratch_rate"]["mean"]}
             self.points.append(point)
+            if self.best is None or point["reward"]["mean"] > self.best["reward"]["mean"]:
+                self.best = point
+                self.model.save(run_dir / "best_model.zip")
             self.logger.record("eval/mean_reward", point["reward"]["mean"])
             self.logger.record("eval/scratch_rate", point["scratch_rate"])
             self.logger.dump(self.num_timesteps)
 
+    class AnnealStd(BaseCallback):
+        """Exploration from coarse to fine: the reward is a rugged function of the aim (a fifth of a
+        ball radius can halve it), so the Gaussian policy's spread follows a fixed schedule,
+        wide at first and narrow at the end, instead of being learned."""
+
+        def _on_training_start(self) -> None:
+            self.model.policy.log_std.requires_grad_(False)
+
+        def _on_rollout_start(self) -> None:
+            progress = min(self.num_timesteps / args.timesteps, 1.0)
+            value = args.log_std_init + progress * (args.log_std_final - args.log_std_init)
+            self.model.policy.log_std.data.fill_(value)
+            self.logger.record("train/log_std", value)
+
+        def _on_step(self) -> bool:
+            return True
+
     curve = CurveCallback(max(args.timesteps // max(args.curve_points, 1), 1) if args.curve_points else 0)
+    callbacks = [curve] + ([AnnealStd()] if args.algo == "ppo" and args.anneal_std else [])
     train_start = time.perf_counter()
-    model.learn(total_timesteps=args.timesteps, callback=curve, progress_bar=args.progress_bar, tb_log_name="tb")
+    model.learn(total_timesteps=args.timesteps, callback=CallbackList(callbacks), progress_bar=args.progress_bar,
+                tb_log_name="tb")
     if args.curve_points:
         curve.measure()
     train_time = time.perf_counter() - train_start
     envs.close()
+    model.save(run_dir / "last_model.zip")
+    log.info("trained %d steps in %.0f s (%.0f steps/s)", model.num_timesteps, train_time,
+             model.num_timesteps / train_time)
+    if args.keep_best and curve.best is not None:
+        model = type(model).load(run_dir / "best_model.zip", device="cpu")
+        log.info("keeping the best checkpoint: %d steps, reward %+.3f on the %d learning-curve seeds",
+                 curve.best["timesteps"], curve.best["reward"]["mean"], len(curve_seeds))
     model.save(run_dir / "model.zip")
-    log.info("trained %d steps in %.0f s (%.0f steps/s); model saved to %s", model.num_timesteps, train_time,
-             model.num_timesteps / train_time, run_dir / "model.zip")
+    log.info("model saved to %s", run_dir / "model.zip")
     if curve.failed_shots:
         log.info("%d training shots hit the simulator's event cap (episode truncated, reward 0)", curve.failed_shots)
 
@@ -189,7 +227,7 @@ def main(args: Args) -> Path:
 
     # --- learning curve ---
     plot_learning_curve(run_dir, curve.points, {n: r["reward"]["mean"] for n, r in results.items() if n != "trained"},
-                        f"{args.algo.upper()} on {args.env_id}")
+                        f"{args.algo.upper()} on {args.env_id}", curve.best if args.keep_best else None)
     log.info("learning curve: %s", run_dir / "learning_curve.png")
 
     # --- a video of the trained agent: every shot, whole ---
@@ -210,7 +248,24 @@ def main(args: Args) -> Path:
     return run_dir
 
 
-def plot_learning_curve(run_dir: Path, points: list[dict], baselines: dict[str, float], title: str) -> None:
+def read_monitor(folder: Path):
+    """(timesteps at the end of each episode, episode rewards) from SB3 Monitor csv files, in time order."""
+    import csv
+
+    import numpy as np
+
+    rows = []
+    for path in sorted(folder.glob("*.monitor.csv")):
+        with open(path) as f:
+            next(f)  # the JSON header line
+            rows += [(float(r["t"]), float(r["r"]), int(r["l"])) for r in csv.DictReader(f)]
+    rows.sort()
+    lengths = np.array([r[2] for r in rows], dtype=np.int64)
+    return np.cumsum(lengths), np.array([r[1] for r in rows])
+
+
+def plot_learning_curve(run_dir: Path, points: list[dict], baselines: dict[str, float], title: str,
+                        kept: dict | None = None) -> None:
     """Training episodes' reward (rolling mean, from the Monitor files) and the deterministic
     evaluations against timesteps, with the baselines' final evaluation as horizontal lines."""
     import matplotlib
@@ -218,16 +273,10 @@ def plot_learning_curve(run_dir: Path, points: list[dict], baselines: dict[str, 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     import numpy as np
-    from stable_baselines3.common.monitor import load_results
 
     fig, ax = plt.subplots(figsize=(8, 4.5), dpi=120)
-    try:
-        episodes = load_results(str(run_dir / "monitor")).sort_values("t")
-    except Exception:  # no finished episode (a very short run)
-        episodes = None
-    if episodes is not None and len(episodes):
-        steps = np.cumsum(episodes["l"].to_numpy())
-        rewards = episodes["r"].to_numpy()
+    steps, rewards = read_monitor(run_dir / "monitor")
+    if len(rewards):
         window = max(1, len(rewards) // 50)
         smooth = np.convolve(rewards, np.ones(window) / window, mode="valid")
         ax.plot(steps[window - 1:], smooth, color="tab:blue", alpha=0.6,
@@ -238,6 +287,9 @@ def plot_learning_curve(run_dir: Path, points: list[dict], baselines: dict[str, 
         ci = np.array([p["reward"]["ci95"] for p in points])
         ax.plot(t, mean, "o-", color="tab:red", label="trained agent, deterministic (fixed seeds)")
         ax.fill_between(t, mean - ci, mean + ci, color="tab:red", alpha=0.15)
+    if kept is not None:
+        ax.plot([kept["timesteps"]], [kept["reward"]["mean"]], "*", color="black", markersize=14,
+                label="kept checkpoint (model.zip)")
     colours = iter(["tab:gray", "tab:green", "tab:purple", "tab:orange"])
     for name, value in baselines.items():
         ax.axhline(value, linestyle="--", color=next(colours), label=f"{name} ({value:+.2f})")

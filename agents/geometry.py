@@ -79,7 +79,7 @@ def start_speed(v: float, distance: float, physics: Physics) -> float:
     return math.sqrt((v * v + 2.0 * mu_r * g * distance) / (25.0 / 49.0 + 24.0 / 49.0 * mu_r / mu_s))
 
 
-def forward_spin_after(v0: float, distance: float, radius: float, physics: Physics) -> float:
+def forward_spin_after(v0: float, distance: float, physics: Physics) -> float:
     """R times the forward (rolling-direction) spin of a centre-hit ball after `distance` m:
     5/2 of the speed lost while sliding, the speed itself once it rolls."""
     v = speed_after(v0, distance, physics)
