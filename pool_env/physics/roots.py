@@ -161,7 +161,7 @@ def first_entry(c0, c1, c2, c3, c4, horizon, min_slope, min_depth):
     other, or meeting at a tangent do not collide. The same threshold is what makes a
     resolved collision never be found again at the same instant.
 
-    Touching (c0 <= 0: in contact, up to round-off) is measured from where f is now: the
+    Touching (|c0| <= min_depth: in contact, up to round-off) is measured from where f is now: the
     contact is found again when f falls back below c0 after rising (balls that barely
     separate, then re-approach while still in contact: rising only by round-off, f never
     turns positive, so entry into f <= 0 would never be seen), or when f sinks min_depth
@@ -172,7 +172,11 @@ def first_entry(c0, c1, c2, c3, c4, horizon, min_slope, min_depth):
     if not (horizon >= 0.0):
         return np.inf
     level = 0.0
-    if c0 <= 0.0:
+    if c0 <= min_depth:
+        # Touching: within min_depth of contact either way. (Which side of zero round-off
+        # leaves a just-resolved pair on must not matter: from just outside, a pair pressed
+        # together would otherwise cross zero at once, a few nanoseconds later, faster than
+        # min_slope, and from just inside be found min_depth deeper, microseconds later.)
         if c1 < -min_slope:
             return 0.0
         if c0 >= -TOUCH_DEPTHS * min_depth:
