@@ -153,8 +153,8 @@ def _predict_boundary(S, st, R, params, t_tr, i, now, rails, jaws, jaw_pockets, 
 
 
 # Simultaneous ball-ball contacts: contacts predicted within GROUP_WINDOW (s) of the event
-# being resolved, and sharing a ball with it, are resolved with it as one group (so the order
-# of contacts that are simultaneous up to round-off does not matter). A pair that meets
+# being resolved are resolved with it as one group (so the order of contacts that are
+# simultaneous up to round-off does not matter). A pair that meets
 # again within LOOP_WINDOW (s) is caught in a cascade (a touching cluster whose contacts chase
 # each other round; rows of balls "touching" in floating point are 1e-16 m apart, so the
 # cascade's contacts are that many seconds apart, not at one instant): that starts a cluster
@@ -234,9 +234,10 @@ def _grow_pressed(S, st, R, params, now, member, queue, tail, ca, cb, n_c):
 
 
 @njit(cache=True)
-def _walls(G, ca, cb, n_c, R, rails, jaws, walls):
+def _walls(G, ca, cb, n_c, R, rails, jaws, walls, wall_ball):
     """Inward normals (up to walls.shape[0]) of the rails and jaw points touched, within
-    TOUCH_GAP, by the balls of the pairs (rows in G at the contact time); returns how many."""
+    TOUCH_GAP, by the balls of the pairs (rows in G at the contact time), and the ball
+    touching each; returns how many."""
     n_walls = 0
     for c in range(n_c):
         for side in range(2):
@@ -249,12 +250,14 @@ def _walls(G, ca, cb, n_c, R, rails, jaws, walls):
                 gap = rail[4] * (x - rail[0]) + rail[5] * (y - rail[1]) - R[k]
                 if 0.0 <= along <= 1.0 and gap <= TOUCH_GAP and n_walls < walls.shape[0]:
                     walls[n_walls, 0], walls[n_walls, 1] = rail[4], rail[5]
+                    wall_ball[n_walls] = k
                     n_walls += 1
             for p in range(jaws.shape[0]):
                 dx, dy = x - jaws[p, 0], y - jaws[p, 1]
                 d = math.hypot(dx, dy)
                 if d - R[k] <= TOUCH_GAP and n_walls < walls.shape[0]:
                     walls[n_walls, 0], walls[n_walls, 1] = dx / d, dy / d
+                    wall_ball[n_walls] = k
                     n_walls += 1
     return n_walls
 
@@ -323,7 +326,7 @@ def _walled(S, st, R, params, now, i, k, rails, jaws):
 
 
 # How the contacts found by _gather are resolved.
-LONE, GROUP, CLUSTER, PACK = 0, 1, 2, 3
+LONE, GROUP, CLUSTER, PACK, SETTLES = 0, 1, 2, 3, 4
 
 
 @njit(cache=True)
@@ -331,18 +334,19 @@ def _gather(S, st, R, params, pair, now, bi, bj, met, bb_t, ca, cb, member, queu
     """The contacts to resolve with the ball-ball event (bi, bj) at `now`: (count, mode),
     the pairs in ca/cb (the event's own first), the balls in queue[:...] when grouped.
 
-    LONE: the event alone (ball_ball.resolve). A pressed contact (settle.pressed) is
-    resolved alone too, unless one of its balls is also pressed against a third ball, its
-    pair met within LOOP_WINDOW, or one of its balls touches a cushion (settling one contact
-    of a pressed chain, or a ball pressed between a ball and a rail, only pushes into the
-    next contact, which pushes back, without end); then PACK: the pressed chain and the balls
-    that met others within LOOP_WINDOW and touch it roll on together, the cushions they touch
-    taking the part of their velocity into them. GROUP: every pair
-    predicted to touch within GROUP_WINDOW that is linked to (bi, bj) through shared balls,
-    resolved at once. CLUSTER: one of those pairs met within LOOP_WINDOW (contacts chasing
-    each other round a touching cluster, without end when restitution is low: an inelastic
-    collapse), so every pair touching within TOUCH_GAP among the balls that met others within
-    LOOP_WINDOW, linked to the group by touching, is resolved at once.
+    LONE: the event alone (ball_ball.resolve). A pressed contact (settle.pressed) is taken
+    with every other pressed contact predicted within GROUP_WINDOW: SETTLES, each settled on
+    its own (ball_ball.resolve), unless one of their balls is also pressed against a further
+    ball, a pair met within LOOP_WINDOW, or a ball touches a cushion (settling one contact of
+    a pressed chain, or a ball pressed between a ball and a rail, only pushes into the next
+    contact, which pushes back, without end); then PACK: each pressed chain, with the balls
+    that met others within LOOP_WINDOW and touch it, rolls on together, the cushions it
+    touches taking the part of its velocity into them (settle.roll_group). GROUP: every pair predicted to touch
+    within GROUP_WINDOW, resolved at once. CLUSTER: one of those pairs met within LOOP_WINDOW
+    (contacts chasing each other round a touching cluster, without end when restitution is
+    low: an inelastic collapse), so every pair touching within TOUCH_GAP among the balls that
+    met others within LOOP_WINDOW, linked by touching to that pair's group, is resolved at
+    once.
     """
     n = S.shape[0]
     for k in range(n):
@@ -352,32 +356,69 @@ def _gather(S, st, R, params, pair, now, bi, bj, met, bb_t, ca, cb, member, queu
     member[bi] = member[bj] = True
     queue[0], queue[1] = bi, bj
     if _pressed(S, st, R, params, now, bi, bj):
-        tail, n_c = _grow_pressed(S, st, R, params, now, member, queue, 2, ca, cb, n_c)
-        if n_c == 1 and met[bi, bj] < now - LOOP_WINDOW and not _walled(S, st, R, params, now, bi, bj, rails, jaws):
-            return 1, LONE
+        # With every other pressed contact predicted within GROUP_WINDOW (as for GROUP).
+        tail = 2
+        for a in range(n):
+            for k in range(a + 1, n):
+                if pair[a, k] <= now + GROUP_WINDOW and not _listed(ca, cb, n_c, a, k) and \
+                        _pressed(S, st, R, params, now, a, k):
+                    ca[n_c], cb[n_c] = a, k
+                    n_c += 1
+                    for b in (a, k):
+                        if not member[b]:
+                            member[b] = True
+                            queue[tail] = b
+                            tail += 1
+        alone = 2 * n_c == tail  # no ball in two of them
+        for c in range(n_c):
+            alone = alone and met[ca[c], cb[c]] < now - LOOP_WINDOW
+            alone = alone and not _walled(S, st, R, params, now, ca[c], cb[c], rails, jaws)
+        grown = n_c
+        tail, n_c = _grow_pressed(S, st, R, params, now, member, queue, tail, ca, cb, n_c)
+        if alone and n_c == grown:
+            return n_c, (LONE if n_c == 1 else SETTLES)
         tail, n_c = _grow(S, st, R, params, now, bb_t, member, queue, tail, ca, cb, n_c)
         return n_c, PACK
-    head, tail = 0, 2
-    while head < tail:
-        a = queue[head]
-        head += 1
-        for k in range(n):
-            if k == a or not (pair[a, k] <= now + GROUP_WINDOW):
+    # Every contact predicted within GROUP_WINDOW, linked to this one or not: independent
+    # contacts commute, but resolved one per step, a contact the first one creates (a ball
+    # knocked into its neighbour) would come before the others (a mirror image's: symmetric
+    # inputs would not give symmetric outputs). In resolve_group unlinked contacts stay
+    # independent.
+    tail = 2
+    for a in range(n):
+        for k in range(a + 1, n):
+            if not (pair[a, k] <= now + GROUP_WINDOW) or _listed(ca, cb, n_c, a, k):
                 continue
-            lo, hi = min(a, k), max(a, k)
-            if _listed(ca, cb, n_c, lo, hi) or _pressed(S, st, R, params, now, lo, hi):
+            if _pressed(S, st, R, params, now, a, k):
                 continue
-            ca[n_c], cb[n_c] = lo, hi
+            ca[n_c], cb[n_c] = a, k
             n_c += 1
-            if not member[k]:
-                member[k] = True
-                queue[tail] = k
-                tail += 1
+            for b in (a, k):
+                if not member[b]:
+                    member[b] = True
+                    queue[tail] = b
+                    tail += 1
     loop = False
     for c in range(n_c):
         loop = loop or met[ca[c], cb[c]] >= now - LOOP_WINDOW
     if not loop:
         return n_c, (GROUP if n_c > 1 else LONE)
+    # The cluster grows from the linked groups that loop; the others wait their turn.
+    label = np.arange(n)
+    for _ in range(n_c):
+        for c in range(n_c):
+            low = min(label[ca[c]], label[cb[c]])
+            label[ca[c]] = label[cb[c]] = low
+    looping = np.zeros(n, dtype=np.bool_)
+    for c in range(n_c):
+        if met[ca[c], cb[c]] >= now - LOOP_WINDOW:
+            looping[label[ca[c]]] = True
+    tail = 0
+    for k in range(n):
+        member[k] = member[k] and looping[label[k]]
+        if member[k]:
+            queue[tail] = k
+            tail += 1
     tail, _ = _grow(S, st, R, params, now, bb_t, member, queue, tail, ca, cb, n_c)
     n_c = 1  # every touching pair among the members; the event's own pair stays first
     for m in range(tail):
@@ -437,8 +478,8 @@ def run(S, st, R, M, params, bb_model, cu_model, rails, jaws, jaw_pockets, pocke
 
     n_ev = 0
     touched = np.empty(n, dtype=np.int64)
-    # Simultaneous contacts: when each pair and each ball last met another ball, the group's
-    # pairs, its balls' rows at the contact time, and how many cluster solves this instant.
+    # Simultaneous contacts: when each pair and each ball last met another ball, when each
+    # ball was last in a cluster solve, the group's pairs, and its balls' rows at the contact.
     met = np.full((n, n), -np.inf)
     bb_t = np.full(n, -np.inf)
     ca = np.empty(n * n, dtype=np.int64)
@@ -448,7 +489,9 @@ def run(S, st, R, M, params, bb_model, cu_model, rails, jaws, jaw_pockets, pocke
     queue = np.empty(n, dtype=np.int64)
     G = np.empty((n, 8))
     walls = np.empty((8, 2))
-    clusters, cluster_t = 0, -1.0
+    wall_ball = np.empty(8, dtype=np.int64)
+    cids = np.empty(3, dtype=np.int64)
+    cl_t = np.full(n, -np.inf)
     rec_a = np.empty(n * n, dtype=np.int64)
     rec_b = np.empty(n * n, dtype=np.int64)
     while True:
@@ -489,23 +532,34 @@ def run(S, st, R, M, params, bb_model, cu_model, rails, jaws, jaw_pockets, pocke
         if mode != LONE:
             # Several contacts at once: resolve them together on copies of the rows, then
             # keep the pairs that took an impulse (all of a pack's).
-            if now - cluster_t > LOOP_WINDOW:
-                clusters, cluster_t = 0, now
             for c in range(n_c):
                 for k in (ca[c], cb[c]):
                     state_at(S[k], st[k], now, R[k], params, G[k])
             if mode == PACK:
-                n_walls = _walls(G, ca, cb, n_c, R, rails, jaws, walls)
-                settle.roll_group(G, R, M, ca, cb, n_c, walls, n_walls)
+                n_walls = _walls(G, ca, cb, n_c, R, rails, jaws, walls, wall_ball)
+                settle.roll_group(G, R, M, ca, cb, n_c, walls, wall_ball, n_walls)
+                kind = BALL_BALL_SETTLE
+            elif mode == SETTLES:  # independent pressed pairs
+                for c in range(n_c):
+                    a, b = ca[c], cb[c]
+                    ball_ball.resolve(bb_model, G[a], G[b], R[a], R[b], M[a], M[b], params)
                 kind = BALL_BALL_SETTLE
             else:
-                e = params[P_E_B] if mode == GROUP or clusters == 0 else 0.0
-                clusters += mode == CLUSTER
+                # A cluster solve uses e_b; one whose balls were in a cluster solve within
+                # LOOP_WINDOW is perfectly inelastic, so a cascade ends (per ball, not per
+                # instant: independent clusters at one instant, say mirror images, alike).
+                e = params[P_E_B]
+                if mode == CLUSTER:
+                    for c in range(n_c):
+                        if max(cl_t[ca[c]], cl_t[cb[c]]) >= now - LOOP_WINDOW:
+                            e = 0.0
+                    for c in range(n_c):
+                        cl_t[ca[c]] = cl_t[cb[c]] = now
                 if ball_ball.resolve_group(bb_model, G, R, M, params, ca, cb, n_c, e, mode == CLUSTER, impulse):
                     kind = BALL_BALL_SETTLE
             n_rec, n_touched = 0, 0
             for c in range(n_c):
-                if c == 0 or mode == PACK or impulse[c] > 0.0:
+                if c == 0 or mode == PACK or mode == SETTLES or impulse[c] > 0.0:
                     rec_a[n_rec], rec_b[n_rec] = ca[c], cb[c]
                     n_rec += 1
                     for k in (ca[c], cb[c]):
@@ -539,18 +593,34 @@ def run(S, st, R, M, params, bb_model, cu_model, rails, jaws, jaw_pockets, pocke
                 met[rec_a[m], rec_b[m]] = now
                 bb_t[rec_a[m]] = bb_t[rec_b[m]] = now
         elif kind == BALL_CUSHION:
-            n_rec = _cushion_contacts(S[bi], R[bi], params, rails, jaws, bj, rec_b, walls)
-            for m in range(n_rec):
-                rec_a[m] = bi
-            if n_ev + n_rec > max_events:
-                ev_t[n_ev], ev_kind[n_ev], ev_i[n_ev], ev_j[n_ev] = best, kind, bi, bj
-                return n_ev, n_hist, EVENT_CAP
-            if n_ev + n_rec >= ev_t.shape[0]:
-                return n_ev, n_hist, BUFFER_FULL
-            if n_rec == 1:
-                cushion.resolve(cu_model, S[bi], walls[0, 0], walls[0, 1], R[bi], params, height)
-            else:
-                cushion.resolve_group(cu_model, S[bi], walls, n_rec, R[bi], params, height)
+            # Every ball meeting cushions within GROUP_WINDOW is resolved in this one step
+            # (this ball first, the rest by index). Each involves one ball, so they commute,
+            # but taken one per step a contact the first creates (its rebound into a ball
+            # beside it) would come before the others: two touching balls reaching a rail
+            # side by side would not rebound alike.
+            n_rec, n_touched = 0, 0
+            for m in range(n):
+                k = bi if m == 0 else (m - 1 if m - 1 < bi else m)
+                if m > 0:
+                    if not (t_cu[k] <= now + GROUP_WINDOW):
+                        continue
+                    state_at(S[k], st[k], now, R[k], params, scratch)
+                    S[k, :] = scratch
+                n_k = _cushion_contacts(S[k], R[k], params, rails, jaws, bj if m == 0 else cu_id[k], cids, walls)
+                if n_ev + n_rec + n_k > max_events:
+                    ev_t[n_ev], ev_kind[n_ev], ev_i[n_ev], ev_j[n_ev] = best, kind, bi, bj
+                    return n_ev, n_hist, EVENT_CAP
+                if n_ev + n_rec + n_k >= ev_t.shape[0] or n_hist + n_touched + 1 > hist.shape[0]:
+                    return n_ev, n_hist, BUFFER_FULL
+                if n_k == 1:
+                    cushion.resolve(cu_model, S[k], walls[0, 0], walls[0, 1], R[k], params, height)
+                else:
+                    cushion.resolve_group(cu_model, S[k], walls, n_k, R[k], params, height)
+                for q in range(n_k):
+                    rec_a[n_rec], rec_b[n_rec] = k, cids[q]
+                    n_rec += 1
+                touched[n_touched] = k
+                n_touched += 1
         elif kind == BALL_POCKET:
             pocket.capture(S[bi])
             st[bi] = POCKETED

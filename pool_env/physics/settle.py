@@ -233,39 +233,47 @@ def _roll_together(bi, bj, ri, rj, mi, mj):
 
 
 @njit(cache=True)
-def roll_group(S, R, M, ca, cb, n_c, walls, n_walls):
-    """`_roll_together` for every ball of the pairs (ca[c], cb[c]), c < n_c: each rolls at
-    once (the cloth takes its slip), then all share one velocity by mass. A pack of balls
-    pressed together rolls on as one. If it touches cushions (inward normals walls[:n_walls])
-    they take the shared velocity's part into them (cyclic projections onto the cone of
-    velocities leaving every cushion alone), so a pack wedged against a rail slides along
-    it. Every step removes energy."""
+def roll_group(S, R, M, ca, cb, n_c, walls, wall_ball, n_walls):
+    """`_roll_together` for each pack, a set of balls linked by the pairs (ca[c], cb[c]),
+    c < n_c: each ball rolls at once (the cloth takes its slip), then the pack's balls share
+    one velocity by mass: pressed together, they roll on as one. The cushions a pack touches
+    (inward normals walls[w], touched by ball wall_ball[w]) take the part of its velocity
+    into them (cyclic projections onto the cone of velocities leaving every cushion alone),
+    so a pack wedged against a rail slides along it. Every step removes energy."""
     n = S.shape[0]
-    inpack = np.zeros(n, dtype=np.bool_)
+    label = np.full(n, -1)
     for c in range(n_c):
-        inpack[ca[c]] = inpack[cb[c]] = True
-    px, py, mass = 0.0, 0.0, 0.0
-    for k in range(n):
-        if inpack[k]:
-            ux, uy = slip(S[k, VX], S[k, VY], S[k, WX], S[k, WY], R[k])
-            px += M[k] * (S[k, VX] - ux * 2.0 / 7.0)
-            py += M[k] * (S[k, VY] - uy * 2.0 / 7.0)
-            mass += M[k]
-    vx, vy = px / mass, py / mass
-    for _ in range(16):
-        moved = False
-        for w in range(n_walls):
-            vn = vx * walls[w, 0] + vy * walls[w, 1]
-            if vn < 0.0:
-                vx -= vn * walls[w, 0]
-                vy -= vn * walls[w, 1]
-                moved = True
-        if not moved:
-            break
-    for k in range(n):
-        if inpack[k]:
-            S[k, VX], S[k, VY] = vx, vy
-            S[k, WX], S[k, WY] = -vy / R[k], vx / R[k]
+        label[ca[c]] = ca[c]
+        label[cb[c]] = cb[c]
+    for _ in range(n_c):
+        for c in range(n_c):
+            low = min(label[ca[c]], label[cb[c]])
+            label[ca[c]] = label[cb[c]] = low
+    for pack in range(n):
+        px, py, mass = 0.0, 0.0, 0.0
+        for k in range(n):
+            if label[k] == pack:
+                ux, uy = slip(S[k, VX], S[k, VY], S[k, WX], S[k, WY], R[k])
+                px += M[k] * (S[k, VX] - ux * 2.0 / 7.0)
+                py += M[k] * (S[k, VY] - uy * 2.0 / 7.0)
+                mass += M[k]
+        if mass == 0.0:
+            continue
+        vx, vy = px / mass, py / mass
+        for _ in range(16):
+            moved = False
+            for w in range(n_walls):
+                vn = vx * walls[w, 0] + vy * walls[w, 1]
+                if label[wall_ball[w]] == pack and vn < 0.0:
+                    vx -= vn * walls[w, 0]
+                    vy -= vn * walls[w, 1]
+                    moved = True
+            if not moved:
+                break
+        for k in range(n):
+            if label[k] == pack:
+                S[k, VX], S[k, VY] = vx, vy
+                S[k, WX], S[k, WY] = -vy / R[k], vx / R[k]
 
 
 @njit(cache=True)
