@@ -21,6 +21,9 @@ MIN_APPROACH = 1e-12
 # A slow crossing (approach below MIN_APPROACH) is a graze unless the paths go on to overlap
 # by more than this (m); it is also how deep a pressed pair may sink before it is resolved.
 MIN_DEPTH = 1e-10
+# Contact times of pairs starting farther apart than this (m) are polished on the gap itself
+# (see _polish); touching pairs' contacts are not at gap zero (roots.first_entry).
+POLISH_GAP = 1e-6
 
 SEED, ELASTIC, FRICTIONAL = 0, 1, 2
 
@@ -57,7 +60,7 @@ def distance_entry(dx, dy, dvx, dvy, dax, day, reach, horizon):
     # f' = 2 d.dv = -2 |d| (approach speed) at contact.
     # f ~ 2 reach (|d| - reach) near contact: the thresholds in f's units.
     tau = first_entry(c0, c1, c2, c3, c4, horizon, 2.0 * reach * MIN_APPROACH, 2.0 * reach * MIN_DEPTH)
-    if 0.0 < tau <= horizon and dist > reach:
+    if 0.0 < tau <= horizon and dist - reach > POLISH_GAP:
         tau = _polish(dx, dy, dvx, dvy, hx, hy, reach, tau, horizon)
     return tau
 
@@ -70,7 +73,9 @@ def _polish(dx, dy, dvx, dvy, hx, hy, reach, tau, horizon):
     big table, or long before they meet) evaluating it near the root cancels that to the
     last digits, an error of eps |d0|^2 / (2 reach) in the gap, 0.1 um at 5 km. The gap from
     the positions themselves is good to eps |d|. Ends on the near side of contact (the gap
-    not negative) when that is within a few ulps, as first_entry does."""
+    not negative) when that is within a few ulps, as first_entry does. It only ever moves
+    the root by round-off (at most a millionth of tau): a root it would move further is kept."""
+    tau0 = tau
     for _ in range(4):
         px, py = dx + (dvx + hx * tau) * tau, dy + (dvy + hy * tau) * tau
         d = math.hypot(px, py)
@@ -87,7 +92,7 @@ def _polish(dx, dy, dvx, dvy, hx, hy, reach, tau, horizon):
         if math.hypot(px, py) >= reach or tau == 0.0:
             break
         tau = np.nextafter(tau, 0.0)
-    return tau
+    return tau if abs(tau - tau0) <= 1e-6 * tau0 else tau0
 
 
 @njit(cache=True)
