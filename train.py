@@ -280,7 +280,7 @@ def plot_learning_curve(run_dir: Path, points: list[dict], baselines: dict[str, 
         window = max(1, len(rewards) // 50)
         smooth = np.convolve(rewards, np.ones(window) / window, mode="valid")
         ax.plot(steps[window - 1:], smooth, color="tab:blue", alpha=0.6,
-                label=f"training episodes (stochastic policy, mean of {window})")
+                label=f"training episodes (stochastic policy, rolling mean of {window} episodes)")
     if points:
         t = [p["timesteps"] for p in points]
         mean = np.array([p["reward"]["mean"] for p in points])
