@@ -69,3 +69,14 @@ def test_smoke_run_model_and_video_are_usable(smoke_run):
     assert agent.act(np.zeros(49, dtype=np.float32)).shape == (2,)
     frames, seconds = imageio_ffmpeg.count_frames_and_secs(str(run_dir / "trained.mp4"))
     assert frames > 30 and seconds > 1  # a whole shot, not a single frame
+
+
+def test_sac_option_runs(tmp_path):
+    proc = run_train("--algo", "sac", "--timesteps", "1200", "--eval-episodes", "5", "--curve-points", "0",
+                     "--video-episodes", "0", "--n-envs", "1", "--out", str(tmp_path), "--run-name", "sac",
+                     "--no-progress-bar")
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    from agents import algorithm_of
+
+    assert algorithm_of(tmp_path / "sac" / "model.zip") == "SAC"
+    assert (tmp_path / "sac" / "eval.json").is_file() and (tmp_path / "sac" / "learning_curve.png").is_file()
