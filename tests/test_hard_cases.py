@@ -462,6 +462,20 @@ def test_inelastic_collapse_ends_at_once():
     assert after.v[:, 0] == pytest.approx([v_hit / 4] * 4, rel=1e-9)
 
 
+def test_backspin_ball_pressed_into_a_neighbour_from_rest():
+    # Found by the property tests (shrunk): a ball at rest with backspin, touching another in
+    # the direction the spin drives it, and (from the drawing) a velocity of 2e-311 m/s, a
+    # subnormal. f'(0) underflowed into a critical point at 1e-34 s where f was exactly 0, and
+    # the pressed contact was missed: the ball slid 6.8 um into its neighbour. Expected: the
+    # contact is found once it sinks 0.1 nm and settles (both at rest: the backspin's push).
+    balls = Balls([[1.0, 0.5], [1.05715, 0.5], [0.9762172082913309, 0.5519663479430877], [1.0, 1.0]],
+                  v=[[0.0, 0.0], [2.225073858507e-311, 0.0], [0.0, 0.0], [0.0, 0.0]],
+                  w=[[0.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]])
+    phys = physics(ball_ball="seed", cushion="seed", mu_s=0.5, mu_r=0.03125, e_b=0.0, e_c=0.0, f_c=0.0, spin=False)
+    result = sound(balls, EIGHT, phys, max_events=40)
+    assert result.events[0].kind == "ball_ball_settle" and result.events[0].time < 1e-4
+
+
 # --- regressions: scenes the sweeps found failing ----------------------------------------------
 
 REGRESSIONS = json.loads((Path(__file__).parent / "data" / "regressions.json").read_text())

@@ -199,9 +199,10 @@ def first_entry(c0, c1, c2, c3, c4, horizon, min_slope, min_depth):
                 # where the depth is reached (a time the caller can resolve and move past).
                 return _bracket_root(h0 + min_depth, c1, c2, c3, c4, root, hi, min_depth, 0)
             # A graze: f only touches zero (a shallow dip at most). Keep looking further on.
-        elif lo == 0.0 and hlo == 0.0 and hhi < -min_depth:
-            # Touching and sinking from the start: the instant the depth is reached.
-            return _bracket_root(h0 + min_depth, c1, c2, c3, c4, lo, hi, min_depth, 0)
+        elif -min_depth <= hlo <= 0.0 and hhi < -min_depth:
+            # Touching and sinking (from the start, or after a rise too small to register, as
+            # when f' starts at a subnormal): the instant the depth is reached.
+            return _bracket_root(h0 + min_depth, c1, c2, c3, c4, lo, hi, hlo + min_depth, 0)
         if hi == horizon:
             break
         lo, hlo = hi, hhi
