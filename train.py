@@ -180,7 +180,9 @@ def main(args: Args) -> Path:
         def _on_step(self) -> bool:
             return True
 
-    curve = CurveCallback(max(args.timesteps // max(args.curve_points, 1), 1) if args.curve_points else 0)
+    # No more often than the policy changes (PPO updates once per rollout of n_steps * n_envs).
+    every = max(args.timesteps // max(args.curve_points, 1), args.n_steps * args.n_envs if args.algo == "ppo" else 1)
+    curve = CurveCallback(every if args.curve_points else 0)
     callbacks = [curve] + ([AnnealStd()] if args.algo == "ppo" and args.anneal_std else [])
     train_start = time.perf_counter()
     model.learn(total_timesteps=args.timesteps, callback=CallbackList(callbacks), progress_bar=args.progress_bar,
