@@ -45,8 +45,10 @@ class BreakAgent(Agent):
     | the same with 0.3 R right English (the default with `spin=True`) | 2.5 | 2.8 | 0.23 |
 
     The landscape is rugged: moving the aim by a fifth of a radius can halve the reward, so
-    the rule is specific to this rack and table, but it is a rule, not a lookup: it follows
-    the cue ball and the rack wherever they are.
+    the numbers are specific to this rack and table. But it is a rule, not a lookup: it
+    follows the cue ball and the rack wherever they are. With `randomize_cue=True` (cue ball
+    anywhere in the kitchen, 500 racks) it scores 1.29 against 0.85 for the dead-centre hit,
+    though the cue ball then drops in 47 % of the breaks.
     """
 
     name = "heuristic"
