@@ -65,7 +65,7 @@ def distance_entry(dx, dy, dvx, dvy, dax, day, reach, horizon):
     return tau
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _polish(dx, dy, dvx, dvy, hx, hy, reach, tau, horizon):
     """Newton steps on the gap |d(tau)| - reach itself, from the quartic's root.
 
@@ -162,7 +162,7 @@ def frictional(bi, bj, nx, ny, ri, rj, mi, mj, params):
     _apply_friction(bi, bj, nx, ny, ri, rj, mi, mj, p_t, p_z)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _friction(bi, bj, nx, ny, ri, rj, mi, mj, jn, alpha):
     """The friction impulse (P_t, P_z) on ball i for normal impulse jn (see `frictional`),
     with the effective inverse masses scaled by alpha >= 1 (1 for a lone contact)."""
@@ -182,7 +182,7 @@ def _friction(bi, bj, nx, ny, ri, rj, mi, mj, jn, alpha):
     return p_t, p_z
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _apply_friction(bi, bj, nx, ny, ri, rj, mi, mj, p_t, p_z):
     # Ball i: dv = P_t t / m, dw = R (P_t z - P_z t) / I; ball j gets the opposite impulse
     # at -R n, which turns its spin the same way.
@@ -238,7 +238,7 @@ GROUP_TOL = 1e-15
 GROUP_SWEEPS = 1000
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def resolve_group(model, S, R, M, params, ca, cb, n_c, e, normal_only, impulse):
     """Resolve the contacts c = (ca[c], cb[c]), c < n_c, all at once (rows of S at the
     contact time); impulse[c] gets each contact's normal impulse.
@@ -288,9 +288,10 @@ def resolve_group(model, S, R, M, params, ca, cb, n_c, e, normal_only, impulse):
             response[k] = 5.0 / 7.0
             gentle = True
     if gentle:
-        S[:, VX] = v0x
-        S[:, VY] = v0y
-        p[:] = 0.0
+        for k in range(n):
+            S[k, VX], S[k, VY] = v0x[k], v0y[k]
+        for c in range(n_c):
+            p[c] = 0.0
         _poisson(S, M, ca, cb, n_c, nx, ny, deg, response, p)
     restitution = 1.0 if (model == SEED and not normal_only) else e
     for k in range(n):
@@ -310,7 +311,7 @@ def resolve_group(model, S, R, M, params, ca, cb, n_c, e, normal_only, impulse):
     return cloth
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _poisson(S, M, ca, cb, n_c, nx, ny, deg, response, p):
     """Projected Gauss-Seidel for the compression impulses p >= 0 (see resolve_group); ball
     k's velocity answers an impulse J with response[k] J / M[k]."""
@@ -337,7 +338,7 @@ def _poisson(S, M, ca, cb, n_c, nx, ny, deg, response, p):
             return
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _group_models(model, S, R, M, ca, cb, n_c, e, impulse, nx, ny, deg):
     """The seed and frictional parts of resolve_group (after the normal impulses)."""
     n = S.shape[0]

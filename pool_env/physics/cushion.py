@@ -12,7 +12,7 @@ import numpy as np
 from numba import njit
 
 from .ball_ball import MIN_APPROACH, MIN_DEPTH, distance_entry
-from .motion import P_E_C, P_F_C, SLIDING, VX, VY, WX, WY, WZ, reroll, state_of, trajectory
+from .motion import P_E_C, P_F_C, SLIDING, VX, VY, WX, WY, WZ, copy_row, reroll, state_of, trajectory
 from .roots import first_entry
 from .settle import pressed_cushion, settle_cushion
 
@@ -171,9 +171,10 @@ def resolve_group(model, b, normals, n_c, radius, params, height):
     trial = np.empty(8)
     n_orders = 2 if n_c == 2 else 6
     for o in range(n_orders):
-        trial[:] = start
+        copy_row(trial, start)
         for m in range(n_c):
             c = _ORDERS2[o][m] if n_c == 2 else _ORDERS3[o][m]
             resolve(model, trial, normals[c, 0], normals[c, 1], radius, params, height)
         acc += trial
-    b[:] = acc / n_orders
+    for k in range(8):
+        b[k] = acc[k] / n_orders

@@ -30,6 +30,7 @@ from .motion import (
     X,
     Y,
     classify,
+    copy_row,
     max_travel,
     state_at,
     trajectory,
@@ -164,7 +165,7 @@ LOOP_WINDOW = 1e-9
 TOUCH_GAP = 1e-9
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _pressed(S, st, R, params, now, i, k):
     """True if the contact of balls i and k at `now` is a pressed one (settle.pressed)."""
     ri = np.empty(8)
@@ -176,7 +177,7 @@ def _pressed(S, st, R, params, now, i, k):
     return settle.pressed(ri, rk, dx / d, dy / d, R[i], R[k], params)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _listed(ca, cb, n_c, a, b):
     for c in range(n_c):
         if ca[c] == a and cb[c] == b:
@@ -184,14 +185,14 @@ def _listed(ca, cb, n_c, a, b):
     return False
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _touching(S, st, R, params, now, a, k):
     xa, ya, _, _, _, _ = trajectory(S[a], st[a], now, R[a], params)
     xk, yk, _, _, _, _ = trajectory(S[k], st[k], now, R[k], params)
     return math.hypot(xk - xa, yk - ya) - R[a] - R[k] <= TOUCH_GAP
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _grow(S, st, R, params, now, bb_t, member, queue, tail, ca, cb, n_c):
     """Add to the members every ball that met another at `now` and touches a member (through
     chains of touching); each ball added is listed as a pair with the member it touches."""
@@ -212,7 +213,7 @@ def _grow(S, st, R, params, now, bb_t, member, queue, tail, ca, cb, n_c):
     return tail, n_c
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _grow_pressed(S, st, R, params, now, member, queue, tail, ca, cb, n_c):
     """Add to the members every ball pressed (settle.pressed) against a member it touches,
     through chains of such contacts; each listed as a pair with that member."""
@@ -233,7 +234,7 @@ def _grow_pressed(S, st, R, params, now, member, queue, tail, ca, cb, n_c):
     return tail, n_c
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _walls(G, ca, cb, n_c, R, rails, jaws, walls, wall_ball):
     """Inward normals (up to walls.shape[0]) of the rails and jaw points touched, within
     TOUCH_GAP, by the balls of the pairs (rows in G at the contact time), and the ball
@@ -262,7 +263,7 @@ def _walls(G, ca, cb, n_c, R, rails, jaws, walls, wall_ball):
     return n_walls
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _cushion_normal(row, rails, jaws, c):
     """Inward normal of cushion c (rails first, then jaw points) at a ball's row."""
     if c < rails.shape[0]:
@@ -273,7 +274,7 @@ def _cushion_normal(row, rails, jaws, c):
     return dx / d, dy / d
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _cushion_contacts(row, r, params, rails, jaws, first, ids, normals):
     """The cushions a ball meets at once (row at the contact time): cushion `first`, then
     every other rail or jaw point it touches within TOUCH_GAP and approaches faster than
@@ -308,7 +309,7 @@ def _cushion_contacts(row, r, params, rails, jaws, first, ids, normals):
     return n_c
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _walled(S, st, R, params, now, i, k, rails, jaws):
     """True if ball i or ball k touches a rail or a jaw point (within TOUCH_GAP) at `now`."""
     for b in (i, k):
@@ -329,7 +330,7 @@ def _walled(S, st, R, params, now, i, k, rails, jaws):
 LONE, GROUP, CLUSTER, PACK, SETTLES = 0, 1, 2, 3, 4
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _gather(S, st, R, params, pair, now, bi, bj, met, bb_t, ca, cb, member, queue, rails, jaws):
     """The contacts to resolve with the ball-ball event (bi, bj) at `now`: (count, mode),
     the pairs in ca/cb (the event's own first), the balls in queue[:...] when grouped.
@@ -575,19 +576,19 @@ def run(S, st, R, M, params, bb_model, cu_model, rails, jaws, jaw_pockets, pocke
             if n_ev + n_rec >= ev_t.shape[0] or n_hist + n_touched > hist.shape[0]:
                 return n_ev, n_hist, BUFFER_FULL
             for m in range(n_touched):
-                S[touched[m], :] = G[touched[m]]
+                copy_row(S[touched[m]], G[touched[m]])
         elif kind == BALL_BALL:
             n_touched = 2
             touched[1] = bj
             state_at(S[bi], st[bi], now, R[bi], params, scratch)
-            S[bi, :] = scratch
+            copy_row(S[bi], scratch)
             state_at(S[bj], st[bj], now, R[bj], params, scratch)
-            S[bj, :] = scratch
+            copy_row(S[bj], scratch)
             if ball_ball.resolve(bb_model, S[bi], S[bj], R[bi], R[bj], M[bi], M[bj], params):
                 kind = BALL_BALL_SETTLE
         else:
             state_at(S[bi], st[bi], now, R[bi], params, scratch)
-            S[bi, :] = scratch
+            copy_row(S[bi], scratch)
         if kind == BALL_BALL or kind == BALL_BALL_SETTLE:
             for m in range(n_rec):
                 met[rec_a[m], rec_b[m]] = now
@@ -605,7 +606,7 @@ def run(S, st, R, M, params, bb_model, cu_model, rails, jaws, jaw_pockets, pocke
                     if not (t_cu[k] <= now + GROUP_WINDOW):
                         continue
                     state_at(S[k], st[k], now, R[k], params, scratch)
-                    S[k, :] = scratch
+                    copy_row(S[k], scratch)
                 n_k = _cushion_contacts(S[k], R[k], params, rails, jaws, bj if m == 0 else cu_id[k], cids, walls)
                 if n_ev + n_rec + n_k > max_events:
                     ev_t[n_ev], ev_kind[n_ev], ev_i[n_ev], ev_j[n_ev] = best, kind, bi, bj

@@ -82,7 +82,7 @@ def trajectory(row, state, t, radius, params):
             vx + ax * tau, vy + ay * tau, ax, ay)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def acceleration(row, radius, params):
     """Acceleration (ax, ay) of the centre in the motion state the row's velocities imply
     (the state `classify` gives, without snapping the row): friction against the slip while
@@ -154,7 +154,15 @@ def classify(row, radius):
     return STATIONARY
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
+def copy_row(dst, src):
+    """dst[:] = src for state rows, as a loop: a slice assignment compiles numpy's broadcasting
+    and its error paths (about a second of cold compile per call site)."""
+    for c in range(src.shape[0]):
+        dst[c] = src[c]
+
+
+@njit(cache=True, no_cpython_wrapper=True)
 def state_of(row, radius):
     """The motion state `classify` would give the row, without snapping it (stationary
     stands for spinning too)."""
@@ -166,7 +174,7 @@ def state_of(row, radius):
     return STATIONARY
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def is_gentle(row, radius, params):
     """True if the ball slides, but so slightly that sliding would end within GENTLE_TIME."""
     ux, uy = slip(row[VX], row[VY], row[WX], row[WY], radius)
@@ -174,7 +182,7 @@ def is_gentle(row, radius, params):
     return EPS_V < un <= 3.5 * params[P_MU_S] * params[P_G] * GENTLE_TIME
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def reroll(row, radius, params):
     """A rolling (or resting) ball given a slip u by a gentle contact slides for
     2|u| / (7 mu_s g) and then rolls at v - 2/7 u. If that slide is over within GENTLE_TIME

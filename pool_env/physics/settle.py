@@ -18,7 +18,10 @@ import math
 import numpy as np
 from numba import njit
 
-from .motion import EPS_V, SLIDING, T0, VX, VY, WX, WY, acceleration, slip, state_of, transition_time
+from .motion import EPS_V, SLIDING, T0, VX, VY, WX, WY, acceleration, copy_row, slip, state_of, transition_time
+
+# The functions here are called only from compiled code (no_cpython_wrapper: each wrapper
+# costs cold-compile time, about 0.1 s).
 
 # A contact is pressed if a bounce at its approach speed would rise less than this (m)
 # before the accelerations closed the gap again: a bounce of a tenth of a micron is no
@@ -31,7 +34,7 @@ SETTLE_OVERLAP = 5e-10
 PRESS_TOL = 1e-12
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def gap_acceleration(bi, bj, nx, ny, ri, rj, params):
     """Second derivative of the gap between two touching balls: their relative acceleration
     along n plus the centripetal part of their relative tangential motion. Negative: their
@@ -42,7 +45,7 @@ def gap_acceleration(bi, bj, nx, ny, ri, rj, params):
     return (axj - axi) * nx + (ayj - ayi) * ny + vt * vt / (ri + rj)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def pressed(bi, bj, nx, ny, ri, rj, params):
     """True if a contact is a pressed one: the balls' accelerations push them together and a
     bounce at the approach speed would rise less than SETTLE_HEIGHT before they met again
@@ -52,7 +55,7 @@ def pressed(bi, bj, nx, ny, ri, rj, params):
     return a < 0.0 and approach * approach <= -2.0 * a * SETTLE_HEIGHT
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _response(row, r):
     """How a ball's velocity answers an impulse through its centre: 1 if it slides (dv = J/m),
     5/7 if it rolls or rests (the cloth keeps it rolling, a small impulse's short slide
@@ -60,7 +63,7 @@ def _response(row, r):
     return 1.0 if state_of(row, r) == SLIDING else 5.0 / 7.0
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _push(bi, bj, nx, ny, w, s, ri, rj, mi, mj, ki, kj):
     """Impulse J along n taking the normal relative velocity from w to s, with velocity
     responses ki, kj (see `_response`); a ball answering 5/7 is left rolling. Returns the
@@ -78,7 +81,7 @@ def _push(bi, bj, nx, ny, w, s, ri, rj, mi, mj, ki, kj):
     return 0.5 * (s * s - w * w) / inv
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _brake(b, r, m, energy):
     """Cloth friction impulse against the ball's slip removing at least `energy` (J); False
     if the slip cannot supply it. An impulse lam against a slip u changes the energy by
@@ -98,7 +101,7 @@ def _brake(b, r, m, energy):
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _cloth_kick(b, p, nx, ny, r, m):
     """Impulse p n (N s) of the cloth at the contact point -R z: dv = p n / m and
     dw = (R p / I) (n_y, -n_x, 0), which changes the slip by 7/2 p n / m in all."""
@@ -109,7 +112,7 @@ def _cloth_kick(b, p, nx, ny, r, m):
     b[WY] -= k * nx
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _hold(bi, bj, nx, ny, ri, rj, mi, mj):
     """The end of a push along n, at once: the contact impulse J >= 0 and cloth impulses
     P_i, P_j along n that leave no normal relative velocity and no slip along n on either
@@ -144,7 +147,7 @@ def _hold(bi, bj, nx, ny, ri, rj, mi, mj):
     return False
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _lead(bi, bj, nx, ny, ri, rj, mi, mj, params):
     """Hand the push's momentum over at once: an impulse along n leaving the balls separating
     at s = 1.1 |a| T / 2, a (< 0) the gap's acceleration and T the time to the earlier of
@@ -157,8 +160,8 @@ def _lead(bi, bj, nx, ny, ri, rj, mi, mj, params):
     tj = np.empty(8)
     s = 0.0
     for _ in range(4):
-        ti[:] = bi
-        tj[:] = bj
+        copy_row(ti, bi)
+        copy_row(tj, bj)
         _push(ti, tj, nx, ny, w, max(s, w, 0.0), ri, rj, mi, mj, ki, kj)
         a = gap_acceleration(ti, tj, nx, ny, ri, rj, params)
         if a >= 0.0:
@@ -169,21 +172,22 @@ def _lead(bi, bj, nx, ny, ri, rj, mi, mj, params):
         if need <= s:
             break
         s = need
-    ti[:] = bi
-    tj[:] = bj
+    copy_row(ti, bi)
+    copy_row(tj, bj)
     gain = _push(ti, tj, nx, ny, w, max(s, w, 0.0), ri, rj, mi, mj, ki, kj)
     if gain > 0.0:
         gain = gain * (1.0 + 1e-9) + 1e-300
-        ui = math.hypot(*slip(ti[VX], ti[VY], ti[WX], ti[WY], ri))
-        uj = math.hypot(*slip(tj[VX], tj[VY], tj[WX], tj[WY], rj))
+        uix, uiy = slip(ti[VX], ti[VY], ti[WX], ti[WY], ri)
+        ujx, ujy = slip(tj[VX], tj[VY], tj[WX], tj[WY], rj)
+        ui, uj = math.hypot(uix, uiy), math.hypot(ujx, ujy)
         if not (_brake(ti, ri, mi, gain) if mi * ui * ui >= mj * uj * uj else _brake(tj, rj, mj, gain)):
             return False
-    bi[:] = ti
-    bj[:] = tj
+    copy_row(bi, ti)
+    copy_row(bj, tj)
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def settle(bi, bj, nx, ny, ri, rj, mi, mj, params, overlap):
     """Resolve a pressed contact: two touching balls whose accelerations push them together.
 
@@ -215,7 +219,7 @@ def settle(bi, bj, nx, ny, ri, rj, mi, mj, params, overlap):
     _roll_together(bi, bj, ri, rj, mi, mj)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _roll_together(bi, bj, ri, rj, mi, mj):
     """Both balls roll on with their common velocity: the cloth takes out each ball's slip
     (v -= 2/7 u, the rolling velocity sliding would end at), then an internal impulse with
@@ -232,7 +236,7 @@ def _roll_together(bi, bj, ri, rj, mi, mj):
     bj[WX], bj[WY] = -vy / rj, vx / rj
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def roll_group(S, R, M, ca, cb, n_c, walls, wall_ball, n_walls):
     """`_roll_together` for each pack, a set of balls linked by the pairs (ca[c], cb[c]),
     c < n_c: each ball rolls at once (the cloth takes its slip), then the pack's balls share
@@ -276,7 +280,7 @@ def roll_group(S, R, M, ca, cb, n_c, walls, wall_ball, n_walls):
                 S[k, WX], S[k, WY] = -vy / R[k], vx / R[k]
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def pressed_cushion(b, nx, ny, radius, params):
     """True if the ball is pressed against a cushion (inward normal n): its acceleration
     pushes it into the cushion and a bounce at its approach speed would rise less than
@@ -287,7 +291,7 @@ def pressed_cushion(b, nx, ny, radius, params):
     return a < 0.0 and vn * vn <= -2.0 * a * SETTLE_HEIGHT
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def settle_cushion(b, nx, ny, radius):
     """A ball pressed against a cushion by its slip (say, sliding along a rail with spin
     into it) is held there until its slip along n is gone: the cushion keeps its normal
