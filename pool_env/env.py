@@ -31,7 +31,8 @@ MIN_MAGNITUDE = 0.02  # weaker actions are raised to this (0.24 m/s)
 MAX_TIP_OFFSET = 0.5  # in ball radii
 SHAPING_CONTACT = 0.1  # shaping: + for hitting an object ball, - for missing them all
 SHAPING_SPREAD = 0.5  # shaping: weight of the spread gain on a table with pockets
-BALL_BALL, BALL_CUSHION, BALL_POCKET = (EVENT_KINDS.index(k) for k in ("ball_ball", "ball_cushion", "ball_pocket"))
+BALL_BALL, BALL_CUSHION, BALL_POCKET, BALL_BALL_SETTLE = (
+    EVENT_KINDS.index(k) for k in ("ball_ball", "ball_cushion", "ball_pocket", "ball_ball_settle"))
 ORIENTATION_SUBSTEPS = 4  # orientation integration steps per rendered frame
 
 
@@ -313,7 +314,8 @@ class PoolBreakEnv(gym.Env):
         after = result.final
         kind, ei, ej = _event_arrays(result)
         pocketed = ei[kind == BALL_POCKET].tolist()
-        cue_hits = np.flatnonzero((kind == BALL_BALL) & ((ei == 0) | (ej == 0)))
+        contacts = (kind == BALL_BALL) | (kind == BALL_BALL_SETTLE)  # a settle is a (pressed) contact too
+        cue_hits = np.flatnonzero(contacts & ((ei == 0) | (ej == 0)))
         first_contact = -1 if not cue_hits.size else int(ei[cue_hits[0]] + ej[cue_hits[0]])
         scratch = bool(after.pocketed[0])
         balls_left = int(N_BALLS - 1 - np.count_nonzero(after.pocketed[1:]))

@@ -142,8 +142,9 @@ def _pooltool_counts(system):
 
 
 def _our_counts(stats):
-    transitions = stats["events"] - stats["ball_ball"] - stats["ball_cushion"] - stats["ball_pocket"]
-    return {"ball_ball": stats["ball_ball"], "cushion": stats["ball_cushion"], "pocket": stats["ball_pocket"],
+    contacts = stats["ball_ball"] + stats["ball_ball_settle"]  # a settle is a ball-ball contact too
+    transitions = stats["events"] - contacts - stats["ball_cushion"] - stats["ball_pocket"]
+    return {"ball_ball": contacts, "cushion": stats["ball_cushion"], "pocket": stats["ball_pocket"],
             "transition": transitions, "events": stats["events"]}
 
 

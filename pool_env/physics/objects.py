@@ -33,7 +33,7 @@ def _per_ball(value, n, name):
         raise ValueError(f"ball {name} must be a number or an array of shape ({n},), got shape {arr.shape}")
     bad = np.flatnonzero(~(np.isfinite(arr) & (arr > 0)))
     if bad.size:
-        raise ValueError(f"ball {bad[0]} has {name} {arr[bad[0]]!r}; it must be finite and > 0")
+        raise ValueError(f"ball {bad[0]} has {name} {float(arr[bad[0]])!r}; it must be finite and > 0")
     return _readonly(arr.copy()), arr.copy()
 
 

@@ -162,12 +162,18 @@ def _cap_message(cap, ev_t, ev_kind, ev_i, ev_j, n_ev):
     for k, i, j in zip(ev_kind[recent], ev_i[recent], ev_j[recent]):
         key = (engine.EVENT_KINDS[k], int(i), int(j))
         pairs[key] = pairs.get(key, 0) + 1
-    (kind, i, j), count = max(pairs.items(), key=lambda kv: kv[1]) if pairs else (("none", -1, -1), 0)
-    if kind == "ball_ball":
-        who = f"balls {i} and {j}"
-    else:
-        who = f"ball {i}" + (f" and {kind.split('_')[1]} {j}" if j >= 0 else "")
-    return (
-        f"simulation exceeded the event cap of {cap} events at t = {ev_t[n_ev]:.6g} s; "
-        f"{count} of the last {recent.stop - recent.start} events were {kind} events of {who}"
-    )
+    # The event that would have exceeded the cap is stored one past the last.
+    k = int(ev_kind[n_ev])
+    kind, i, j = (engine.EVENT_KINDS[k] if k >= 0 else "motion_transition"), int(ev_i[n_ev]), int(ev_j[n_ev])
+    head = f"simulation exceeded the event cap of {cap} events at t = {ev_t[n_ev]:.6g} s"
+    if not pairs:
+        return f"{head}; the next event was {kind} of {_who(kind, i, j)}"
+    (kind, i, j), count = max(pairs.items(), key=lambda kv: kv[1])
+    return f"{head}; {count} of the last {recent.stop - recent.start} events were {kind} events of {_who(kind, i, j)}"
+
+
+def _who(kind, i, j):
+    """The bodies of an event, in words: "balls 3 and 7", "ball 3 and cushion 5", "ball 3"."""
+    if kind.startswith("ball_ball"):
+        return f"balls {i} and {j}"
+    return f"ball {i}" + (f" and {kind.split('_')[1]} {j}" if j >= 0 else "")
