@@ -78,7 +78,7 @@ from .motion import (
     trajectory,
     transition_time,
 )
-from .objects import CONTACT_TOLERANCE, Balls
+from .objects import CONTACT_TOLERANCE
 from .result import Result
 
 DETECTIONS = ("posteriori", "priori")
@@ -546,7 +546,7 @@ def simulate_fixed(balls, table, physics, max_events=None, dt=1.0 / 60.0, detect
                    recheck=False) -> Result:
     """Fixed-step simulation (see the module docstring); called by `simulate(method="fixed")`,
     which has already checked the scene."""
-    from .simulate import SimulationError, _cap_message, _pack, default_event_cap
+    from .simulate import SimulationError, _cap_message, _pack, default_event_cap, make_result
 
     dt = check_options(dt, detection, recheck)
     wall = time.perf_counter()
@@ -587,30 +587,15 @@ def simulate_fixed(balls, table, physics, max_events=None, dt=1.0 / 60.0, detect
     if code == STEP_CAP:
         raise SimulationError(f"fixed-step simulation still moving after {MAX_SIMULATED_TIME} s "
                               f"({max_steps} frames of {dt} s)")
-    hist, hist_ball = hist[:n_hist], hist_ball[:n_hist]
     wall = time.perf_counter() - wall
 
-    def final():
-        return Balls._trusted(S[:, 0:2].copy(), S[:, 2:4].copy(), S[:, 4:7].copy(), st == POCKETED, balls)
-
-    def stats():
-        by_kind = np.bincount(ev_kind[:n_ev], minlength=len(engine.EVENT_KINDS))
-        out = {kind: int(c) for kind, c in zip(engine.EVENT_KINDS, by_kind)}
-        out["events"] = n_ev
-        out.update({name: int(cnt[k]) for k, name in enumerate(COUNTERS) if name not in ("events", "history", "code")})
+    def counters():
+        out = {name: int(cnt[k]) for k, name in enumerate(COUNTERS) if name not in ("events", "history", "code")}
         out["max_overlap_depth"] = float(fst[MAX_OVERLAP])
         out["max_cushion_depth"] = float(fst[MAX_CUSHION])
         out.update(method="fixed", dt=dt, detection=detection, recheck=bool(recheck))
-        out["spin_tracked"] = spin
-        out["pockets"] = int(table.pockets.shape[0])
-        out["wall_time"] = wall
         return out
 
-    def sampler(times):
-        rows = np.empty((times.size, n, 8))
-        states = np.empty((times.size, n), dtype=np.int64)
-        engine.sample(hist, hist_ball, n_hist, n, times, R, params, rows, states)
-        return rows, states
-
     events = (ev_t[:n_ev], ev_kind[:n_ev], ev_i[:n_ev], ev_j[:n_ev])
-    return Result(balls, physics, table, events, (hist, hist_ball), final, stats, engine.EVENT_KINDS, sampler)
+    return make_result(balls, table, physics, S, st, events, (hist[:n_hist], hist_ball[:n_hist]), spin, wall,
+                       counters)

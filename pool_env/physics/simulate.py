@@ -130,17 +130,29 @@ def _run_events(balls, table, physics, max_events):
     ev_kind, ev_i, ev_j = ev_ids
     if code == engine.EVENT_CAP:
         raise SimulationError(_cap_message(cap, ev_t, ev_kind, ev_i, ev_j, n_ev))
-    hist, hist_ball = hist[:n_hist], hist_ball[:n_hist]
-    wall = time.perf_counter() - wall
+    events = (ev_t[:n_ev], ev_kind[:n_ev], ev_i[:n_ev], ev_j[:n_ev])
+    return make_result(balls, table, physics, S, st, events, (hist[:n_hist], hist_ball[:n_hist]), spin,
+                       time.perf_counter() - wall,
+                       lambda: {name: int(c) for name, c in zip(engine.COUNTERS, counters)})
+
+
+def make_result(balls, table, physics, S, st, events, history, spin, wall, counters):
+    """Wrap a finished run's arrays in a Result: the final rows S and states st, the trimmed
+    event arrays (times, kind ids, i, j), the segment history (rows, ball ids), and a callable
+    giving the run's own counters. The final state and the stats are built only when asked
+    for. Shared by the event engine and the fixed-step methods (fixed.py)."""
+    n = S.shape[0]
+    R, params = balls.radii, physics.as_array()
+    hist, hist_ball = history
 
     def final():
         return Balls._trusted(S[:, 0:2].copy(), S[:, 2:4].copy(), S[:, 4:7].copy(), st == POCKETED, balls)
 
     def stats():
-        by_kind = np.bincount(ev_kind[:n_ev], minlength=len(engine.EVENT_KINDS))
+        by_kind = np.bincount(events[1], minlength=len(engine.EVENT_KINDS))
         out = {kind: int(c) for kind, c in zip(engine.EVENT_KINDS, by_kind)}
-        out["events"] = int(n_ev)
-        out.update({name: int(c) for name, c in zip(engine.COUNTERS, counters)})
+        out["events"] = int(events[0].size)
+        out.update(counters())
         out["spin_tracked"] = spin
         out["pockets"] = int(table.pockets.shape[0])
         out["wall_time"] = wall
@@ -149,11 +161,10 @@ def _run_events(balls, table, physics, max_events):
     def sampler(times):
         rows = np.empty((times.size, n, 8))
         states = np.empty((times.size, n), dtype=np.int64)
-        engine.sample(hist, hist_ball, n_hist, n, times, R, params, rows, states)
+        engine.sample(hist, hist_ball, hist.shape[0], n, times, R, params, rows, states)
         return rows, states
 
-    events = (ev_t[:n_ev], ev_kind[:n_ev], ev_i[:n_ev], ev_j[:n_ev])
-    return Result(balls, physics, table, events, (hist, hist_ball), final, stats, engine.EVENT_KINDS, sampler)
+    return Result(balls, physics, table, events, history, final, stats, engine.EVENT_KINDS, sampler)
 
 
 def _cap_message(cap, ev_t, ev_kind, ev_i, ev_j, n_ev):
