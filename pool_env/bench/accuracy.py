@@ -12,6 +12,7 @@ import time
 
 import numpy as np
 
+from pool_env.bench.speed import fmt_time as _fmt_time
 from pool_env.physics import BALL_MASS, BALL_RADIUS, Balls, Physics, Table, rack, simulate, strike
 
 # The cue is a 5 ms push (the report's eq. 2.1); force = m v / 5 ms gives the speed v.
@@ -219,11 +220,7 @@ def dt_label(dt):
 
 
 def fmt_time(seconds):
-    if seconds < 1e-3:
-        return f"{seconds * 1e6:.0f} us"
-    if seconds < 1.0:
-        return f"{seconds * 1e3:.2f} ms"
-    return f"{seconds:.2f} s"
+    return _fmt_time(seconds, us_digits=0)
 
 
 def fmt_mm(metres):

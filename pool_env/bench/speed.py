@@ -273,9 +273,10 @@ def print_pooltool(peer, ours):
           "the event counts differ")
 
 
-def fmt_time(seconds):
+def fmt_time(seconds, us_digits=1):
+    """A duration in us, ms or s, whichever reads best."""
     if seconds < 1e-3:
-        return f"{seconds * 1e6:.1f} us"
+        return f"{seconds * 1e6:.{us_digits}f} us"
     if seconds < 1.0:
         return f"{seconds * 1e3:.2f} ms"
     return f"{seconds:.2f} s"

@@ -62,7 +62,6 @@ import numpy as np
 from numba import njit
 
 from . import ball_ball, cushion, engine, pocket, transition
-from .config import BALL_BALL_MODELS, CUSHION_MODELS
 from .motion import (
     POCKETED,
     ROLLING,
@@ -546,19 +545,13 @@ def simulate_fixed(balls, table, physics, max_events=None, dt=1.0 / 60.0, detect
                    recheck=False) -> Result:
     """Fixed-step simulation (see the module docstring); called by `simulate(method="fixed")`,
     which has already checked the scene."""
-    from .simulate import SimulationError, _cap_message, _pack, default_event_cap, make_result
+    from .simulate import SimulationError, _cap_message, make_result, prepare
 
     dt = check_options(dt, detection, recheck)
     wall = time.perf_counter()
     n = len(balls)
-    cap = default_event_cap(n) if max_events is None else int(max_events)
-    if cap < 0:
-        raise ValueError(f"max_events must be >= 0, got {max_events!r}")
-    S0, st0, any_z_spin = _pack(balls.xy, balls.v, balls.w, balls.pocketed)
-    spin = bool(physics.spin and (any_z_spin or physics.can_create_spin()))
+    cap, S0, st0, spin, params, models = prepare(balls, physics, max_events)
     R, M = balls.radii, balls.masses
-    params = physics.as_array()
-    models = (BALL_BALL_MODELS.index(physics.ball_ball), CUSHION_MODELS.index(physics.cushion))
     max_steps = int(min(math.ceil(MAX_SIMULATED_TIME / dt), 2**62))
     size = min(cap, 256 + 16 * n)
     hist_size = 2 * size + n

@@ -99,17 +99,23 @@ def simulate(balls: Balls, table: Table, physics: Physics | None = None, method:
     return _run_events(balls, table, physics, max_events)
 
 
-def _run_events(balls, table, physics, max_events):
-    wall = time.perf_counter()
-    n = len(balls)
-    cap = default_event_cap(n) if max_events is None else int(max_events)
+def prepare(balls, physics, max_events):
+    """What every simulation method starts from: the event cap, the packed state rows and
+    states, whether z-spin is tracked, the coefficient array and the model ids."""
+    cap = default_event_cap(len(balls)) if max_events is None else int(max_events)
     if cap < 0:
         raise ValueError(f"max_events must be >= 0, got {max_events!r}")
     S0, st0, any_z_spin = _pack(balls.xy, balls.v, balls.w, balls.pocketed)
     spin = bool(physics.spin and (any_z_spin or physics.can_create_spin()))
-    R, M = balls.radii, balls.masses
-    params = physics.as_array()
     models = (BALL_BALL_MODELS.index(physics.ball_ball), CUSHION_MODELS.index(physics.cushion))
+    return cap, S0, st0, spin, physics.as_array(), models
+
+
+def _run_events(balls, table, physics, max_events):
+    wall = time.perf_counter()
+    n = len(balls)
+    cap, S0, st0, spin, params, models = prepare(balls, physics, max_events)
+    R, M = balls.radii, balls.masses
     # Output buffers start small (a break takes ~100 events) and grow on demand; a rerun from
     # the start is exact because the simulation is deterministic.
     size = min(cap, 256 + 16 * n)
