@@ -276,7 +276,7 @@ def plot_learning_curve(run_dir: Path, points: list[dict], baselines: dict[str, 
     import matplotlib.pyplot as plt
     import numpy as np
 
-    fig, ax = plt.subplots(figsize=(8, 4.5), dpi=120)
+    fig, ax = plt.subplots(figsize=(8, 5.2), dpi=120)
     steps, rewards = read_monitor(run_dir / "monitor")
     if len(rewards):
         window = max(1, len(rewards) // 50)
@@ -299,7 +299,7 @@ def plot_learning_curve(run_dir: Path, points: list[dict], baselines: dict[str, 
     ax.set_ylabel("episode reward")
     ax.set_title(title)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="best")
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)
     fig.tight_layout()
     fig.savefig(run_dir / "learning_curve.png")
     plt.close(fig)
