@@ -124,16 +124,19 @@ def geo_decode(obs):
 
 def test_ghost_ball_skips_blocked_shots():
     agent = GhostBallAgent(TABLE, PHYSICS)
-    cue, ball, blocker = np.array([0.6, 0.56]), np.array([1.2, 0.56]), np.array([0.9, 0.56])
-    xy = np.array([cue, ball, blocker])
     on = np.ones(3, dtype=bool)
-    for shot in agent.shots(xy, on):
-        # No planned shot sends the cue ball through the blocker to ball 1, or ball 1 through ball 2.
-        assert not (shot.ball == 1 and geo.point_segment_distance(blocker, cue, ball - 2 * R * shot.direction) < 2 * R)
+    # Ball 2 sits between the cue ball and ball 1: every ghost ball of ball 1 is hidden behind it.
+    hidden = np.array([[0.6, 0.56], [1.2, 0.56], [0.9, 0.56]])
+    shots = agent.shots(hidden, on)
+    assert shots and all(shot.ball == 2 for shot in shots)
+    # Ball 1 into the corner pocket at (L, W) (pocket 3) is on, until ball 2 sits on its path.
+    cue, ball = [1.5, 0.5], [1.9, 0.8]
+    assert (1, 3) in {(s.ball, s.pocket) for s in agent.shots(np.array([cue, ball, [1.0, 0.2]]), on)}
+    assert (1, 3) not in {(s.ball, s.pocket) for s in agent.shots(np.array([cue, ball, [2.097, 0.985]]), on)}
 
 
 def test_ghost_ball_player_clears_tables():
-    seeds = range(3)
+    seeds = range(5)
     result = evaluate(GhostBallAgent.from_env(quiet_make("PoolBreakRun-v0")), "PoolBreakRun-v0", seeds)
     random = evaluate(RandomAgent(quiet_make("PoolBreakRun-v0").action_space, seed=0), "PoolBreakRun-v0", seeds)
     assert result["pocketed_per_episode"]["mean"] >= 8 > random["pocketed_per_episode"]["mean"]
