@@ -280,6 +280,10 @@ class PoolBreakEnv(gym.Env):
         self._tracks = {}  # fps -> (frame times, xy, pocketed, orientations) of the last shot
         self._quaternions = None
         self._rotated = True  # whether self._orientation is at the end of the last shot
+        # Shots whose rotation is not yet in self._orientation because nothing was drawn after
+        # them (with a render mode): applied in order when a frame is next drawn, so a step
+        # costs no rendering work unless frames are asked for.
+        self._pending = []
         self._renderer = None
 
     # --- Gymnasium API ----------------------------------------------------------------------
@@ -293,6 +297,7 @@ class PoolBreakEnv(gym.Env):
         self._balls = rack(self.table, seed=rack_seed, cue_xy=cue_xy) if balls is None else self._check_balls(balls)
         self._orientation = None
         self._rotated = True
+        self._pending = []
         self._shots = 0
         self._done = False
         self._shot = None
@@ -333,11 +338,13 @@ class PoolBreakEnv(gym.Env):
         truncated = not terminated and self._shots >= self.max_shots
         self._done = terminated or truncated
         self._balls = after
-        self._shot = (result, self._orientation)
+        if self.render_mode is not None:
+            self._defer_rotation()
+            self._shot = (result, None)  # it starts where the pending shots leave the balls
+        else:
+            self._shot = (result, self._orientation)
         self._tracks = {}
         self._rotated = False
-        if self.render_mode is not None:
-            self._track(self.metadata["render_fps"])
         info = {
             "pocketed": pocketed,
             "first_contact": int(first_contact),
@@ -356,6 +363,8 @@ class PoolBreakEnv(gym.Env):
         if self._balls is None:
             raise RuntimeError("call reset() before render()")
         if self.render_mode == "rgb_array":
+            if self._shot is not None and not self._rotated:
+                self._track(self.metadata["render_fps"])  # brings the orientation to the shot's end
             return self._draw(self._balls.xy, self._balls.pocketed, self._orientation_now())
         return self.shot_frames()
 
@@ -384,7 +393,16 @@ class PoolBreakEnv(gym.Env):
         if cached is not None:
             return cached
         result, start = self._shot
-        start = quaternion_rotations(self._quaternions) if start is None else start
+        track = self._sample_shot(result, self._orientation_now() if start is None else start, fps)
+        self._tracks[fps] = track
+        if not self._rotated:  # the first track of a shot also advances the balls' orientation
+            self._orientation, self._rotated = track[3][-1], True
+        return track
+
+    @staticmethod
+    def _sample_shot(result, start, fps):
+        """(times (F,), xy (F, 16, 2), pocketed (F, 16), orientation (F, 16, 3, 3)) of a shot
+        sampled at fps from the exact trajectory, the balls starting in orientations `start`."""
         duration = result.duration
         times = np.arange(int(math.floor(duration * fps)) + 1) / fps
         if times[-1] < duration:
@@ -410,11 +428,13 @@ class PoolBreakEnv(gym.Env):
                 current = steps[s] @ current
             orientation[f] = current
         orientation[-1] = integrate_orientation(orientation[-1], np.zeros((N_BALLS, 3)), 0.0)  # re-orthonormalise
-        track = (times, xy, pocketed, orientation)
-        self._tracks[fps] = track
-        if not self._rotated:  # the first track of a shot also advances the balls' orientation
-            self._orientation, self._rotated = orientation[-1], True
-        return track
+        return times, xy, pocketed, orientation
+
+    def _defer_rotation(self):
+        """Queue the last shot's rotation if it was never applied (no frame was drawn after it)."""
+        if self._shot is not None and not self._rotated:
+            self._pending.append(self._shot[0])
+            self._rotated = True
 
     @property
     def renderer(self) -> TableRenderer:
@@ -426,9 +446,13 @@ class PoolBreakEnv(gym.Env):
         return self._renderer
 
     def _orientation_now(self):
-        """The balls' orientations (16, 3, 3) now (or at the last shot's start, if it was not tracked)."""
+        """The balls' orientations (16, 3, 3) now (or at the last shot's start, if it was not
+        tracked), after applying the pending shots' rotations in order."""
         if self._orientation is None:
             self._orientation = quaternion_rotations(self._quaternions)
+        while self._pending:
+            result = self._pending.pop(0)
+            self._orientation = self._sample_shot(result, self._orientation, self.metadata["render_fps"])[3][-1]
         return self._orientation
 
     def _draw(self, xy, pocketed, orientation):
@@ -475,6 +499,8 @@ class PoolBreakEnv(gym.Env):
         message = f"{type(error).__name__}: {error}"
         logger.warn(f"PoolBreakEnv: the shot could not be simulated and the episode is truncated ({message})")
         self._done = True
+        if self.render_mode is not None:
+            self._defer_rotation()
         self._shot = None
         self._tracks = {}
         info = {

@@ -357,6 +357,7 @@ def test_rotation_markers_turn_with_the_ball():
     env.reset(seed=0, options={"balls": scene({0: (0.5, 0.56)})})
     before = env._orientation_now().copy()
     env.step(np.array([0.04, 0.0], dtype=np.float32))  # 0.48 m/s along +x: slides, rolls, stops
+    env.render()  # the shot's rotation is applied when a frame is drawn (steps do no render work)
     after = env._orientation_now()
     assert np.allclose(after[0] @ after[0].T, np.eye(3), atol=1e-9)
     # The ball turns about +y by (distance - slip) / R, the slip while sliding being v0^2 / (7 mu_s g).
