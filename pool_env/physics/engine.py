@@ -193,44 +193,27 @@ def _touching(S, st, R, params, now, a, k):
 
 
 @njit(cache=True, no_cpython_wrapper=True)
-def _grow(S, st, R, params, now, bb_t, member, queue, tail, ca, cb, n_c):
-    """Add to the members every ball that met another at `now` and touches a member (through
-    chains of touching); each ball added is listed as a pair with the member it touches."""
+def _grow(S, st, R, params, now, bb_t, member, queue, tail, ca, cb, n_c, pressed):
+    """Add to the members, through chains, every ball linked to a member it touches: pressed
+    against it (settle.pressed) if `pressed`, else having met another ball at `now` (within
+    LOOP_WINDOW). Each ball added is listed as a pair with the member it touches."""
     n = S.shape[0]
     head = 0
     while head < tail:
         a = queue[head]
         head += 1
         for k in range(n):
-            if member[k] or bb_t[k] < now - LOOP_WINDOW or st[k] == POCKETED:
+            if member[k] or st[k] == POCKETED or (not pressed and bb_t[k] < now - LOOP_WINDOW):
                 continue
-            if _touching(S, st, R, params, now, a, k):
-                member[k] = True
-                queue[tail] = k
-                tail += 1
-                ca[n_c], cb[n_c] = min(a, k), max(a, k)
-                n_c += 1
-    return tail, n_c
-
-
-@njit(cache=True, no_cpython_wrapper=True)
-def _grow_pressed(S, st, R, params, now, member, queue, tail, ca, cb, n_c):
-    """Add to the members every ball pressed (settle.pressed) against a member it touches,
-    through chains of such contacts; each listed as a pair with that member."""
-    n = S.shape[0]
-    head = 0
-    while head < tail:
-        a = queue[head]
-        head += 1
-        for k in range(n):
-            if member[k] or st[k] == POCKETED:
+            if not _touching(S, st, R, params, now, a, k):
                 continue
-            if _touching(S, st, R, params, now, a, k) and _pressed(S, st, R, params, now, min(a, k), max(a, k)):
-                member[k] = True
-                queue[tail] = k
-                tail += 1
-                ca[n_c], cb[n_c] = min(a, k), max(a, k)
-                n_c += 1
+            if pressed and not _pressed(S, st, R, params, now, min(a, k), max(a, k)):
+                continue
+            member[k] = True
+            queue[tail] = k
+            tail += 1
+            ca[n_c], cb[n_c] = min(a, k), max(a, k)
+            n_c += 1
     return tail, n_c
 
 
@@ -375,10 +358,10 @@ def _gather(S, st, R, params, pair, now, bi, bj, met, bb_t, ca, cb, member, queu
             alone = alone and met[ca[c], cb[c]] < now - LOOP_WINDOW
             alone = alone and not _walled(S, st, R, params, now, ca[c], cb[c], rails, jaws)
         grown = n_c
-        tail, n_c = _grow_pressed(S, st, R, params, now, member, queue, tail, ca, cb, n_c)
+        tail, n_c = _grow(S, st, R, params, now, bb_t, member, queue, tail, ca, cb, n_c, True)
         if alone and n_c == grown:
             return n_c, (LONE if n_c == 1 else SETTLES)
-        tail, n_c = _grow(S, st, R, params, now, bb_t, member, queue, tail, ca, cb, n_c)
+        tail, n_c = _grow(S, st, R, params, now, bb_t, member, queue, tail, ca, cb, n_c, False)
         return n_c, PACK
     # Every contact predicted within GROUP_WINDOW, linked to this one or not: independent
     # contacts commute, but resolved one per step, a contact the first one creates (a ball
@@ -420,7 +403,7 @@ def _gather(S, st, R, params, pair, now, bi, bj, met, bb_t, ca, cb, member, queu
         if member[k]:
             queue[tail] = k
             tail += 1
-    tail, _ = _grow(S, st, R, params, now, bb_t, member, queue, tail, ca, cb, n_c)
+    tail, _ = _grow(S, st, R, params, now, bb_t, member, queue, tail, ca, cb, n_c, False)
     n_c = 1  # every touching pair among the members; the event's own pair stays first
     for m in range(tail):
         for m2 in range(m + 1, tail):
