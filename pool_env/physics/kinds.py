@@ -1,0 +1,42 @@
+"""The ids every module shares: event kinds, motion states, stats counters and loop exit codes.
+
+Compiled code dispatches on these integers; Python code names them. Every other module
+imports them from here (never re-derives them with `.index()` or writes the number).
+"""
+
+# Motion states of a ball (the state code stored beside each state row).
+STATIONARY, SPINNING, SLIDING, ROLLING, POCKETED = 0, 1, 2, 3, 4
+STATE_NAMES = ("stationary", "spinning", "sliding", "rolling", "pocketed")
+
+# Event kinds, in the order of their ids (`Result.event_arrays` holds the ids).
+EVENT_KINDS = (
+    "ball_ball", "ball_cushion", "ball_pocket",
+    "sliding_rolling", "rolling_spinning", "rolling_stationary", "spinning_stationary",
+    "sliding_stationary", "sliding_spinning",
+    # A ball-ball contact resolved with the cloth's help (a pressed contact, settle.py, or a
+    # gentle one that leaves a rolling ball rolling, motion.reroll): momentum is not conserved.
+    "ball_ball_settle",
+)
+(BALL_BALL, BALL_CUSHION, BALL_POCKET,
+ SLIDING_ROLLING, ROLLING_SPINNING, ROLLING_STATIONARY, SPINNING_STATIONARY,
+ SLIDING_STATIONARY, SLIDING_SPINNING,
+ BALL_BALL_SETTLE) = range(len(EVENT_KINDS))
+# Kinds that are contacts between two balls (with or without the cloth's help).
+BALL_BALL_KINDS = (BALL_BALL, BALL_BALL_SETTLE)
+# The scheduler's placeholders while it looks for the earliest event: none found yet, and a
+# motion transition (its kind is known only once transition.resolve has run).
+NO_EVENT, TRANSITION = -1, -2
+
+# Counters the event loop keeps (see Result.stats), in the order of their ids.
+COUNTERS = (
+    "ball_ball_predictions", "ball_ball_rejected",
+    "ball_cushion_predictions", "ball_cushion_rejected",
+    "ball_pocket_predictions", "ball_pocket_rejected",
+    "transition_predictions", "resting_pairs_skipped",
+)
+C_BB, C_BB_REJ, C_CU, C_CU_REJ, C_PO, C_PO_REJ, C_TR, C_REST = range(len(COUNTERS))
+
+# How a compiled loop ended: finished; hit the caller's event cap; ran out of output buffer
+# (the caller retries with larger buffers: the simulation is deterministic); (fixed-step
+# only) hit its cap on the number of frames.
+DONE, EVENT_CAP, BUFFER_FULL, STEP_CAP = 0, 1, 2, 3
