@@ -2,11 +2,10 @@
 
 from .config import Physics
 from .cue import strike
-from .engine import EVENT_KINDS
-from .motion import STATE_NAMES
+from .kinds import EVENT_KINDS, STATE_NAMES
 from .objects import BALL_MASS, BALL_RADIUS, SEED_MASS, SEED_RADIUS, Balls, Table, rack
-from .result import Event, Result
-from .simulate import SimulationError, simulate
+from .result import Event, Result, SimulationError
+from .simulate import simulate
 
 __all__ = [
     "Balls", "Table", "Physics", "simulate", "strike", "rack", "Event", "Result", "SimulationError",

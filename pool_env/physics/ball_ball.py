@@ -10,89 +10,20 @@ import math
 import numpy as np
 from numba import njit
 
-from .motion import P_E_B, SLIDING, VX, VY, WX, WY, WZ, X, Y, is_gentle, reroll, state_of, trajectory
-from .roots import first_entry
+from .config import BALL_BALL_MODELS
+from .geometry import roll
+from .kinds import SLIDING, VX, VY, WX, WY, WZ, X, Y
+from .motion import P_E_B, is_gentle, reroll, state_of
 from .settle import pressed, settle
+from .tolerances import GROUP_SWEEPS, GROUP_TOL, PARALLEL_SINE
 
-# Contacts approaching slower than this (m/s) are tangent touches, not collisions. It is far
-# below anything physical (the hard-case suite collides balls at 1e-6 m/s) and far above the
-# round-off in a relative velocity, so a resolved pair is never re-detected at once.
-MIN_APPROACH = 1e-12
-# A slow crossing (approach below MIN_APPROACH) is a graze unless the paths go on to overlap
-# by more than this (m); it is also how deep a pressed pair may sink before it is resolved.
-MIN_DEPTH = 1e-10
-# Contact times of pairs starting farther apart than this (m) are polished on the gap itself
-# (see _polish); touching pairs' contacts are not at gap zero (roots.first_entry).
-POLISH_GAP = 1e-6
-
-SEED, ELASTIC, FRICTIONAL = 0, 1, 2
+# The model ids `resolve` dispatches on: each model's position in config.BALL_BALL_MODELS.
+SEED, ELASTIC, FRICTIONAL = (BALL_BALL_MODELS.index(name) for name in ("seed", "elastic", "frictional"))
 
 # Alciatore's fit of ball-ball friction against the sliding speed at the contact point,
 # mu(v) = a + b exp(-c v) with v in m/s (D. G. Alciatore, "Throw" technical proof TP A-14,
 # from Marlow's measurements).
 ALCIATORE_A, ALCIATORE_B, ALCIATORE_C = 9.951e-3, 0.108, 1.088
-
-
-@njit(cache=True)
-def collision_time(row_i, state_i, row_j, state_j, t, horizon, ri, rj, params):
-    """Earliest tau in [0, horizon] at which balls i and j touch while approaching (or inf).
-
-    |d0 + dv tau + da tau^2 / 2|^2 = (ri + rj)^2 is a quartic in tau when either ball
-    decelerates; roots.first_entry solves it without closed-form quartic formulas.
-    """
-    xi, yi, vxi, vyi, axi, ayi = trajectory(row_i, state_i, t, ri, params)
-    xj, yj, vxj, vyj, axj, ayj = trajectory(row_j, state_j, t, rj, params)
-    return distance_entry(xj - xi, yj - yi, vxj - vxi, vyj - vyi, axj - axi, ayj - ayi, ri + rj, horizon)
-
-
-@njit(cache=True)
-def distance_entry(dx, dy, dvx, dvy, dax, day, reach, horizon):
-    """First tau in [0, horizon] at which a point moving as d0 + dv tau + da tau^2/2 (relative
-    to a target) comes within `reach` of it while approaching; inf if never."""
-    hx, hy = 0.5 * dax, 0.5 * day
-    c4 = hx * hx + hy * hy
-    c3 = 2.0 * (hx * dvx + hy * dvy)
-    c2 = dvx * dvx + dvy * dvy + 2.0 * (hx * dx + hy * dy)
-    c1 = 2.0 * (dvx * dx + dvy * dy)
-    # (|d| - reach)(|d| + reach) keeps the gap's sign exact for touching balls.
-    dist = math.hypot(dx, dy)
-    c0 = (dist - reach) * (dist + reach)
-    # f' = 2 d.dv = -2 |d| (approach speed) at contact.
-    # f ~ 2 reach (|d| - reach) near contact: the thresholds in f's units.
-    tau = first_entry(c0, c1, c2, c3, c4, horizon, 2.0 * reach * MIN_APPROACH, 2.0 * reach * MIN_DEPTH)
-    if 0.0 < tau <= horizon and dist - reach > POLISH_GAP:
-        tau = _polish(dx, dy, dvx, dvy, hx, hy, reach, tau, horizon)
-    return tau
-
-
-@njit(cache=True, no_cpython_wrapper=True)
-def _polish(dx, dy, dvx, dvy, hx, hy, reach, tau, horizon):
-    """Newton steps on the gap |d(tau)| - reach itself, from the quartic's root.
-
-    The quartic f = |d|^2 - reach^2 holds |d0|^2: from far away (balls metres apart on a
-    big table, or long before they meet) evaluating it near the root cancels that to the
-    last digits, an error of eps |d0|^2 / (2 reach) in the gap, 0.1 um at 5 km. The gap from
-    the positions themselves is good to eps |d|. Ends on the near side of contact (the gap
-    not negative) when that is within a few ulps, as first_entry does. It only ever moves
-    the root by round-off (at most a millionth of tau): a root it would move further is kept."""
-    tau0 = tau
-    for _ in range(4):
-        px, py = dx + (dvx + hx * tau) * tau, dy + (dvy + hy * tau) * tau
-        d = math.hypot(px, py)
-        slope = (px * (dvx + 2.0 * hx * tau) + py * (dvy + 2.0 * hy * tau)) / d
-        if not slope < 0.0:
-            return tau
-        step = (d - reach) / slope
-        nxt = min(max(tau - step, 0.0), horizon)
-        if nxt == tau:
-            break
-        tau = nxt
-    for _ in range(8):
-        px, py = dx + (dvx + hx * tau) * tau, dy + (dvy + hy * tau) * tau
-        if math.hypot(px, py) >= reach or tau == 0.0:
-            break
-        tau = np.nextafter(tau, 0.0)
-    return tau if abs(tau - tau0) <= 1e-6 * tau0 else tau0
 
 
 @njit(cache=True)
@@ -132,8 +63,7 @@ def seed(bi, bj, nx, ny, ri, rj, mi, mj, params):
 @njit(cache=True)
 def _roll(b, r):
     """Set the spin of a ball to rolling without slipping at its current velocity."""
-    b[WX] = -b[VY] / r
-    b[WY] = b[VX] / r
+    roll(b, r)
     b[WZ] = 0.0
 
 
@@ -232,16 +162,13 @@ def resolve(model, bi, bj, ri, rj, mi, mj, params):
         cloth = reroll(bj, rj, params) or cloth
     return cloth
 
-# Simultaneous contacts (see resolve_group): the projected Gauss-Seidel solve stops when a
-# sweep changes no velocity by more than GROUP_TOL (relative to the largest speed).
-GROUP_TOL = 1e-15
-GROUP_SWEEPS = 1000
 
 
 @njit(cache=True, no_cpython_wrapper=True)
-def resolve_group(model, S, R, M, params, ca, cb, n_c, e, normal_only, impulse):
-    """Resolve the contacts c = (ca[c], cb[c]), c < n_c, all at once (rows of S at the
-    contact time); impulse[c] gets each contact's normal impulse.
+def resolve_group(model, S, R, M, params, pairs, n_c, e, normal_only):
+    """Resolve the contacts c = (pairs.ca[c], pairs.cb[c]), c < n_c, all at once (rows of S
+    at the contact time); pairs.impulse[c] gets each contact's normal impulse. True if the
+    cloth took part (a gentle contact left a rolling ball rolling).
 
     Normal impulses follow Poisson's hypothesis for simultaneous impacts: the compression
     impulses P_c >= 0 are the least change of the velocities (in the kinetic-energy metric)
@@ -260,6 +187,7 @@ def resolve_group(model, S, R, M, params, ca, cb, n_c, e, normal_only, impulse):
     every ball rolling, as for one contact.
     """
     n = S.shape[0]
+    ca, cb = pairs.ca, pairs.cb
     nx = np.empty(n_c)
     ny = np.empty(n_c)
     deg = np.zeros(n, dtype=np.int64)
@@ -281,7 +209,7 @@ def resolve_group(model, S, R, M, params, ca, cb, n_c, e, normal_only, impulse):
     # once with every ball sliding, then again with the gentle ones rolling.
     response = np.ones(n)
     p = np.zeros(n_c)
-    _poisson(S, M, ca, cb, n_c, nx, ny, deg, response, p)
+    _poisson(S, M, pairs, n_c, nx, ny, deg, response, p)
     gentle = False
     for k in range(n):
         if rolled[k] and is_gentle(S[k], R[k], params):
@@ -292,18 +220,20 @@ def resolve_group(model, S, R, M, params, ca, cb, n_c, e, normal_only, impulse):
             S[k, VX], S[k, VY] = v0x[k], v0y[k]
         for c in range(n_c):
             p[c] = 0.0
-        _poisson(S, M, ca, cb, n_c, nx, ny, deg, response, p)
+        _poisson(S, M, pairs, n_c, nx, ny, deg, response, p)
     restitution = 1.0 if (model == SEED and not normal_only) else e
     for k in range(n):
         if deg[k] > 0:
             S[k, VX] += restitution * (S[k, VX] - v0x[k])
             S[k, VY] += restitution * (S[k, VY] - v0y[k])
             if response[k] != 1.0:
-                S[k, WX], S[k, WY] = -S[k, VY] / R[k], S[k, VX] / R[k]
+                roll(S[k], R[k])
     for c in range(n_c):
-        impulse[c] = (1.0 + restitution) * p[c]
-    if not (normal_only or model == ELASTIC):
-        _group_models(model, S, R, M, ca, cb, n_c, e, impulse, nx, ny, deg)
+        pairs.impulse[c] = (1.0 + restitution) * p[c]
+    if model == SEED and not normal_only:
+        _seed_group(S, R, pairs, n_c, e, nx, ny, deg)
+    elif model == FRICTIONAL and not normal_only:
+        _friction_group(S, R, M, pairs, n_c, nx, ny, deg)
     cloth = gentle
     for k in range(n):
         if rolled[k]:
@@ -312,9 +242,10 @@ def resolve_group(model, S, R, M, params, ca, cb, n_c, e, normal_only, impulse):
 
 
 @njit(cache=True, no_cpython_wrapper=True)
-def _poisson(S, M, ca, cb, n_c, nx, ny, deg, response, p):
+def _poisson(S, M, pairs, n_c, nx, ny, deg, response, p):
     """Projected Gauss-Seidel for the compression impulses p >= 0 (see resolve_group); ball
     k's velocity answers an impulse J with response[k] J / M[k]."""
+    ca, cb = pairs.ca, pairs.cb
     scale = 0.0
     for k in range(S.shape[0]):
         if deg[k] > 0:
@@ -339,35 +270,40 @@ def _poisson(S, M, ca, cb, n_c, nx, ny, deg, response, p):
 
 
 @njit(cache=True, no_cpython_wrapper=True)
-def _group_models(model, S, R, M, ca, cb, n_c, e, impulse, nx, ny, deg):
-    """The seed and frictional parts of resolve_group (after the normal impulses)."""
-    n = S.shape[0]
-    if model == SEED:
-        for k in range(n):
-            if deg[k] == 0:
-                continue
-            # The span of k's contact normals: one direction, or (two that differ) the plane.
-            mx, my, spread = 0.0, 0.0, False
-            for c in range(n_c):
-                if ca[c] == k or cb[c] == k:
-                    if mx == 0.0 and my == 0.0:
-                        mx, my = nx[c], ny[c]
-                    elif abs(mx * ny[c] - my * nx[c]) > 1e-12:
-                        spread = True
-            if spread:
-                S[k, VX] *= e
-                S[k, VY] *= e
-            else:
-                vn = S[k, VX] * mx + S[k, VY] * my
-                S[k, VX] -= (1.0 - e) * vn * mx
-                S[k, VY] -= (1.0 - e) * vn * my
-            _roll(S[k], R[k])
-        return
+def _seed_group(S, R, pairs, n_c, e, nx, ny, deg):
+    """The seed model's part of resolve_group (after the elastic normal impulses): each
+    ball's velocity along its contact normals scaled by e, then the ball left rolling."""
+    for k in range(S.shape[0]):
+        if deg[k] == 0:
+            continue
+        # The span of k's contact normals: one direction, or (two that differ) the plane.
+        mx, my, spread = 0.0, 0.0, False
+        for c in range(n_c):
+            if pairs.ca[c] == k or pairs.cb[c] == k:
+                if mx == 0.0 and my == 0.0:
+                    mx, my = nx[c], ny[c]
+                elif abs(mx * ny[c] - my * nx[c]) > PARALLEL_SINE:
+                    spread = True
+        if spread:
+            S[k, VX] *= e
+            S[k, VY] *= e
+        else:
+            vn = S[k, VX] * mx + S[k, VY] * my
+            S[k, VX] -= (1.0 - e) * vn * mx
+            S[k, VY] -= (1.0 - e) * vn * my
+        _roll(S[k], R[k])
+
+
+@njit(cache=True, no_cpython_wrapper=True)
+def _friction_group(S, R, M, pairs, n_c, nx, ny, deg):
+    """The frictional model's part of resolve_group: every contact's friction impulse from
+    the same post-impact state (inverse masses scaled by the contact's larger degree)."""
+    ca, cb = pairs.ca, pairs.cb
     pt = np.empty(n_c)
     pz = np.empty(n_c)
     for c in range(n_c):
         a, b = ca[c], cb[c]
-        pt[c], pz[c] = _friction(S[a], S[b], nx[c], ny[c], R[a], R[b], M[a], M[b], impulse[c],
+        pt[c], pz[c] = _friction(S[a], S[b], nx[c], ny[c], R[a], R[b], M[a], M[b], pairs.impulse[c],
                                  float(max(deg[a], deg[b])))
     for c in range(n_c):
         a, b = ca[c], cb[c]

@@ -11,14 +11,18 @@ import math
 import numpy as np
 from numba import njit
 
-from .ball_ball import MIN_APPROACH, MIN_DEPTH, distance_entry
-from .motion import P_E_C, P_F_C, SLIDING, VX, VY, WX, WY, WZ, copy_row, reroll, state_of, trajectory
+from .config import CUSHION_MODELS
+from .geometry import alongside, distance_entry, rail_gap, roll
+from .kinds import SLIDING, VX, VY, WX, WY, WZ
+from .motion import P_E_C, P_F_C, copy_row, reroll, state_of, trajectory
 from .roots import first_entry
 from .settle import pressed_cushion, settle_cushion
+from .tolerances import MIN_APPROACH, MIN_DEPTH
 
-SEED, RESTITUTION, HAN2005 = 0, 1, 2
+# The model ids `resolve` dispatches on: each model's position in config.CUSHION_MODELS.
+SEED, RESTITUTION, HAN2005 = (CUSHION_MODELS.index(name) for name in ("seed", "restitution", "han2005"))
 
-# Rail rows in the table arrays: [x1, y1, x2, y2, nx, ny], n the unit normal into the table.
+# Rail rows in the table arrays: see geometry.py.
 
 
 @njit(cache=True)
@@ -30,16 +34,12 @@ def rail_time(row, state, t, horizon, radius, params, rail):
     """
     x, y, vx, vy, ax, ay = trajectory(row, state, t, radius, params)
     nx, ny = rail[4], rail[5]
-    gap = nx * (x - rail[0]) + ny * (y - rail[1]) - radius
+    gap = rail_gap(rail, x, y, radius)
     tau = first_entry(gap, nx * vx + ny * vy, 0.5 * (nx * ax + ny * ay), 0.0, 0.0, horizon, MIN_APPROACH,
                       MIN_DEPTH)
     if tau == math.inf:
         return tau
-    px = x + vx * tau + 0.5 * ax * tau * tau - rail[0]
-    py = y + vy * tau + 0.5 * ay * tau * tau - rail[1]
-    dx, dy = rail[2] - rail[0], rail[3] - rail[1]
-    along = (px * dx + py * dy) / (dx * dx + dy * dy)
-    if along < 0.0 or along > 1.0:
+    if not alongside(rail, x + vx * tau + 0.5 * ax * tau * tau, y + vy * tau + 0.5 * ay * tau * tau):
         return math.inf
     return tau
 
@@ -62,8 +62,7 @@ def seed(b, nx, ny, radius, params):
     e = params[P_E_C]
     b[VX] = e * (b[VX] - 2.0 * vn * nx)
     b[VY] = e * (b[VY] - 2.0 * vn * ny)
-    b[WX] = -b[VY] / radius
-    b[WY] = b[VX] / radius
+    roll(b, radius)
     b[WZ] = 0.0
 
 

@@ -57,155 +57,129 @@ from __future__ import annotations
 
 import math
 import time
+from collections import namedtuple
 
 import numpy as np
 from numba import njit
 
-from . import ball_ball, cushion, engine, pocket, transition
-from .motion import (
+from . import ball_ball, cushion, pocket, transition
+from .bundles import CODE, EVENTS, ROWS, new_log, prepare, record_event, record_row
+from .geometry import alongside, rail_gap
+from .kinds import (
+    BALL_BALL,
+    BALL_CUSHION,
+    BALL_POCKET,
+    BUFFER_FULL,
+    DONE,
+    EVENT_CAP,
     POCKETED,
-    ROLLING,
-    SLIDING,
+    STEP_CAP,
     T0,
     VX,
     VY,
     WZ,
     X,
     Y,
-    classify,
-    state_at,
-    trajectory,
-    transition_time,
 )
-from .objects import CONTACT_TOLERANCE
-from .result import Result
+from .motion import P_G, P_MU_R, P_MU_S, classify, moving, state_at, trajectory, transition_time
+from .result import Result, SimulationError, cap_message, make_result
+from .tolerances import CONTACT_TOLERANCE, MIN_APPROACH
 
 DETECTIONS = ("posteriori", "priori")
 
-# Integer counters (cnt) and float statistics (fst) the compiled loop keeps.
-COUNTERS = ("events", "history", "steps", "ball_ball_checks", "cushion_checks", "pushes", "overlaps",
-            "left_table", "code")
-N_EV, N_HIST, STEPS, BB_CHECKS, CU_CHECKS, PUSHES, OVERLAPS, LEFT_TABLE, CODE = range(9)
+# Counters the compiled loop keeps (Log.counters), and its float statistics (Frame.depth).
+COUNTERS = ("steps", "ball_ball_checks", "cushion_checks", "pushes", "overlaps", "left_table")
+STEPS, BB_CHECKS, CU_CHECKS, PUSHES, OVERLAPS, LEFT_TABLE = range(len(COUNTERS))
 MAX_OVERLAP, MAX_CUSHION = 0, 1
-
-# Exit codes: as the engine's, plus a cap on the number of frames.
-DONE, EVENT_CAP, BUFFER_FULL, STEP_CAP = engine.DONE, engine.EVENT_CAP, engine.BUFFER_FULL, 3
 
 # Every ball stops under friction long before this (a 10 m/s ball rolls for ~100 s with the
 # standard cloth); a run still going is a bug, not a long shot.
 MAX_SIMULATED_TIME = 1000.0
 
+Stepping = namedtuple("Stepping", ["dt", "priori", "recheck", "touch", "max_steps"])
+Stepping.__doc__ = """The method's options: frame length dt (s), a-priori detection (else a-posteriori), the
+re-check, the distance (m) within which an overlapping pair counts as touching, and the cap
+on the number of frames."""
 
-@njit(cache=True)
-def _moving(state):
-    return state == SLIDING or state == ROLLING
-
-
-@njit(cache=True)
-def _record(S, st, i, hist, hist_ball, cnt):
-    h = cnt[N_HIST]
-    if h >= hist.shape[0]:
-        cnt[CODE] = BUFFER_FULL
-        return
-    for c in range(8):
-        hist[h, c] = S[i, c]
-    hist[h, 8] = st[i]
-    hist_ball[h] = i
-    cnt[N_HIST] = h + 1
+Frame = namedtuple("Frame", ["t_tr", "px", "py", "vx", "vy", "row", "depth"])
+Frame.__doc__ = """Per-frame scratch: each ball's next transition time t_tr, position (px, py) and velocity
+(vx, vy) at the current instant (N,) each; one state row; depth = [deepest ball-ball overlap,
+deepest cushion penetration] seen (m)."""
 
 
 @njit(cache=True)
-def _event(t, kind, i, j, max_events, ev_t, ev_kind, ev_i, ev_j, cnt):
-    e = cnt[N_EV]
-    if e >= max_events:
-        cnt[CODE] = EVENT_CAP
-    if e >= ev_t.shape[0]:
-        if cnt[CODE] == DONE:
-            cnt[CODE] = BUFFER_FULL
-        return
-    ev_t[e], ev_kind[e], ev_i[e], ev_j[e] = t, kind, i, j
-    cnt[N_EV] = e + 1
-
-
-@njit(cache=True)
-def _rebase(S, st, i, t, R, params, scratch):
+def _rebase(scene, frame, i, t):
     """Make ball i's state row start at time t (closed form), ready to be changed there."""
-    state_at(S[i], st[i], t, R[i], params, scratch)
+    S = scene.S
+    state_at(S[i], scene.st[i], t, scene.R[i], scene.params, frame.row)
     for c in range(8):
-        S[i, c] = scratch[c]
+        S[i, c] = frame.row[c]
 
 
 @njit(cache=True)
-def _settle(S, st, i, t, R, params, spin, t_tr, hist, hist_ball, cnt):
+def _new_segment(scene, frame, log, i, t):
     """After ball i's row changed at time t: its new motion state, segment and next transition."""
+    S, st = scene.S, scene.st
     if st[i] != POCKETED:
-        if not spin:
+        if not scene.spin:
             S[i, WZ] = 0.0
-        st[i] = classify(S[i], R[i])
+        st[i] = classify(S[i], scene.R[i])
     S[i, T0] = t
-    t_tr[i] = transition_time(S[i], st[i], R[i], params)
-    _record(S, st, i, hist, hist_ball, cnt)
+    frame.t_tr[i] = transition_time(S[i], st[i], scene.R[i], scene.params)
+    record_row(log, S, st, i)
 
 
 @njit(cache=True)
-def _advance_to(T, S, st, R, params, spin, t_tr, scratch, max_events, ev_t, ev_kind, ev_i, ev_j,
-                hist, hist_ball, cnt):
+def _advance_to(T, scene, frame, log):
     """Apply, in time order, every motion transition due at or before time T."""
-    n = S.shape[0]
-    while cnt[CODE] == DONE:
+    n = scene.S.shape[0]
+    while log.size[CODE] == DONE:
         best, who = np.inf, -1
         for i in range(n):
-            if t_tr[i] < best:
-                best, who = t_tr[i], i
+            if frame.t_tr[i] < best:
+                best, who = frame.t_tr[i], i
         if who < 0 or best > T:
             return
-        _rebase(S, st, who, best, R, params, scratch)
-        kind = transition.resolve(S[who], st[who], R[who])
-        _settle(S, st, who, best, R, params, spin, t_tr, hist, hist_ball, cnt)
-        _event(best, kind, who, -1, max_events, ev_t, ev_kind, ev_i, ev_j, cnt)
+        _rebase(scene, frame, who, best)
+        kind = transition.resolve(scene.S[who], scene.st[who], scene.R[who])
+        _new_segment(scene, frame, log, who, best)
+        record_event(log, best, kind, who, -1)
 
 
 @njit(cache=True)
-def _positions(S, st, t, R, params, PX, PY, VXa, VYa):
+def _positions(scene, frame, t):
     """Every ball's position and velocity at time t, from its current segment."""
+    S, st = scene.S, scene.st
     for i in range(S.shape[0]):
-        if _moving(st[i]):
-            x, y, vx, vy, _, _ = trajectory(S[i], st[i], t, R[i], params)
-            PX[i], PY[i], VXa[i], VYa[i] = x, y, vx, vy
+        if moving(st[i]):
+            x, y, vx, vy, _, _ = trajectory(S[i], st[i], t, scene.R[i], scene.params)
+            frame.px[i], frame.py[i], frame.vx[i], frame.vy[i] = x, y, vx, vy
         else:
-            PX[i], PY[i], VXa[i], VYa[i] = S[i, X], S[i, Y], 0.0, 0.0
+            frame.px[i], frame.py[i], frame.vx[i], frame.vy[i] = S[i, X], S[i, Y], 0.0, 0.0
 
 
 @njit(cache=True)
-def _near_edge(x, y, margin, length, width):
+def _near_edge(x, y, margin, bounds):
     """Whether a centre is within `margin` of the table's outline (only there can a rail, a jaw
     or a pocket be reached)."""
-    return x < margin or y < margin or x > length - margin or y > width - margin
+    return x < margin or y < margin or x > bounds.length - margin or y > bounds.width - margin
 
 
 @njit(cache=True)
-def _cushion_depths(S, st, R, PX, PY, rails, jaws, length, width, fst):
+def _cushion_depths(scene, bounds, frame):
     """Record how deep balls stand in the rails or jaws at a frame end (priori mode)."""
-    for i in range(S.shape[0]):
-        if not _moving(st[i]) or not _near_edge(PX[i], PY[i], R[i], length, width):
+    R, px, py, rails, jaws = scene.R, frame.px, frame.py, bounds.rails, bounds.jaws
+    for i in range(scene.S.shape[0]):
+        if not moving(scene.st[i]) or not _near_edge(px[i], py[i], R[i], bounds):
             continue
         for c in range(rails.shape[0]):
-            rail = rails[c]
-            gap = rail[4] * (PX[i] - rail[0]) + rail[5] * (PY[i] - rail[1]) - R[i]
-            if gap < 0.0 and _along(rail, PX[i], PY[i]):
-                fst[MAX_CUSHION] = max(fst[MAX_CUSHION], -gap)
+            gap = rail_gap(rails[c], px[i], py[i], R[i])
+            if gap < 0.0 and alongside(rails[c], px[i], py[i]):
+                frame.depth[MAX_CUSHION] = max(frame.depth[MAX_CUSHION], -gap)
         for p in range(jaws.shape[0]):
-            depth = R[i] - math.hypot(PX[i] - jaws[p, 0], PY[i] - jaws[p, 1])
+            depth = R[i] - math.hypot(px[i] - jaws[p, 0], py[i] - jaws[p, 1])
             if depth > 0.0:
-                fst[MAX_CUSHION] = max(fst[MAX_CUSHION], depth)
-
-
-@njit(cache=True)
-def _along(rail, x, y):
-    """Whether the centre (x, y) is alongside the rail segment (beyond its ends the jaws act)."""
-    dx, dy = rail[2] - rail[0], rail[3] - rail[1]
-    u = ((x - rail[0]) * dx + (y - rail[1]) * dy) / (dx * dx + dy * dy)
-    return 0.0 <= u <= 1.0
+                frame.depth[MAX_CUSHION] = max(frame.depth[MAX_CUSHION], depth)
 
 
 @njit(cache=True)
@@ -220,57 +194,62 @@ def _place(S, i, k, nx, ny, depth, M):
 
 
 @njit(cache=True)
-def _posteriori(t, S, st, R, M, params, bb_model, cu_model, rails, jaws, height, length, width, spin, t_tr,
-                PX, PY, scratch, max_events, ev_t, ev_kind, ev_i, ev_j, hist, hist_ball, cnt, fst):
-    """Find and fix the overlaps standing at the frame end t: push apart, then collide."""
+def _posteriori_pairs(t, scene, frame, log):
+    """Find and fix the ball-ball overlaps standing at the frame end t: push apart, then collide."""
+    S, st, R, M, px, py = scene.S, scene.st, scene.R, scene.M, frame.px, frame.py
     n = S.shape[0]
     for i in range(n):
         if st[i] == POCKETED:
             continue
         for k in range(i + 1, n):
             # The state is read live: a ball set moving by an earlier pair is checked at once.
-            if st[k] == POCKETED or not (_moving(st[i]) or _moving(st[k])):
+            if st[k] == POCKETED or not (moving(st[i]) or moving(st[k])):
                 continue
             reach = R[i] + R[k]
-            dx, dy = PX[k] - PX[i], PY[k] - PY[i]
+            dx, dy = px[k] - px[i], py[k] - py[i]
             if abs(dx) >= reach or abs(dy) >= reach:
                 continue
-            cnt[BB_CHECKS] += 1
+            log.counters[BB_CHECKS] += 1
             d = math.hypot(dx, dy)
             depth = reach - d
             if depth <= CONTACT_TOLERANCE:
                 continue
-            cnt[OVERLAPS] += 1
-            fst[MAX_OVERLAP] = max(fst[MAX_OVERLAP], depth)
-            _rebase(S, st, i, t, R, params, scratch)
-            _rebase(S, st, k, t, R, params, scratch)
+            log.counters[OVERLAPS] += 1
+            frame.depth[MAX_OVERLAP] = max(frame.depth[MAX_OVERLAP], depth)
+            _rebase(scene, frame, i, t)
+            _rebase(scene, frame, k, t)
             if d > 0.0:
                 nx, ny = dx / d, dy / d
             else:  # concentric: any normal will do
                 nx, ny = 1.0, 0.0
             _place(S, i, k, nx, ny, depth, M)
-            PX[i], PY[i], PX[k], PY[k] = S[i, X], S[i, Y], S[k, X], S[k, Y]
+            px[i], py[i], px[k], py[k] = S[i, X], S[i, Y], S[k, X], S[k, Y]
             approach = (S[i, VX] - S[k, VX]) * nx + (S[i, VY] - S[k, VY]) * ny
-            if approach > ball_ball.MIN_APPROACH:
-                ball_ball.resolve(bb_model, S[i], S[k], R[i], R[k], M[i], M[k], params)
-                _event(t, engine.BALL_BALL, i, k, max_events, ev_t, ev_kind, ev_i, ev_j, cnt)
+            if approach > MIN_APPROACH:
+                ball_ball.resolve(scene.bb_model, S[i], S[k], R[i], R[k], M[i], M[k], scene.params)
+                record_event(log, t, BALL_BALL, i, k)
             else:
-                cnt[PUSHES] += 1
-            _settle(S, st, i, t, R, params, spin, t_tr, hist, hist_ball, cnt)
-            _settle(S, st, k, t, R, params, spin, t_tr, hist, hist_ball, cnt)
+                log.counters[PUSHES] += 1
+            _new_segment(scene, frame, log, i, t)
+            _new_segment(scene, frame, log, k, t)
+
+
+@njit(cache=True)
+def _posteriori_cushions(t, scene, bounds, frame, log):
+    """Find and fix the balls standing in a rail or a jaw at the frame end t."""
+    S, R, px, py, rails, jaws = scene.S, scene.R, frame.px, frame.py, bounds.rails, bounds.jaws
     n_rails = rails.shape[0]
-    for i in range(n):
-        if not _moving(st[i]) or not _near_edge(PX[i], PY[i], R[i], length, width):
+    for i in range(S.shape[0]):
+        if not moving(scene.st[i]) or not _near_edge(px[i], py[i], R[i], bounds):
             continue
         for c in range(n_rails + jaws.shape[0]):
             if c < n_rails:
-                rail = rails[c]
-                nx, ny = rail[4], rail[5]
-                depth = R[i] - (nx * (PX[i] - rail[0]) + ny * (PY[i] - rail[1]))
-                if depth <= CONTACT_TOLERANCE or not _along(rail, PX[i], PY[i]):
+                nx, ny = rails[c, 4], rails[c, 5]
+                depth = R[i] - (nx * (px[i] - rails[c, 0]) + ny * (py[i] - rails[c, 1]))
+                if depth <= CONTACT_TOLERANCE or not alongside(rails[c], px[i], py[i]):
                     continue
             else:
-                dx, dy = PX[i] - jaws[c - n_rails, 0], PY[i] - jaws[c - n_rails, 1]
+                dx, dy = px[i] - jaws[c - n_rails, 0], py[i] - jaws[c - n_rails, 1]
                 if abs(dx) >= R[i] or abs(dy) >= R[i]:
                     continue
                 d = math.hypot(dx, dy)
@@ -278,171 +257,206 @@ def _posteriori(t, S, st, R, M, params, bb_model, cu_model, rails, jaws, height,
                 if depth <= CONTACT_TOLERANCE or d == 0.0:
                     continue
                 nx, ny = dx / d, dy / d
-            cnt[CU_CHECKS] += 1
-            fst[MAX_CUSHION] = max(fst[MAX_CUSHION], depth)
-            _rebase(S, st, i, t, R, params, scratch)
+            log.counters[CU_CHECKS] += 1
+            frame.depth[MAX_CUSHION] = max(frame.depth[MAX_CUSHION], depth)
+            _rebase(scene, frame, i, t)
             S[i, X] += nx * depth
             S[i, Y] += ny * depth
-            PX[i], PY[i] = S[i, X], S[i, Y]
-            if S[i, VX] * nx + S[i, VY] * ny < -ball_ball.MIN_APPROACH:
-                cushion.resolve(cu_model, S[i], nx, ny, R[i], params, height)
-                _event(t, engine.BALL_CUSHION, i, c, max_events, ev_t, ev_kind, ev_i, ev_j, cnt)
+            px[i], py[i] = S[i, X], S[i, Y]
+            if S[i, VX] * nx + S[i, VY] * ny < -MIN_APPROACH:
+                cushion.resolve(scene.cu_model, S[i], nx, ny, R[i], scene.params, bounds.height)
+                record_event(log, t, BALL_CUSHION, i, c)
             else:
-                cnt[PUSHES] += 1
-            _settle(S, st, i, t, R, params, spin, t_tr, hist, hist_ball, cnt)
-            if not _moving(st[i]):
+                log.counters[PUSHES] += 1
+            _new_segment(scene, frame, log, i, t)
+            if not moving(scene.st[i]):
                 break
 
 
 @njit(cache=True)
-def _priori_next(S, st, R, rails, jaws, length, width, PX, PY, VXa, VYa, horizon, balls_too, touch, measure,
-                 cnt, fst):
-    """The earliest contact in [0, horizon) predicted by straight-line motion (the report's
-    eq. 3.1 for pairs; a line against a rail's nose line or a jaw circle for cushions).
-    Returns (tau, kind, i, j); kind -1 if none. With `measure`, also records the overlaps
-    standing now (at a frame start they are the previous frame's end state)."""
-    n = S.shape[0]
+def _priori_pairs_of(scene, frame, log, i, best, touch, balls_too, measure):
+    """The earliest contact of ball i with a ball k > i before `best`, predicted by
+    straight-line motion (the report's eq. 3.1): (tau, k), k = -1 if none. With `measure`,
+    also records the overlaps standing now (at a frame start: the previous frame's end)."""
+    st, R, px, py, vx, vy = scene.st, scene.R, frame.px, frame.py, frame.vx, frame.vy
+    which = -1
+    for k in range(i + 1, st.shape[0]):
+        if st[k] == POCKETED or not (moving(st[i]) or moving(st[k])):
+            continue
+        dx, dy = px[k] - px[i], py[k] - py[i]
+        reach = R[i] + R[k]
+        if measure and abs(dx) < reach and abs(dy) < reach:
+            depth = reach - math.hypot(dx, dy)
+            if depth > CONTACT_TOLERANCE:
+                log.counters[OVERLAPS] += 1
+                frame.depth[MAX_OVERLAP] = max(frame.depth[MAX_OVERLAP], depth)
+        if not balls_too:
+            continue
+        dvx, dvy = vx[k] - vx[i], vy[k] - vy[i]
+        half_b = dx * dvx + dy * dvy  # b / 2 in the report's notation
+        if half_b >= -reach * MIN_APPROACH:
+            continue  # not approaching
+        a = dvx * dvx + dvy * dvy
+        d = math.hypot(dx, dy)
+        gap = d - reach
+        if gap > math.sqrt(a) * best:
+            continue  # cannot close the gap within the frame
+        log.counters[BB_CHECKS] += 1
+        if gap <= 0.0:
+            if gap < -touch:
+                continue  # overlapping: the smaller root is in the past, a miss
+            tau = 0.0
+        else:
+            # Smaller root of a t^2 + b t + c, c = d^2 - reach^2, in the cancellation-free form.
+            c = gap * (d + reach)
+            disc = half_b * half_b - a * c
+            if disc <= 0.0:
+                continue  # a miss or a tangent touch (the report's one-solution case)
+            tau = c / (-half_b + math.sqrt(disc))
+        if tau < best:
+            best, which = tau, k
+    return best, which
+
+
+@njit(cache=True)
+def _priori_cushion(scene, bounds, frame, log, i, best):
+    """Ball i's earliest straight-line contact with a rail's nose line or a jaw circle before
+    `best`: (tau, cushion id), id -1 if none."""
+    R, rails, jaws = scene.R, bounds.rails, bounds.jaws
+    x, y, vx, vy = frame.px[i], frame.py[i], frame.vx[i], frame.vy[i]
+    speed = math.hypot(vx, vy)
+    which = -1
+    if not _near_edge(x, y, R[i] + speed * best, bounds):
+        return best, which
+    for c in range(rails.shape[0]):
+        vn = rails[c, 4] * vx + rails[c, 5] * vy
+        if vn >= -MIN_APPROACH:
+            continue
+        log.counters[CU_CHECKS] += 1
+        tau = max(rail_gap(rails[c], x, y, R[i]), 0.0) / -vn
+        if tau < best and alongside(rails[c], x + vx * tau, y + vy * tau):
+            best, which = tau, c
+    for p in range(jaws.shape[0]):
+        dx, dy = x - jaws[p, 0], y - jaws[p, 1]
+        half_b = dx * vx + dy * vy
+        if half_b >= -R[i] * MIN_APPROACH:
+            continue
+        d = math.hypot(dx, dy)
+        gap = d - R[i]
+        if gap > speed * best:
+            continue
+        log.counters[CU_CHECKS] += 1
+        if gap <= 0.0:
+            tau = 0.0
+        else:
+            c = gap * (d + R[i])
+            disc = half_b * half_b - speed * speed * c
+            if disc <= 0.0:
+                continue
+            tau = c / (-half_b + math.sqrt(disc))
+        if tau < best:
+            best, which = tau, rails.shape[0] + p
+    return best, which
+
+
+@njit(cache=True)
+def _priori_next(scene, bounds, stepping, frame, log, horizon, balls_too, measure):
+    """The earliest contact in [0, horizon) predicted by straight-line motion: pairs (the
+    report's eq. 3.1) and each ball against the rails' nose lines and the jaw circles, ball by
+    ball. Returns (tau, kind, i, j); kind -1 if none."""
+    st = scene.st
     best, kind, bi, bj = horizon, -1, -1, -1
-    for i in range(n):
+    for i in range(st.shape[0]):
         if st[i] == POCKETED:
             continue
         if balls_too or measure:
-            for k in range(i + 1, n):
-                if st[k] == POCKETED or not (_moving(st[i]) or _moving(st[k])):
-                    continue
-                dx, dy = PX[k] - PX[i], PY[k] - PY[i]
-                reach = R[i] + R[k]
-                if measure and abs(dx) < reach and abs(dy) < reach:
-                    depth = reach - math.hypot(dx, dy)
-                    if depth > CONTACT_TOLERANCE:
-                        cnt[OVERLAPS] += 1
-                        fst[MAX_OVERLAP] = max(fst[MAX_OVERLAP], depth)
-                if not balls_too:
-                    continue
-                dvx, dvy = VXa[k] - VXa[i], VYa[k] - VYa[i]
-                half_b = dx * dvx + dy * dvy  # b / 2 in the report's notation
-                if half_b >= -reach * ball_ball.MIN_APPROACH:
-                    continue  # not approaching
-                a = dvx * dvx + dvy * dvy
-                d = math.hypot(dx, dy)
-                gap = d - reach
-                if gap > math.sqrt(a) * best:
-                    continue  # cannot close the gap within the frame
-                cnt[BB_CHECKS] += 1
-                if gap <= 0.0:
-                    if gap < -touch:
-                        continue  # overlapping: the smaller root is in the past, a miss
-                    tau = 0.0
-                else:
-                    # Smaller root of a t^2 + b t + c, c = d^2 - reach^2, in the cancellation-free form.
-                    c = gap * (d + reach)
-                    disc = half_b * half_b - a * c
-                    if disc <= 0.0:
-                        continue  # a miss or a tangent touch (the report's one-solution case)
-                    tau = c / (-half_b + math.sqrt(disc))
-                if tau < best:
-                    best, kind, bi, bj = tau, engine.BALL_BALL, i, k
-        if not _moving(st[i]):
+            tau, k = _priori_pairs_of(scene, frame, log, i, best, stepping.touch, balls_too, measure)
+            if k >= 0:
+                best, kind, bi, bj = tau, BALL_BALL, i, k
+        if not moving(st[i]):
             continue
-        x, y, vx, vy = PX[i], PY[i], VXa[i], VYa[i]
-        speed = math.hypot(vx, vy)
-        if not _near_edge(x, y, R[i] + speed * best, length, width):
-            continue
-        for c in range(rails.shape[0]):
-            rail = rails[c]
-            vn = rail[4] * vx + rail[5] * vy
-            if vn >= -ball_ball.MIN_APPROACH:
-                continue
-            cnt[CU_CHECKS] += 1
-            gap = rail[4] * (x - rail[0]) + rail[5] * (y - rail[1]) - R[i]
-            tau = max(gap, 0.0) / -vn
-            if tau < best and _along(rail, x + vx * tau, y + vy * tau):
-                best, kind, bi, bj = tau, engine.BALL_CUSHION, i, c
-        for p in range(jaws.shape[0]):
-            dx, dy = x - jaws[p, 0], y - jaws[p, 1]
-            half_b = dx * vx + dy * vy
-            if half_b >= -R[i] * ball_ball.MIN_APPROACH:
-                continue
-            d = math.hypot(dx, dy)
-            gap = d - R[i]
-            if gap > speed * best:
-                continue
-            cnt[CU_CHECKS] += 1
-            if gap <= 0.0:
-                tau = 0.0
-            else:
-                c = gap * (d + R[i])
-                disc = half_b * half_b - speed * speed * c
-                if disc <= 0.0:
-                    continue
-                tau = c / (-half_b + math.sqrt(disc))
-            if tau < best:
-                best, kind, bi, bj = tau, engine.BALL_CUSHION, i, rails.shape[0] + p
+        tau, c = _priori_cushion(scene, bounds, frame, log, i, best)
+        if c >= 0:
+            best, kind, bi, bj = tau, BALL_CUSHION, i, c
     return best, kind, bi, bj
 
 
 @njit(cache=True)
-def _priori_frame(t0, t1, S, st, R, M, params, bb_model, cu_model, rails, jaws, height, length, width, spin,
-                  recheck, touch, t_tr, PX, PY, VXa, VYa, scratch, max_events, ev_t, ev_kind, ev_i, ev_j,
-                  hist, hist_ball, cnt, fst):
+def _priori_ball_ball(now, scene, frame, log, i, j, recheck):
+    """Resolve the predicted contact of balls i and j at `now` (both rebased there); returns
+    whether the rest of the frame may still see ball-ball contacts."""
+    S, R, M = scene.S, scene.R, scene.M
+    dx, dy = S[j, X] - S[i, X], S[j, Y] - S[i, Y]
+    d = math.hypot(dx, dy)
+    nx, ny = dx / d, dy / d
+    frame.depth[MAX_OVERLAP] = max(frame.depth[MAX_OVERLAP], R[i] + R[j] - d)
+    balls_too = True
+    # A transition inside the frame (a ball stopping) can undo the predicted approach.
+    if (S[i, VX] - S[j, VX]) * nx + (S[i, VY] - S[j, VY]) * ny > MIN_APPROACH:
+        # The report moves the pair "next to each other" before resolving (its code listing
+        # 3). Here it closes the gap or overlap the straight-line prediction left, so that a
+        # pair kept pressed together (a sliding ball driving into another) cannot creep into
+        # overlap frame after frame.
+        _place(S, i, j, nx, ny, R[i] + R[j] - d, M)
+        ball_ball.resolve(scene.bb_model, S[i], S[j], R[i], R[j], M[i], M[j], scene.params)
+        record_event(log, now, BALL_BALL, i, j)
+        # Without the re-check the rest of the frame sees no ball-ball collision.
+        balls_too = recheck
+    _new_segment(scene, frame, log, i, now)
+    _new_segment(scene, frame, log, j, now)
+    return balls_too
+
+
+@njit(cache=True)
+def _priori_cushion_contact(now, scene, bounds, frame, log, i, j):
+    """Resolve ball i's predicted contact with cushion j (rails first, then jaw points) at
+    `now` (the ball rebased there)."""
+    S, R, rails, jaws = scene.S, scene.R, bounds.rails, bounds.jaws
+    if j < rails.shape[0]:
+        nx, ny = rails[j, 4], rails[j, 5]
+        depth = R[i] - (nx * (S[i, X] - rails[j, 0]) + ny * (S[i, Y] - rails[j, 1]))
+    else:
+        dx, dy = S[i, X] - jaws[j - rails.shape[0], 0], S[i, Y] - jaws[j - rails.shape[0], 1]
+        d = math.hypot(dx, dy)
+        nx, ny = dx / d, dy / d
+        depth = R[i] - d
+    frame.depth[MAX_CUSHION] = max(frame.depth[MAX_CUSHION], depth)
+    if S[i, VX] * nx + S[i, VY] * ny < -MIN_APPROACH:
+        S[i, X] += nx * depth  # to the contact, as for a pair
+        S[i, Y] += ny * depth
+        cushion.resolve(scene.cu_model, S[i], nx, ny, R[i], scene.params, bounds.height)
+        record_event(log, now, BALL_CUSHION, i, j)
+    _new_segment(scene, frame, log, i, now)
+
+
+@njit(cache=True)
+def _priori_frame(t0, t1, scene, bounds, stepping, frame, log):
     """One frame of the report's a-priori loop: predict, resolve the earliest, (re)predict."""
     now = t0
     balls_too = True
     first = True
-    while cnt[CODE] == DONE:
-        # At the frame start PX.. already hold the positions (the previous frame's end).
+    while log.size[CODE] == DONE:
+        # At the frame start frame.px.. already hold the positions (the previous frame's end).
         if not first:
-            _positions(S, st, now, R, params, PX, PY, VXa, VYa)
-        tau, kind, i, j = _priori_next(S, st, R, rails, jaws, length, width, PX, PY, VXa, VYa, t1 - now,
-                                       balls_too, touch, first, cnt, fst)
+            _positions(scene, frame, now)
+        tau, kind, i, j = _priori_next(scene, bounds, stepping, frame, log, t1 - now, balls_too, first)
         first = False
         if kind < 0:
             return
         now = now + tau
-        _advance_to(now, S, st, R, params, spin, t_tr, scratch, max_events, ev_t, ev_kind, ev_i, ev_j,
-                    hist, hist_ball, cnt)
-        _rebase(S, st, i, now, R, params, scratch)
-        if kind == engine.BALL_BALL:
-            _rebase(S, st, j, now, R, params, scratch)
-            dx, dy = S[j, X] - S[i, X], S[j, Y] - S[i, Y]
-            d = math.hypot(dx, dy)
-            nx, ny = dx / d, dy / d
-            fst[MAX_OVERLAP] = max(fst[MAX_OVERLAP], R[i] + R[j] - d)
-            # A transition inside the frame (a ball stopping) can undo the predicted approach.
-            if (S[i, VX] - S[j, VX]) * nx + (S[i, VY] - S[j, VY]) * ny > ball_ball.MIN_APPROACH:
-                # The report moves the pair "next to each other" before resolving (its code
-                # listing 3). Here it closes the gap or overlap the straight-line prediction
-                # left, so that a pair kept pressed together (a sliding ball driving into
-                # another) cannot creep into overlap frame after frame.
-                _place(S, i, j, nx, ny, R[i] + R[j] - d, M)
-                ball_ball.resolve(bb_model, S[i], S[j], R[i], R[j], M[i], M[j], params)
-                _event(now, kind, i, j, max_events, ev_t, ev_kind, ev_i, ev_j, cnt)
-                # Without the re-check the rest of the frame sees no ball-ball collision.
-                balls_too = recheck
-            _settle(S, st, i, now, R, params, spin, t_tr, hist, hist_ball, cnt)
-            _settle(S, st, j, now, R, params, spin, t_tr, hist, hist_ball, cnt)
+        _advance_to(now, scene, frame, log)
+        _rebase(scene, frame, i, now)
+        if kind == BALL_BALL:
+            _rebase(scene, frame, j, now)
+            balls_too = _priori_ball_ball(now, scene, frame, log, i, j, stepping.recheck) and balls_too
         else:
-            if j < rails.shape[0]:
-                nx, ny = rails[j, 4], rails[j, 5]
-                depth = R[i] - (nx * (S[i, X] - rails[j, 0]) + ny * (S[i, Y] - rails[j, 1]))
-            else:
-                dx, dy = S[i, X] - jaws[j - rails.shape[0], 0], S[i, Y] - jaws[j - rails.shape[0], 1]
-                d = math.hypot(dx, dy)
-                nx, ny = dx / d, dy / d
-                depth = R[i] - d
-            fst[MAX_CUSHION] = max(fst[MAX_CUSHION], depth)
-            if S[i, VX] * nx + S[i, VY] * ny < -ball_ball.MIN_APPROACH:
-                S[i, X] += nx * depth  # to the contact, as for a pair
-                S[i, Y] += ny * depth
-                cushion.resolve(cu_model, S[i], nx, ny, R[i], params, height)
-                _event(now, kind, i, j, max_events, ev_t, ev_kind, ev_i, ev_j, cnt)
-            _settle(S, st, i, now, R, params, spin, t_tr, hist, hist_ball, cnt)
+            _priori_cushion_contact(now, scene, bounds, frame, log, i, j)
 
 
 @njit(cache=True)
-def _pockets(t, S, st, R, params, pockets, length, width, t_tr, PX, PY, scratch, max_events,
-             ev_t, ev_kind, ev_i, ev_j, hist, hist_ball, cnt):
+def _pockets(t, scene, bounds, frame, log):
     """Drop every ball whose centre is inside a capture circle (or off the table) at frame end t."""
+    S, st, pockets, px, py = scene.S, scene.st, bounds.pockets, frame.px, frame.py
     if pockets.shape[0] == 0:
         return
     margin = 0.0
@@ -450,78 +464,70 @@ def _pockets(t, S, st, R, params, pockets, length, width, t_tr, PX, PY, scratch,
         margin = max(margin, pockets[p, 2])
     for i in range(S.shape[0]):
         # Resting balls too: a ball may stop inside a capture circle within the frame.
-        if st[i] == POCKETED or not _near_edge(PX[i], PY[i], margin, length, width):
+        if st[i] == POCKETED or not _near_edge(px[i], py[i], margin, bounds):
             continue
         which, nearest = -1, np.inf
         for p in range(pockets.shape[0]):
-            d = math.hypot(PX[i] - pockets[p, 0], PY[i] - pockets[p, 1]) - pockets[p, 2]
+            d = math.hypot(px[i] - pockets[p, 0], py[i] - pockets[p, 1]) - pockets[p, 2]
             if d < nearest:
                 which, nearest = p, d
-        off = PX[i] < 0.0 or PY[i] < 0.0 or PX[i] > length or PY[i] > width
+        off = px[i] < 0.0 or py[i] < 0.0 or px[i] > bounds.length or py[i] > bounds.width
         if nearest >= 0.0 and not off:
             continue
         if nearest >= 0.0:
-            cnt[LEFT_TABLE] += 1
-        _rebase(S, st, i, t, R, params, scratch)
+            log.counters[LEFT_TABLE] += 1
+        _rebase(scene, frame, i, t)
         pocket.capture(S[i])
         st[i] = POCKETED
         S[i, T0] = t
-        t_tr[i] = np.inf
-        _record(S, st, i, hist, hist_ball, cnt)
-        _event(t, engine.BALL_POCKET, i, which, max_events, ev_t, ev_kind, ev_i, ev_j, cnt)
+        frame.t_tr[i] = np.inf
+        record_row(log, S, st, i)
+        record_event(log, t, BALL_POCKET, i, which)
 
 
 @njit(cache=True)
-def run(S, st, R, M, params, bb_model, cu_model, rails, jaws, pockets, height, length, width, spin,
-        dt, priori, recheck, max_events, max_steps, ev_t, ev_kind, ev_i, ev_j, hist, hist_ball, cnt, fst):
-    """Step the rows S (all at t = 0) in frames of dt until every ball rests or is pocketed.
+def _translating(st):
+    for i in range(st.shape[0]):
+        if moving(st[i]):
+            return True
+    return False
 
-    S, st end as the final state; events go to ev_*, state segments to hist/hist_ball (the
-    engine's format, so engine.sample replays them); cnt and fst collect the statistics.
-    Returns the exit code.
-    """
-    n = S.shape[0]
-    scratch = np.empty(8)
-    PX, PY, VXa, VYa = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
-    t_tr = np.full(n, np.inf)
+
+@njit(cache=True)
+def run(scene, bounds, stepping, log, depth):
+    """Step the rows scene.S (all at t = 0) in frames of dt until every ball rests or is
+    pocketed. scene.S, st end as the final state; events and segments go to the log (the
+    engine's format, so engine.sample replays them), the deepest overlaps to `depth`.
+    Returns the exit code."""
+    n = scene.S.shape[0]
+    frame = Frame(np.full(n, np.inf), np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(8), depth)
     for i in range(n):
-        _settle(S, st, i, 0.0, R, params, spin, t_tr, hist, hist_ball, cnt)
-    # The straight-line prediction's own error over a frame: each ball may drift 1/2 a dt^2
-    # off it, a = mu_s g (sliding) or mu_r g (rolling).
-    touch = CONTACT_TOLERANCE + 2.0 * max(params[0], params[1]) * params[3] * dt * dt
-    _positions(S, st, 0.0, R, params, PX, PY, VXa, VYa)
+        _new_segment(scene, frame, log, i, 0.0)
+    _positions(scene, frame, 0.0)
     step = 0
-    while cnt[CODE] == DONE:
-        translating = False
-        for i in range(n):
-            translating = translating or _moving(st[i])
-        if not translating:
+    while log.size[CODE] == DONE:
+        if not _translating(scene.st):
             break
-        if step >= max_steps:
-            cnt[CODE] = STEP_CAP
+        if step >= stepping.max_steps:
+            log.size[CODE] = STEP_CAP
             break
         # Frame times as multiples of dt, so no round-off accumulates over millions of frames.
-        t0, t1 = step * dt, (step + 1) * dt
-        if priori:
-            _priori_frame(t0, t1, S, st, R, M, params, bb_model, cu_model, rails, jaws, height, length, width,
-                          spin, recheck, touch, t_tr, PX, PY, VXa, VYa, scratch, max_events, ev_t, ev_kind,
-                          ev_i, ev_j, hist, hist_ball, cnt, fst)
-        _advance_to(t1, S, st, R, params, spin, t_tr, scratch, max_events, ev_t, ev_kind, ev_i, ev_j,
-                    hist, hist_ball, cnt)
-        _positions(S, st, t1, R, params, PX, PY, VXa, VYa)
-        if priori:
-            _cushion_depths(S, st, R, PX, PY, rails, jaws, length, width, fst)
+        t0, t1 = step * stepping.dt, (step + 1) * stepping.dt
+        if stepping.priori:
+            _priori_frame(t0, t1, scene, bounds, stepping, frame, log)
+        _advance_to(t1, scene, frame, log)
+        _positions(scene, frame, t1)
+        if stepping.priori:
+            _cushion_depths(scene, bounds, frame)
         else:
-            _posteriori(t1, S, st, R, M, params, bb_model, cu_model, rails, jaws, height, length, width, spin,
-                        t_tr, PX, PY, scratch, max_events, ev_t, ev_kind, ev_i, ev_j, hist, hist_ball, cnt, fst)
-        _pockets(t1, S, st, R, params, pockets, length, width, t_tr, PX, PY, scratch, max_events,
-                 ev_t, ev_kind, ev_i, ev_j, hist, hist_ball, cnt)
+            _posteriori_pairs(t1, scene, frame, log)
+            _posteriori_cushions(t1, scene, bounds, frame, log)
+        _pockets(t1, scene, bounds, frame, log)
         step += 1
-    cnt[STEPS] = step
+    log.counters[STEPS] = step
     # Nothing translates any more: the remaining transitions (spin dying out) need no frames.
-    _advance_to(np.inf, S, st, R, params, spin, t_tr, scratch, max_events, ev_t, ev_kind, ev_i, ev_j,
-                hist, hist_ball, cnt)
-    return cnt[CODE]
+    _advance_to(np.inf, scene, frame, log)
+    return log.size[CODE]
 
 
 def check_options(dt, detection, recheck) -> float:
@@ -545,50 +551,42 @@ def simulate_fixed(balls, table, physics, max_events=None, dt=1.0 / 60.0, detect
                    recheck=False) -> Result:
     """Fixed-step simulation (see the module docstring); called by `simulate(method="fixed")`,
     which has already checked the scene."""
-    from .simulate import SimulationError, _cap_message, make_result, prepare
-
     dt = check_options(dt, detection, recheck)
     wall = time.perf_counter()
     n = len(balls)
-    cap, S0, st0, spin, params, models = prepare(balls, physics, max_events)
-    R, M = balls.radii, balls.masses
+    scene0, bounds, cap = prepare(balls, table, physics, max_events)
+    params = scene0.params
+    # The straight-line prediction's own error over a frame: each ball may drift 1/2 a dt^2
+    # off it, a = mu_s g (sliding) or mu_r g (rolling).
+    touch = CONTACT_TOLERANCE + 2.0 * max(params[P_MU_S], params[P_MU_R]) * params[P_G] * dt * dt
     max_steps = int(min(math.ceil(MAX_SIMULATED_TIME / dt), 2**62))
+    stepping = Stepping(dt, detection == "priori", bool(recheck), touch, max_steps)
     size = min(cap, 256 + 16 * n)
     hist_size = 2 * size + n
     while True:
-        S, st = S0.copy(), st0.copy()
-        ev_t = np.empty(size + 1)
-        ev_ids = np.empty((3, size + 1), dtype=np.int64)
-        hist = np.empty((hist_size, 9))
-        hist_ball = np.empty(hist_size, dtype=np.int64)
-        cnt = np.zeros(len(COUNTERS), dtype=np.int64)
-        fst = np.zeros(2)
-        code = run(S, st, R, M, params, models[0], models[1], table.rails, table.jaws, table.pockets,
-                   table.cushion_height, table.length, table.width, spin, dt, detection == "priori",
-                   bool(recheck), cap, max_steps, ev_t, ev_ids[0], ev_ids[1], ev_ids[2], hist, hist_ball, cnt, fst)
+        scene = scene0._replace(S=scene0.S.copy(), st=scene0.st.copy())
+        log = new_log(size, hist_size, cap, len(COUNTERS))
+        depth = np.zeros(2)
+        code = run(scene, bounds, stepping, log, depth)
         if code != BUFFER_FULL:
             break
         # Deterministic, so a rerun with larger buffers is exact.
-        if cnt[N_HIST] >= hist.shape[0]:
+        if log.size[ROWS] >= log.hist.shape[0]:
             hist_size *= 4
-        if cnt[N_EV] >= ev_t.shape[0]:
+        if log.size[EVENTS] >= log.t.shape[0]:
             size = min(cap, 4 * size)
-    n_ev, n_hist = int(cnt[N_EV]), int(cnt[N_HIST])
-    ev_kind, ev_i, ev_j = ev_ids
     if code == EVENT_CAP:
-        raise SimulationError(_cap_message(cap, ev_t, ev_kind, ev_i, ev_j, n_ev - 1))
+        raise SimulationError(cap_message(cap, log, int(log.size[EVENTS]) - 1))
     if code == STEP_CAP:
         raise SimulationError(f"fixed-step simulation still moving after {MAX_SIMULATED_TIME} s "
                               f"({max_steps} frames of {dt} s)")
     wall = time.perf_counter() - wall
 
     def counters():
-        out = {name: int(cnt[k]) for k, name in enumerate(COUNTERS) if name not in ("events", "history", "code")}
-        out["max_overlap_depth"] = float(fst[MAX_OVERLAP])
-        out["max_cushion_depth"] = float(fst[MAX_CUSHION])
+        out = {name: int(c) for name, c in zip(COUNTERS, log.counters)}
+        out["max_overlap_depth"] = float(depth[MAX_OVERLAP])
+        out["max_cushion_depth"] = float(depth[MAX_CUSHION])
         out.update(method="fixed", dt=dt, detection=detection, recheck=bool(recheck))
         return out
 
-    events = (ev_t[:n_ev], ev_kind[:n_ev], ev_i[:n_ev], ev_j[:n_ev])
-    return make_result(balls, table, physics, S, st, events, (hist[:n_hist], hist_ball[:n_hist]), spin, wall,
-                       counters)
+    return make_result(balls, table, physics, scene, log, wall, counters)

@@ -29,8 +29,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .engine import EVENT_KINDS
-from .motion import POCKETED
+from .kinds import BALL_BALL, BALL_BALL_KINDS, BALL_CUSHION, POCKETED
+from .result import SimulationError
+from .simulate import simulate
 
 OVERLAP_TOL = 1e-9  # m
 RAIL_TOL = 1e-9  # m
@@ -39,8 +40,6 @@ MOMENTUM_RTOL = 1e-12  # of the sum of |m v| before and after the instant
 
 KINDS = ("non_finite", "overlap", "off_table", "energy", "momentum", "event_cap", "error", "nondeterministic")
 MOMENTUM_MODELS = ("elastic", "frictional")
-BALL_BALL, BALL_CUSHION = EVENT_KINDS.index("ball_ball"), EVENT_KINDS.index("ball_cushion")
-BALL_BALL_KINDS = [k for k, name in enumerate(EVENT_KINDS) if name.startswith("ball_ball")]
 
 
 class Violation(NamedTuple):
@@ -161,8 +160,6 @@ def run_checked(balls, table, physics, rerun=False, **kwargs):
     """Simulate and check: (result or None, violations). A SimulationError (the event cap)
     becomes an `event_cap` violation and any other exception an `error` one; with rerun, a
     second run must give the same result (`nondeterministic` otherwise)."""
-    from .simulate import SimulationError, simulate
-
     try:
         result = simulate(balls, table, physics, **kwargs)
     except SimulationError as exc:

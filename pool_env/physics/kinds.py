@@ -1,4 +1,4 @@
-"""The ids every module shares: event kinds, motion states, stats counters and loop exit codes.
+"""The ids every module shares: motion states, state-row columns, event kinds, counters, exit codes.
 
 Compiled code dispatches on these integers; Python code names them. Every other module
 imports them from here (never re-derives them with `.index()` or writes the number).
@@ -7,6 +7,9 @@ imports them from here (never re-derives them with `.index()` or writes the numb
 # Motion states of a ball (the state code stored beside each state row).
 STATIONARY, SPINNING, SLIDING, ROLLING, POCKETED = 0, 1, 2, 3, 4
 STATE_NAMES = ("stationary", "spinning", "sliding", "rolling", "pocketed")
+
+# Columns of a ball's state row [x, y, vx, vy, wx, wy, wz, t0] (motion.py explains the row).
+X, Y, VX, VY, WX, WY, WZ, T0 = range(8)
 
 # Event kinds, in the order of their ids (`Result.event_arrays` holds the ids).
 EVENT_KINDS = (

@@ -14,25 +14,18 @@ import math
 import numpy as np
 from numba import njit
 
-# Motion states.
-STATIONARY, SPINNING, SLIDING, ROLLING, POCKETED = 0, 1, 2, 3, 4
-STATE_NAMES = ("stationary", "spinning", "sliding", "rolling", "pocketed")
-
-# Columns of a state row.
-X, Y, VX, VY, WX, WY, WZ, T0 = range(8)
+from .geometry import roll
+from .kinds import ROLLING, SLIDING, SPINNING, STATIONARY, T0, VX, VY, WX, WY, WZ, X, Y
+from .tolerances import EPS_V, EPS_W, GENTLE_TIME, REACH_SLACK
 
 # Indices into the coefficient array built by Physics.as_array().
 P_MU_S, P_MU_R, P_MU_SP, P_G, P_E_B, P_E_C, P_F_C = range(7)
 
-# Speeds (m/s) and spins (rad/s) below these are exact zeros: they are round-off left by a
-# collision or a transition, far below anything physical (the hard-case suite drives balls
-# at 1e-6 m/s, six orders of magnitude above).
-EPS_V = 1e-12
-EPS_W = 1e-10
 
-# A contact that leaves a rolling ball a slip which sliding would remove within this time
-# (s) is gentle: the slide is taken at once (see `reroll`).
-GENTLE_TIME = 1e-5
+@njit(cache=True)
+def moving(state):
+    """True for the states in which a ball's centre moves (sliding or rolling)."""
+    return state == SLIDING or state == ROLLING
 
 
 @njit(cache=True)
@@ -113,8 +106,7 @@ def state_at(row, state, t, radius, params, out):
         out[WX] = row[WX] - k * uy
         out[WY] = row[WY] + k * ux
     elif state == ROLLING:
-        out[WX] = -vy / radius
-        out[WY] = vx / radius
+        roll(out, radius)
     else:
         out[WX] = row[WX]
         out[WY] = row[WY]
@@ -144,8 +136,7 @@ def classify(row, radius):
     if math.hypot(ux, uy) > EPS_V:
         return SLIDING
     if math.hypot(row[VX], row[VY]) > EPS_V:
-        row[WX] = -row[VY] / radius
-        row[WY] = row[VX] / radius
+        roll(row, radius)
         return ROLLING
     row[VX] = row[VY] = row[WX] = row[WY] = 0.0
     if abs(row[WZ]) > EPS_W:
@@ -193,7 +184,7 @@ def reroll(row, radius, params):
     ux, uy = slip(row[VX], row[VY], row[WX], row[WY], radius)
     row[VX] -= ux * 2.0 / 7.0
     row[VY] -= uy * 2.0 / 7.0
-    row[WX], row[WY] = -row[VY] / radius, row[VX] / radius
+    roll(row, radius)
     return True
 
 
@@ -208,14 +199,5 @@ def max_travel(row, state, t, horizon, radius, params):
     if state == ROLLING:
         # Straight-line deceleration: the distance is exact (and the horizon never passes
         # the stop).
-        return max(speed * horizon - 0.5 * acc * horizon * horizon, 0.0) + 1e-12
-    return speed * horizon + 0.5 * acc * horizon * horizon + 1e-12
-
-
-@njit(cache=True)
-def kinetic_energy(row, radius, mass):
-    """Translational plus rotational kinetic energy of a solid ball (J)."""
-    inertia = 0.4 * mass * radius * radius
-    v2 = row[VX] * row[VX] + row[VY] * row[VY]
-    w2 = row[WX] * row[WX] + row[WY] * row[WY] + row[WZ] * row[WZ]
-    return 0.5 * mass * v2 + 0.5 * inertia * w2
+        return max(speed * horizon - 0.5 * acc * horizon * horizon, 0.0) + REACH_SLACK
+    return speed * horizon + 0.5 * acc * horizon * horizon + REACH_SLACK

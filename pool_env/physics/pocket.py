@@ -2,14 +2,16 @@
 
 from numba import njit
 
-from .cushion import point_time
-from .motion import VX, VY, WX, WY, WZ
+from .geometry import distance_entry
+from .kinds import VX, VY, WX, WY, WZ
+from .motion import trajectory
 
 
 @njit(cache=True)
 def capture_time(row, state, t, horizon, radius, params, pocket):
     """Earliest tau in [0, horizon] at which the centre enters pocket [cx, cy, r] (or inf)."""
-    return point_time(row, state, t, horizon, radius, params, pocket[0], pocket[1], pocket[2])
+    x, y, vx, vy, ax, ay = trajectory(row, state, t, radius, params)
+    return distance_entry(x - pocket[0], y - pocket[1], vx, vy, ax, ay, pocket[2], horizon)
 
 
 @njit(cache=True)

@@ -6,7 +6,13 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .motion import POCKETED
+from .bundles import EVENTS, ROWS
+from .engine import sample
+from .kinds import COUNTERS, EVENT_KINDS, POCKETED
+
+
+class SimulationError(RuntimeError):
+    """A simulation hit a limit (the event cap) before every ball came to rest."""
 
 
 class Event(NamedTuple):
@@ -22,13 +28,12 @@ class Event(NamedTuple):
 class Result:
     """The outcome of `simulate`: see `events`, `at`, `sample`, `final`, `duration`, `stats`."""
 
-    def __init__(self, balls, physics, table, event_arrays, history, final, stats, kinds, sampler):
+    def __init__(self, balls, physics, table, event_arrays, history, final, stats, sampler):
         self._balls, self.physics, self.table = balls, physics, table
         self._ev_t, self._ev_kind, self._ev_i, self._ev_j = event_arrays
         self._hist, self._hist_ball = history
         self._final_fn, self._final = final, None
         self._stats_fn, self._stats = stats, None
-        self._kinds = kinds
         self._sampler = sampler
         self._events = None
 
@@ -36,9 +41,8 @@ class Result:
     def events(self) -> list[Event]:
         """All events in time order."""
         if self._events is None:
-            kinds = self._kinds
             self._events = [
-                Event(float(t), kinds[k], int(i), int(j))
+                Event(float(t), EVENT_KINDS[k], int(i), int(j))
                 for t, k, i, j in zip(self._ev_t, self._ev_kind, self._ev_i, self._ev_j)
             ]
         return self._events
@@ -87,15 +91,75 @@ class Result:
 
     def at(self, t: float):
         """The balls at time t (s), exactly (closed form between events)."""
-        from .objects import Balls
-
         t = float(t)
         if not np.isfinite(t) or t < 0:
             raise ValueError(f"time must be finite and >= 0, got {t!r}")
         rows, states = self.sample(np.array([t]))
         row = rows[0]
-        return Balls._trusted(row[:, 0:2].copy(), row[:, 2:4].copy(), row[:, 4:7].copy(),
+        return self._balls._trusted(row[:, 0:2].copy(), row[:, 2:4].copy(), row[:, 4:7].copy(),
                               states[0] == POCKETED, self._balls)
 
     def __repr__(self):
         return f"Result({len(self._ev_t)} events, duration={self.duration:.3f} s)"
+
+
+def make_result(balls, table, physics, scene, log, wall, counters):
+    """Wrap a finished run in a Result: the final state (scene.S, scene.st), the log's events
+    and segment history, the wall time (s) and a callable giving the run's own counters. The
+    final state and the stats are built only when asked for. Shared by the event engine and
+    the fixed-step methods (fixed.py)."""
+    S, st, spin = scene.S, scene.st, scene.spin
+    n_ev, n_hist = int(log.size[EVENTS]), int(log.size[ROWS])
+    events = (log.t[:n_ev], log.kind[:n_ev], log.i[:n_ev], log.j[:n_ev])
+    hist, hist_ball = log.hist[:n_hist], log.hist_ball[:n_hist]
+
+    def final():
+        return balls._trusted(S[:, 0:2].copy(), S[:, 2:4].copy(), S[:, 4:7].copy(), st == POCKETED, balls)
+
+    def stats():
+        by_kind = np.bincount(events[1], minlength=len(EVENT_KINDS))
+        out = {kind: int(c) for kind, c in zip(EVENT_KINDS, by_kind)}
+        out["events"] = n_ev
+        out.update(counters())
+        out["spin_tracked"] = spin
+        out["pockets"] = int(table.pockets.shape[0])
+        out["wall_time"] = wall
+        return out
+
+    def sampler(times):
+        rows = np.empty((times.size, S.shape[0], 8))
+        states = np.empty((times.size, S.shape[0]), dtype=np.int64)
+        sample(hist, hist_ball, S.shape[0], times, balls.radii, scene.params, rows, states)
+        return rows, states
+
+    return Result(balls, physics, table, events, (hist, hist_ball), final, stats, sampler)
+
+
+def engine_counters(log):
+    """The event engine's counters by name (see kinds.COUNTERS)."""
+    return {name: int(c) for name, c in zip(COUNTERS, log.counters)}
+
+
+def cap_message(cap, log, n_ev):
+    """The event-cap error, naming the bodies most involved in the last events."""
+    ev_t, ev_kind, ev_i, ev_j = log.t, log.kind, log.i, log.j
+    recent = slice(max(0, n_ev - 200), n_ev)
+    pairs = {}
+    for k, i, j in zip(ev_kind[recent], ev_i[recent], ev_j[recent]):
+        key = (EVENT_KINDS[k], int(i), int(j))
+        pairs[key] = pairs.get(key, 0) + 1
+    # The event that would have exceeded the cap is stored one past the last.
+    k = int(ev_kind[n_ev])
+    kind, i, j = (EVENT_KINDS[k] if k >= 0 else "motion_transition"), int(ev_i[n_ev]), int(ev_j[n_ev])
+    head = f"simulation exceeded the event cap of {cap} events at t = {ev_t[n_ev]:.6g} s"
+    if not pairs:
+        return f"{head}; the next event was {kind} of {_who(kind, i, j)}"
+    (kind, i, j), count = max(pairs.items(), key=lambda kv: kv[1])
+    return f"{head}; {count} of the last {recent.stop - recent.start} events were {kind} events of {_who(kind, i, j)}"
+
+
+def _who(kind, i, j):
+    """The bodies of an event, in words: "balls 3 and 7", "ball 3 and cushion 5", "ball 3"."""
+    if kind.startswith("ball_ball"):
+        return f"balls {i} and {j}"
+    return f"ball {i}" + (f" and {kind.split('_')[1]} {j}" if j >= 0 else "")

@@ -16,11 +16,7 @@ import math
 import numpy as np
 from numba import njit
 
-_MAX_ITER = 100
-# f within this many min_depths below zero is touching (in contact up to round-off and the
-# engine's sub-nanometre tolerances); deeper is a ball past a rail's line beside a pocket
-# mouth, where the contact is still at f = 0.
-TOUCH_DEPTHS = 10.0
+from .tolerances import ROOT_MAX_ITER, TOUCH_DEPTHS
 
 
 @njit(cache=True)
@@ -57,7 +53,7 @@ def _bracket_root(c0, c1, c2, c3, c4, lo, hi, flo, derivative):
     contact: the gap there is never negative.
     """
     x = 0.5 * (lo + hi)
-    for _ in range(_MAX_ITER):
+    for _ in range(ROOT_MAX_ITER):
         fx, slope = _value_slope(c0, c1, c2, c3, c4, x, derivative)
         if fx == 0.0:
             break

@@ -18,20 +18,13 @@ import math
 import numpy as np
 from numba import njit
 
-from .motion import EPS_V, SLIDING, T0, VX, VY, WX, WY, acceleration, copy_row, slip, state_of, transition_time
+from .geometry import roll
+from .kinds import SLIDING, T0, VX, VY, WX, WY
+from .motion import acceleration, copy_row, slip, state_of, transition_time
+from .tolerances import EPS_V, PRESS_TOL, SETTLE_HEIGHT, SETTLE_OVERLAP
 
 # The functions here are called only from compiled code (no_cpython_wrapper: each wrapper
 # costs cold-compile time, about 0.1 s).
-
-# A contact is pressed if a bounce at its approach speed would rise less than this (m)
-# before the accelerations closed the gap again: a bounce of a tenth of a micron is no
-# bounce at all (it is about the balls' elastic deformation under a light push).
-SETTLE_HEIGHT = 1e-7
-# A pair sunk this deep (m) into each other rolls on together (see `settle`): repeated
-# settles each let it sink up to MIN_DEPTH deeper, so this keeps overlaps below 1 nm.
-SETTLE_OVERLAP = 5e-10
-# Residual pressing weaker than this (m/s^2) is round-off.
-PRESS_TOL = 1e-12
 
 
 @njit(cache=True, no_cpython_wrapper=True)
@@ -75,9 +68,9 @@ def _push(bi, bj, nx, ny, w, s, ri, rj, mi, mj, ki, kj):
     bj[VX] += kj * j * nx / mj
     bj[VY] += kj * j * ny / mj
     if ki != 1.0:
-        bi[WX], bi[WY] = -bi[VY] / ri, bi[VX] / ri
+        roll(bi, ri)
     if kj != 1.0:
-        bj[WX], bj[WY] = -bj[VY] / rj, bj[VX] / rj
+        roll(bj, rj)
     return 0.5 * (s * s - w * w) / inv
 
 
@@ -232,8 +225,8 @@ def _roll_together(bi, bj, ri, rj, mi, mj):
     vx = (mi * vix + mj * vjx) / (mi + mj)
     vy = (mi * viy + mj * vjy) / (mi + mj)
     bi[VX], bi[VY], bj[VX], bj[VY] = vx, vy, vx, vy
-    bi[WX], bi[WY] = -vy / ri, vx / ri
-    bj[WX], bj[WY] = -vy / rj, vx / rj
+    roll(bi, ri)
+    roll(bj, rj)
 
 
 @njit(cache=True, no_cpython_wrapper=True)
@@ -277,7 +270,7 @@ def roll_group(S, R, M, ca, cb, n_c, walls, wall_ball, n_walls):
         for k in range(n):
             if label[k] == pack:
                 S[k, VX], S[k, VY] = vx, vy
-                S[k, WX], S[k, WY] = -vy / R[k], vx / R[k]
+                roll(S[k], R[k])
 
 
 @njit(cache=True, no_cpython_wrapper=True)

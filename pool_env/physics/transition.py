@@ -2,18 +2,24 @@
 
 from numba import njit
 
-from .motion import ROLLING, SLIDING, SPINNING, VX, VY, WX, WY, WZ, classify
-
-# Event-kind ids (see engine.EVENT_KINDS).
-SLIDING_ROLLING, ROLLING_SPINNING, ROLLING_STATIONARY, SPINNING_STATIONARY = 3, 4, 5, 6
-SLIDING_STATIONARY, SLIDING_SPINNING = 7, 8
-
-
-@njit(cache=True)
-def sliding_to_rolling(row, radius):
-    """The slip has just vanished: lock the spin to the velocity (removes round-off)."""
-    row[WX] = -row[VY] / radius
-    row[WY] = row[VX] / radius
+from .geometry import roll
+from .kinds import (
+    ROLLING,
+    ROLLING_SPINNING,
+    ROLLING_STATIONARY,
+    SLIDING,
+    SLIDING_ROLLING,
+    SLIDING_SPINNING,
+    SLIDING_STATIONARY,
+    SPINNING,
+    SPINNING_STATIONARY,
+    VX,
+    VY,
+    WX,
+    WY,
+    WZ,
+)
+from .motion import classify
 
 
 @njit(cache=True)
@@ -23,16 +29,12 @@ def rolling_to_rest(row):
 
 
 @njit(cache=True)
-def spinning_to_rest(row):
-    row[WZ] = 0.0
-
-
-@njit(cache=True)
 def resolve(row, state, radius):
     """Apply the transition due for a ball in `state` (its row already at the event time);
-    returns the event-kind id."""
+    returns the event-kind id. Sliding to rolling: the slip has just vanished, so the spin is
+    locked to the velocity (which removes round-off)."""
     if state == SLIDING:
-        sliding_to_rolling(row, radius)
+        roll(row, radius)
         new = classify(row, radius)
         if new == ROLLING:
             return SLIDING_ROLLING
@@ -40,5 +42,5 @@ def resolve(row, state, radius):
     if state == ROLLING:
         rolling_to_rest(row)
         return ROLLING_SPINNING if classify(row, radius) == SPINNING else ROLLING_STATIONARY
-    spinning_to_rest(row)
+    row[WZ] = 0.0
     return SPINNING_STATIONARY

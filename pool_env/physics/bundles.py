@@ -1,0 +1,139 @@
+"""The compiled engine's bundles: the scene, the table's arrays, the event log, the schedule, scratch.
+
+Numba passes a namedtuple of arrays as one argument, so no compiled function needs more than
+about ten parameters. Each bundle's fields are listed with their shapes; N is the number of
+balls.
+"""
+
+from collections import namedtuple
+
+import numpy as np
+from numba import njit
+
+from .config import BALL_BALL_MODELS, CUSHION_MODELS
+from .kinds import BUFFER_FULL, DONE, EVENT_CAP, POCKETED
+
+Scene = namedtuple("Scene", ["S", "st", "R", "M", "params", "bb_model", "cu_model", "spin"])
+Scene.__doc__ = """The balls and the physics: S (N, 8) state rows [x, y, vx, vy, wx, wy, wz, t0] and st (N,)
+motion states, both updated in place; R, M (N,) radii and masses; params the coefficients
+(motion.P_*); bb_model, cu_model the collision-model ids; spin: z-spin tracked."""
+
+Bounds = namedtuple("Bounds", ["rails", "jaws", "jaw_pockets", "pockets", "height", "length", "width"])
+Bounds.__doc__ = """The table: rails (K, 6) [x1, y1, x2, y2, nx, ny]; jaws (J, 2) jaw points and jaw_pockets (J,)
+the pocket each belongs to; pockets (P, 3) capture circles [x, y, r]; the cushion nose height,
+length and width of the playing area (m)."""
+
+Log = namedtuple("Log", ["t", "kind", "i", "j", "hist", "hist_ball", "counters", "size"])
+Log.__doc__ = """What a run writes: events (t, kind, i, j: (E,) each), state segments (hist (H, 9): a state
+row and its state code, hist_ball (H,) whose row), the method's counters, and size = [events
+written, history rows written, event cap, exit code]."""
+EVENTS, ROWS, CAP, CODE = range(4)
+
+Schedule = namedtuple("Schedule", ["t_tr", "t_cu", "cu_id", "t_po", "po_id", "pair", "met", "bb_t", "cl_t"])
+Schedule.__doc__ = """Every ball's next predicted events (absolute times, inf for none): t_tr (N,) motion
+transition; t_cu, cu_id (N,) cushion contact and cushion id (rails first, then jaw points);
+t_po, po_id (N,) pocket capture and pocket id; pair (N, N) ball-ball contacts. And the
+memory of simultaneous contacts: met (N, N) when each pair last met, bb_t (N,) when each ball
+last met another, cl_t (N,) when each ball was last in a cluster solve."""
+
+Work = namedtuple("Work", ["ca", "cb", "impulse", "member", "queue", "G", "walls", "wall_ball", "cids", "touched",
+                           "rec_a", "rec_b", "row", "done"])
+Work.__doc__ = """Scratch space: the pairs of a contact group (ca, cb (N^2,), impulse (N^2,) their normal
+impulses), its balls (member (N,) flags, queue (N,) ids) and their rows at the contact (G
+(N, 8)); the cushions touched by a pack or a ball (walls (8, 2) inward normals, wall_ball
+(8,) the ball touching each, cids (3,) cushion ids); the balls an event touched (touched
+(N,)) and the pairs it records (rec_a, rec_b (N^2,)); one state row (row (8,)); and done
+(N,), the balls already re-predicted."""
+
+
+@njit(cache=True)
+def new_schedule(n):
+    """Nothing predicted yet, no ball has met another."""
+    inf = np.inf
+    return Schedule(np.full(n, inf), np.full(n, inf), np.full(n, -1), np.full(n, inf), np.full(n, -1),
+                    np.full((n, n), inf), np.full((n, n), -inf), np.full(n, -inf), np.full(n, -inf))
+
+
+@njit(cache=True)
+def new_work(n):
+    """Scratch space for N balls."""
+    return Work(np.empty(n * n, dtype=np.int64), np.empty(n * n, dtype=np.int64), np.empty(n * n),
+                np.zeros(n, dtype=np.bool_), np.empty(n, dtype=np.int64), np.empty((n, 8)), np.empty((8, 2)),
+                np.empty(8, dtype=np.int64), np.empty(3, dtype=np.int64), np.empty(n, dtype=np.int64),
+                np.empty(n * n, dtype=np.int64), np.empty(n * n, dtype=np.int64), np.empty(8),
+                np.zeros(n, dtype=np.bool_))
+
+
+def new_log(n_events, n_rows, cap, n_counters):
+    """An empty log with room for n_events events (plus one: the event over the cap is kept
+    for the error message) and n_rows history rows."""
+    ids = np.empty((3, n_events + 1), dtype=np.int64)
+    size = np.array([0, 0, cap, DONE], dtype=np.int64)
+    return Log(np.empty(n_events + 1), ids[0], ids[1], ids[2], np.empty((n_rows, 9)),
+               np.empty(n_rows, dtype=np.int64), np.zeros(n_counters, dtype=np.int64), size)
+
+
+@njit(cache=True)
+def record_row(log, S, st, i):
+    """Append ball i's current row and state to the history (BUFFER_FULL if there is no room)."""
+    h = log.size[ROWS]
+    if h >= log.hist.shape[0]:
+        log.size[CODE] = BUFFER_FULL
+        return
+    for c in range(8):
+        log.hist[h, c] = S[i, c]
+    log.hist[h, 8] = st[i]
+    log.hist_ball[h] = i
+    log.size[ROWS] = h + 1
+
+
+@njit(cache=True)
+def record_event(log, t, kind, i, j):
+    """Append an event. Past the event cap the exit code becomes EVENT_CAP (the event is still
+    kept if there is room: the error message names it); with no room, BUFFER_FULL."""
+    e = log.size[EVENTS]
+    if e >= log.size[CAP]:
+        log.size[CODE] = EVENT_CAP
+    if e >= log.t.shape[0]:
+        if log.size[CODE] == DONE:
+            log.size[CODE] = BUFFER_FULL
+        return
+    log.t[e], log.kind[e], log.i[e], log.j[e] = t, kind, i, j
+    log.size[EVENTS] = e + 1
+
+
+def default_event_cap(n_balls: int) -> int:
+    """Generous: a break takes about 100 events; a chattering pair would take thousands."""
+    return 10_000 + 1_000 * n_balls
+
+
+@njit(cache=True)
+def _pack(xy, v, w, pocketed):
+    """The state rows [x, y, vx, vy, wx, wy, wz, t0 = 0], state codes (pocketed, or 0 until
+    the run classifies them), and whether any ball has z-spin."""
+    n = xy.shape[0]
+    S = np.zeros((n, 8))
+    st = np.zeros(n, dtype=np.int64)
+    any_z_spin = False
+    for i in range(n):
+        S[i, 0], S[i, 1], S[i, 2], S[i, 3] = xy[i, 0], xy[i, 1], v[i, 0], v[i, 1]
+        S[i, 4], S[i, 5], S[i, 6] = w[i, 0], w[i, 1], w[i, 2]
+        any_z_spin = any_z_spin or w[i, 2] != 0.0
+        if pocketed[i]:
+            st[i] = POCKETED
+    return S, st, any_z_spin
+
+
+def prepare(balls, table, physics, max_events):
+    """What every simulation method starts from: the Scene (its S and st the initial state:
+    copy them before a run, which works in place), the table's Bounds and the event cap."""
+    cap = default_event_cap(len(balls)) if max_events is None else int(max_events)
+    if cap < 0:
+        raise ValueError(f"max_events must be >= 0, got {max_events!r}")
+    S0, st0, any_z_spin = _pack(balls.xy, balls.v, balls.w, balls.pocketed)
+    spin = bool(physics.spin and (any_z_spin or physics.can_create_spin()))
+    scene = Scene(S0, st0, balls.radii, balls.masses, physics.as_array(), BALL_BALL_MODELS.index(physics.ball_ball),
+                  CUSHION_MODELS.index(physics.cushion), spin)
+    bounds = Bounds(table.rails, table.jaws, table.jaw_pockets, table.pockets, float(table.cushion_height),
+                    float(table.length), float(table.width))
+    return scene, bounds, cap

@@ -1,0 +1,131 @@
+"""Prediction: each ball's next transition, cushion, pocket and ball-ball contact times.
+
+Cost per event is O(N): only the balls an event touched are re-predicted, against every
+other ball, and pairs that cannot meet before either ball's next transition are rejected by
+a distance bound (`out_of_reach`) before any polynomial is set up.
+"""
+
+import math
+
+import numpy as np
+from numba import njit
+
+from . import cushion, pocket
+from .geometry import distance_entry, rail_gap
+from .kinds import C_BB, C_BB_REJ, C_CU, C_CU_REJ, C_PO, C_PO_REJ, C_REST, C_TR, POCKETED
+from .motion import max_travel, moving, trajectory, transition_time
+from .tolerances import PARALLEL_SINE, REACH_SLACK
+
+
+@njit(cache=True)
+def out_of_reach(d, dv, da, horizon, reach):
+    """True if the path d(tau) = d + dv tau + da tau^2 / 2 (2-vectors as tuples), tau in
+    [0, horizon], stays farther than `reach` from the origin: the broad phase that spares
+    most quartics.
+
+    The path lies within |da| horizon^2 / 8 (the parabola's sagitta) of its chord from d(0)
+    to d(horizon), so if the chord clears reach + sagitta so does the path. A straight
+    decelerating path that does not reverse (a rolling ball against a resting one) is its
+    own chord.
+    """
+    dx, dy = d
+    dvx, dvy = dv
+    dax, day = da
+    ex = dx + dvx * horizon + 0.5 * dax * horizon * horizon
+    ey = dy + dvy * horizon + 0.5 * day * horizon * horizon
+    cx, cy = ex - dx, ey - dy
+    span = cx * cx + cy * cy
+    u = 0.0 if span == 0.0 else min(max(-(dx * cx + dy * cy) / span, 0.0), 1.0)
+    gap = math.hypot(dx + u * cx, dy + u * cy) - reach
+    acc = math.hypot(dax, day)
+    if acc == 0.0:
+        return gap > 0.0
+    straight = abs(dvx * day - dvy * dax) <= PARALLEL_SINE * acc * math.hypot(dvx, dvy) and (
+        (dvx + dax * horizon) * dvx + (dvy + day * horizon) * dvy >= 0.0)
+    sagitta = 0.0 if straight else 0.125 * acc * horizon * horizon
+    return gap > sagitta + REACH_SLACK
+
+
+@njit(cache=True)
+def pair_time(scene, sched, i, k, now, counters):
+    """Absolute time of the next contact of balls i and k (inf if none before either's next
+    transition)."""
+    S, st, R, params = scene.S, scene.st, scene.R, scene.params
+    if not (moving(st[i]) or moving(st[k])) or st[i] == POCKETED or st[k] == POCKETED:
+        counters[C_REST] += 1
+        return np.inf
+    horizon = max(min(sched.t_tr[i], sched.t_tr[k]) - now, 0.0)
+    xi, yi, vxi, vyi, axi, ayi = trajectory(S[i], st[i], now, R[i], params)
+    xk, yk, vxk, vyk, axk, ayk = trajectory(S[k], st[k], now, R[k], params)
+    dx, dy, dvx, dvy, dax, day = xk - xi, yk - yi, vxk - vxi, vyk - vyi, axk - axi, ayk - ayi
+    reach = R[i] + R[k]
+    if out_of_reach((dx, dy), (dvx, dvy), (dax, day), horizon, reach):
+        counters[C_BB_REJ] += 1
+        return np.inf
+    counters[C_BB] += 1
+    return now + distance_entry(dx, dy, dvx, dvy, dax, day, reach, horizon)
+
+
+@njit(cache=True)
+def boundary_times(scene, bounds, sched, i, now, counters):
+    """Ball i's next rail or jaw contact (into sched.t_cu, cu_id; jaws numbered after rails)
+    and next pocket capture (sched.t_po, po_id)."""
+    S, st, R, params = scene.S, scene.st, scene.R, scene.params
+    rails, jaws, pockets = bounds.rails, bounds.jaws, bounds.pockets
+    t_cu, cu = np.inf, -1
+    t_po, po = np.inf, -1
+    if moving(st[i]):
+        r = R[i]
+        horizon = max(sched.t_tr[i] - now, 0.0)
+        travel = max_travel(S[i], st[i], now, horizon, r, params)
+        x, y, vx, vy, ax, ay = trajectory(S[i], st[i], now, r, params)
+        for c in range(rails.shape[0]):
+            if rail_gap(rails[c], x, y, r) > travel:
+                counters[C_CU_REJ] += 1
+                continue
+            counters[C_CU] += 1
+            t = now + cushion.rail_time(S[i], st[i], now, horizon, r, params, rails[c])
+            if t < t_cu:
+                t_cu, cu = t, c
+        for k in range(pockets.shape[0]):
+            # A pocket's jaw points lie on its capture circle: a ball that cannot come within
+            # (capture radius + R) of the centre meets neither the pocket nor its jaws.
+            px, py = pockets[k, 0], pockets[k, 1]
+            if out_of_reach((x - px, y - py), (vx, vy), (ax, ay), horizon, pockets[k, 2] + r):
+                counters[C_PO_REJ] += 1
+                continue
+            counters[C_PO] += 1
+            t = now + pocket.capture_time(S[i], st[i], now, horizon, r, params, pockets[k])
+            if t < t_po:
+                t_po, po = t, k
+            for p in range(jaws.shape[0]):
+                if bounds.jaw_pockets[p] != k:
+                    continue
+                counters[C_CU] += 1
+                t = now + cushion.point_time(S[i], st[i], now, horizon, r, params, jaws[p, 0], jaws[p, 1], r)
+                if t < t_cu:
+                    t_cu, cu = t, rails.shape[0] + p
+    sched.t_cu[i], sched.cu_id[i], sched.t_po[i], sched.po_id[i] = t_cu, cu, t_po, po
+
+
+@njit(cache=True)
+def predict(scene, bounds, sched, work, n_touched, now, counters):
+    """Predict the next events of the balls work.touched[:n_touched], each against every ball
+    not predicted before it: at the start every ball (each pair once), after an event the
+    balls it touched. Transitions first: a pair's horizon is the earlier of the two."""
+    S, st, R, params = scene.S, scene.st, scene.R, scene.params
+    touched, done = work.touched, work.done
+    n = S.shape[0]
+    for m in range(n_touched):
+        i = touched[m]
+        counters[C_TR] += 1
+        sched.t_tr[i] = transition_time(S[i], st[i], R[i], params)
+    for k in range(n):
+        done[k] = False
+    for m in range(n_touched):
+        i = touched[m]
+        done[i] = True
+        boundary_times(scene, bounds, sched, i, now, counters)
+        for k in range(n):
+            if not done[k]:
+                sched.pair[i, k] = sched.pair[k, i] = pair_time(scene, sched, i, k, now, counters)
