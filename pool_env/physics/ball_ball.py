@@ -8,10 +8,10 @@ engine picks one by its id (`BALL_BALL_MODELS` in config.py gives the names).
 import math
 
 import numpy as np
-from numba import njit
 
 from .config import BALL_BALL_MODELS
 from .geometry import roll
+from .jit import allocating_helper, helper, kernel
 from .kinds import SLIDING, VX, VY, WX, WY, WZ, X, Y
 from .motion import P_E_B, is_gentle, reroll, state_of
 from .settle import pressed, settle
@@ -26,7 +26,7 @@ SEED, ELASTIC, FRICTIONAL = (BALL_BALL_MODELS.index(name) for name in ("seed", "
 ALCIATORE_A, ALCIATORE_B, ALCIATORE_C = 9.951e-3, 0.108, 1.088
 
 
-@njit(cache=True)
+@kernel
 def _normal_impulse(bi, bj, nx, ny, mi, mj, e):
     """Apply the restitution impulse along n; returns its magnitude (0 if not approaching)."""
     approach = (bi[VX] - bj[VX]) * nx + (bi[VY] - bj[VY]) * ny
@@ -40,7 +40,7 @@ def _normal_impulse(bi, bj, nx, ny, mi, mj, e):
     return jn
 
 
-@njit(cache=True)
+@kernel
 def seed(bi, bj, nx, ny, ri, rj, mi, mj, params):
     """The report's model (its eq. 3.4 and code listing 5): normal components exchanged by the
     1-D elastic formula, then scaled by e; tangential components kept; no spin transfer, and
@@ -60,20 +60,20 @@ def seed(bi, bj, nx, ny, ri, rj, mi, mj, params):
     _roll(bj, rj)
 
 
-@njit(cache=True)
+@kernel
 def _roll(b, r):
     """Set the spin of a ball to rolling without slipping at its current velocity."""
     roll(b, r)
     b[WZ] = 0.0
 
 
-@njit(cache=True)
+@kernel
 def elastic(bi, bj, nx, ny, ri, rj, mi, mj, params):
     """Frictionless contact: restitution e_b along the line of centres, spins untouched."""
     _normal_impulse(bi, bj, nx, ny, mi, mj, params[P_E_B])
 
 
-@njit(cache=True)
+@kernel
 def frictional(bi, bj, nx, ny, ri, rj, mi, mj, params):
     """Restitution e_b along n plus Coulomb friction at the contact point with Alciatore's
     speed-dependent coefficient: gives cut-induced throw and spin transfer.
@@ -92,7 +92,7 @@ def frictional(bi, bj, nx, ny, ri, rj, mi, mj, params):
     _apply_friction(bi, bj, nx, ny, ri, rj, mi, mj, p_t, p_z)
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def _friction(bi, bj, nx, ny, ri, rj, mi, mj, jn, alpha):
     """The friction impulse (P_t, P_z) on ball i for normal impulse jn (see `frictional`),
     with the effective inverse masses scaled by alpha >= 1 (1 for a lone contact)."""
@@ -112,7 +112,7 @@ def _friction(bi, bj, nx, ny, ri, rj, mi, mj, jn, alpha):
     return p_t, p_z
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def _apply_friction(bi, bj, nx, ny, ri, rj, mi, mj, p_t, p_z):
     # Ball i: dv = P_t t / m, dw = R (P_t z - P_z t) / I; ball j gets the opposite impulse
     # at -R n, which turns its spin the same way.
@@ -127,7 +127,7 @@ def _apply_friction(bi, bj, nx, ny, ri, rj, mi, mj, p_t, p_z):
     _spin_kick(bj, rj / ij, p_t, p_z, tx, ty)
 
 
-@njit(cache=True)
+@kernel
 def _spin_kick(b, r_over_i, p_t, p_z, tx, ty):
     """dw = (R / I) (P_t z - P_z t): the friction impulse's moment about the centre."""
     b[WX] -= r_over_i * p_z * tx
@@ -135,7 +135,7 @@ def _spin_kick(b, r_over_i, p_t, p_z, tx, ty):
     b[WZ] += r_over_i * p_t
 
 
-@njit(cache=True)
+@kernel
 def resolve(model, bi, bj, ri, rj, mi, mj, params):
     """Apply ball-ball model `model` to two touching balls (rows at the contact time), or
     settle them if the contact is a pressed one (settle.pressed). A ball rolling before a
@@ -164,7 +164,7 @@ def resolve(model, bi, bj, ri, rj, mi, mj, params):
 
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@allocating_helper
 def resolve_group(model, S, R, M, params, pairs, n_c, e, normal_only):
     """Resolve the contacts c = (pairs.ca[c], pairs.cb[c]), c < n_c, all at once (rows of S
     at the contact time); pairs.impulse[c] gets each contact's normal impulse. True if the
@@ -241,7 +241,7 @@ def resolve_group(model, S, R, M, params, pairs, n_c, e, normal_only):
     return cloth
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def _poisson(S, M, pairs, n_c, nx, ny, deg, response, p):
     """Projected Gauss-Seidel for the compression impulses p >= 0 (see resolve_group); ball
     k's velocity answers an impulse J with response[k] J / M[k]."""
@@ -269,7 +269,7 @@ def _poisson(S, M, pairs, n_c, nx, ny, deg, response, p):
             return
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def _seed_group(S, R, pairs, n_c, e, nx, ny, deg):
     """The seed model's part of resolve_group (after the elastic normal impulses): each
     ball's velocity along its contact normals scaled by e, then the ball left rolling."""
@@ -294,7 +294,7 @@ def _seed_group(S, R, pairs, n_c, e, nx, ny, deg):
         _roll(S[k], R[k])
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@allocating_helper
 def _friction_group(S, R, M, pairs, n_c, nx, ny, deg):
     """The frictional model's part of resolve_group: every contact's friction impulse from
     the same post-impact state (inverse masses scaled by the contact's larger degree)."""

@@ -8,9 +8,9 @@ balls.
 from collections import namedtuple
 
 import numpy as np
-from numba import njit
 
 from .config import BALL_BALL_MODELS, CUSHION_MODELS
+from .jit import allocating, kernel
 from .kinds import BUFFER_FULL, DONE, EVENT_CAP, POCKETED
 
 Scene = namedtuple("Scene", ["S", "st", "R", "M", "params", "bb_model", "cu_model", "spin"])
@@ -37,16 +37,16 @@ memory of simultaneous contacts: met (N, N) when each pair last met, bb_t (N,) w
 last met another, cl_t (N,) when each ball was last in a cluster solve."""
 
 Work = namedtuple("Work", ["ca", "cb", "impulse", "member", "queue", "G", "walls", "wall_ball", "cids", "touched",
-                           "rec_a", "rec_b", "row", "done"])
+                           "rec_a", "rec_b", "row", "pair_rows", "done"])
 Work.__doc__ = """Scratch space: the pairs of a contact group (ca, cb (N^2,), impulse (N^2,) their normal
 impulses), its balls (member (N,) flags, queue (N,) ids) and their rows at the contact (G
 (N, 8)); the cushions touched by a pack or a ball (walls (8, 2) inward normals, wall_ball
 (8,) the ball touching each, cids (3,) cushion ids); the balls an event touched (touched
-(N,)) and the pairs it records (rec_a, rec_b (N^2,)); one state row (row (8,)); and done
-(N,), the balls already re-predicted."""
+(N,)) and the pairs it records (rec_a, rec_b (N^2,)); state rows (row (8,), pair_rows
+(2, 8)); and done (N,), the balls already re-predicted."""
 
 
-@njit(cache=True)
+@allocating
 def new_schedule(n):
     """Nothing predicted yet, no ball has met another."""
     inf = np.inf
@@ -54,13 +54,13 @@ def new_schedule(n):
                     np.full((n, n), inf), np.full((n, n), -inf), np.full(n, -inf), np.full(n, -inf))
 
 
-@njit(cache=True)
+@allocating
 def new_work(n):
     """Scratch space for N balls."""
     return Work(np.empty(n * n, dtype=np.int64), np.empty(n * n, dtype=np.int64), np.empty(n * n),
                 np.zeros(n, dtype=np.bool_), np.empty(n, dtype=np.int64), np.empty((n, 8)), np.empty((8, 2)),
                 np.empty(8, dtype=np.int64), np.empty(3, dtype=np.int64), np.empty(n, dtype=np.int64),
-                np.empty(n * n, dtype=np.int64), np.empty(n * n, dtype=np.int64), np.empty(8),
+                np.empty(n * n, dtype=np.int64), np.empty(n * n, dtype=np.int64), np.empty(8), np.empty((2, 8)),
                 np.zeros(n, dtype=np.bool_))
 
 
@@ -73,7 +73,7 @@ def new_log(n_events, n_rows, cap, n_counters):
                np.empty(n_rows, dtype=np.int64), np.zeros(n_counters, dtype=np.int64), size)
 
 
-@njit(cache=True)
+@kernel
 def record_row(log, S, st, i):
     """Append ball i's current row and state to the history (BUFFER_FULL if there is no room)."""
     h = log.size[ROWS]
@@ -87,7 +87,7 @@ def record_row(log, S, st, i):
     log.size[ROWS] = h + 1
 
 
-@njit(cache=True)
+@kernel
 def record_event(log, t, kind, i, j):
     """Append an event. Past the event cap the exit code becomes EVENT_CAP (the event is still
     kept if there is room: the error message names it); with no room, BUFFER_FULL."""
@@ -107,7 +107,7 @@ def default_event_cap(n_balls: int) -> int:
     return 10_000 + 1_000 * n_balls
 
 
-@njit(cache=True)
+@allocating
 def _pack(xy, v, w, pocketed):
     """The state rows [x, y, vx, vy, wx, wy, wz, t0 = 0], state codes (pocketed, or 0 until
     the run classifies them), and whether any ball has z-spin."""

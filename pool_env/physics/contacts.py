@@ -18,10 +18,10 @@ Tolerances (GROUP_WINDOW, LOOP_WINDOW, TOUCH_GAP) are explained in tolerances.py
 import math
 
 import numpy as np
-from numba import njit
 
 from . import ball_ball, cushion, settle
 from .geometry import alongside, point_normal, rail_gap
+from .jit import allocating_helper, helper
 from .kinds import BALL_BALL_SETTLE, POCKETED, VX, VY, X, Y
 from .motion import P_E_B, copy_row, state_at, trajectory
 from .tolerances import GROUP_WINDOW, LOOP_WINDOW, MIN_APPROACH, TOUCH_GAP
@@ -29,12 +29,11 @@ from .tolerances import GROUP_WINDOW, LOOP_WINDOW, MIN_APPROACH, TOUCH_GAP
 LONE, GROUP, CLUSTER, PACK, SETTLES = 0, 1, 2, 3, 4
 
 
-@njit(cache=True, no_cpython_wrapper=True)
-def _pressed(scene, now, i, k):
+@helper
+def _pressed(scene, work, now, i, k):
     """True if the contact of balls i and k at `now` is a pressed one (settle.pressed)."""
     S, st, R, params = scene.S, scene.st, scene.R, scene.params
-    ri = np.empty(8)
-    rk = np.empty(8)
+    ri, rk = work.pair_rows[0], work.pair_rows[1]
     state_at(S[i], st[i], now, R[i], params, ri)
     state_at(S[k], st[k], now, R[k], params, rk)
     dx, dy = rk[X] - ri[X], rk[Y] - ri[Y]
@@ -42,7 +41,7 @@ def _pressed(scene, now, i, k):
     return settle.pressed(ri, rk, dx / d, dy / d, R[i], R[k], params)
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def _touching(scene, now, a, k):
     S, st, R, params = scene.S, scene.st, scene.R, scene.params
     xa, ya, _, _, _, _ = trajectory(S[a], st[a], now, R[a], params)
@@ -50,7 +49,7 @@ def _touching(scene, now, a, k):
     return math.hypot(xk - xa, yk - ya) - R[a] - R[k] <= TOUCH_GAP
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def _listed(work, n_c, a, b):
     for c in range(n_c):
         if work.ca[c] == a and work.cb[c] == b:
@@ -58,7 +57,7 @@ def _listed(work, n_c, a, b):
     return False
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def _add_pair(work, n_c, tail, a, k):
     """List the pair (a, k) and enqueue whichever of its balls is not a member yet."""
     work.ca[n_c], work.cb[n_c] = a, k
@@ -70,7 +69,7 @@ def _add_pair(work, n_c, tail, a, k):
     return n_c + 1, tail
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def _touches_cushion(scene, bounds, now, b):
     """True if ball b touches a rail or a jaw point (within TOUCH_GAP) at `now`."""
     S, st, R = scene.S, scene.st, scene.R
@@ -85,7 +84,7 @@ def _touches_cushion(scene, bounds, now, b):
     return False
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def _grow(scene, sched, work, now, tail, n_c, pressed):
     """Add to the members, through chains, every ball linked to a member it touches: pressed
     against it (settle.pressed) if `pressed`, else having met another ball at `now` (within
@@ -100,7 +99,7 @@ def _grow(scene, sched, work, now, tail, n_c, pressed):
                 continue
             if not _touching(scene, now, a, k):
                 continue
-            if pressed and not _pressed(scene, now, min(a, k), max(a, k)):
+            if pressed and not _pressed(scene, work, now, min(a, k), max(a, k)):
                 continue
             member[k] = True
             queue[tail] = k
@@ -110,7 +109,7 @@ def _grow(scene, sched, work, now, tail, n_c, pressed):
     return tail, n_c
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def gather(scene, bounds, sched, work, now, bi, bj):
     """The contacts to resolve with the ball-ball event (bi, bj) at `now`: (count, mode), the
     pairs in work.ca/cb (the event's own first), the balls in work.queue when grouped."""
@@ -119,12 +118,12 @@ def gather(scene, bounds, sched, work, now, bi, bj):
     work.ca[0], work.cb[0] = bi, bj
     work.member[bi] = work.member[bj] = True
     work.queue[0], work.queue[1] = bi, bj
-    if _pressed(scene, now, bi, bj):
+    if _pressed(scene, work, now, bi, bj):
         return _gather_pressed(scene, bounds, sched, work, now)
     return _gather_group(scene, sched, work, now, bi, bj)
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def _gather_pressed(scene, bounds, sched, work, now):
     """A pressed contact, with every other pressed contact predicted within GROUP_WINDOW:
     SETTLES (each settled on its own), unless one of their balls is also pressed against a
@@ -137,7 +136,7 @@ def _gather_pressed(scene, bounds, sched, work, now):
     for a in range(n):
         for k in range(a + 1, n):
             if sched.pair[a, k] <= now + GROUP_WINDOW and not _listed(work, n_c, a, k) and \
-                    _pressed(scene, now, a, k):
+                    _pressed(scene, work, now, a, k):
                 n_c, tail = _add_pair(work, n_c, tail, a, k)
     alone = 2 * n_c == tail  # no ball in two of them
     for c in range(n_c):
@@ -152,7 +151,7 @@ def _gather_pressed(scene, bounds, sched, work, now):
     return n_c, PACK
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def _gather_group(scene, sched, work, now, bi, bj):
     """Every contact predicted within GROUP_WINDOW, linked to this one or not: independent
     contacts commute, but resolved one per step, a contact the first one creates (a ball
@@ -165,7 +164,7 @@ def _gather_group(scene, sched, work, now, bi, bj):
         for k in range(a + 1, n):
             if not (sched.pair[a, k] <= now + GROUP_WINDOW) or _listed(work, n_c, a, k):
                 continue
-            if _pressed(scene, now, a, k):
+            if _pressed(scene, work, now, a, k):
                 continue
             n_c, tail = _add_pair(work, n_c, tail, a, k)
     loop = False
@@ -176,7 +175,7 @@ def _gather_group(scene, sched, work, now, bi, bj):
     return _cluster(scene, sched, work, now, n_c, bi, bj), CLUSTER
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@allocating_helper
 def _cluster(scene, sched, work, now, n_c, bi, bj):
     """Grow the cluster from the linked groups of pairs that loop (the others wait their
     turn) and list every touching pair among its balls, the event's own pair first."""
@@ -209,7 +208,7 @@ def _cluster(scene, sched, work, now, n_c, bi, bj):
     return n_c
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def _walls(scene, bounds, work, n_c):
     """Inward normals (into work.walls, at most 8) of the rails and jaw points touched,
     within TOUCH_GAP, by the balls of the pairs (rows in work.G at the contact time), and the
@@ -235,7 +234,7 @@ def _walls(scene, bounds, work, n_c):
     return n_walls
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def _solve_group(scene, bounds, sched, work, now, n_c, mode):
     """Resolve the gathered contacts together on copies of the rows (work.G at `now`);
     True if the cloth took part (a settle, a pack, or a gentle contact)."""
@@ -266,7 +265,7 @@ def _solve_group(scene, bounds, sched, work, now, n_c, mode):
     return ball_ball.resolve_group(scene.bb_model, G, R, M, params, work, n_c, e, mode == CLUSTER)
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def _keep(work, n_c, mode):
     """The pairs a group solve records (the event's own, and those that took an impulse; all
     of a settle's or a pack's) into work.rec_a/rec_b, and their balls into work.touched;
@@ -286,7 +285,7 @@ def _keep(work, n_c, mode):
     return n_rec, n_touched
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def resolve_ball_ball(scene, bounds, sched, work, now, bi, bj, kind):
     """Resolve the ball-ball event (bi, bj) at `now` with the contacts simultaneous with it.
     Returns (event kind, pairs recorded, balls touched) and whether the group's rows wait in
@@ -308,7 +307,7 @@ def resolve_ball_ball(scene, bounds, sched, work, now, bi, bj, kind):
     return kind, 1, 2, False
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def remember_meetings(sched, work, n_rec, now):
     """Note when the recorded pairs met (the cascade detection of `gather`)."""
     for m in range(n_rec):
@@ -317,7 +316,7 @@ def remember_meetings(sched, work, n_rec, now):
         sched.bb_t[a] = sched.bb_t[b] = now
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def _cushion_normal(row, bounds, c):
     """Inward normal of cushion c (rails first, then jaw points) at a ball's row."""
     rails, jaws = bounds.rails, bounds.jaws
@@ -328,7 +327,7 @@ def _cushion_normal(row, bounds, c):
     return nx, ny
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def cushion_contacts(row, r, params, bounds, first, work):
     """The cushions a ball meets at once (row at the contact time): cushion `first`, then
     every other rail or jaw point it touches within TOUCH_GAP and approaches faster than
@@ -361,7 +360,7 @@ def cushion_contacts(row, r, params, bounds, first, work):
     return n_c
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def resolve_cushions(scene, bounds, work, ball, n_c):
     """Apply the cushion model to a ball meeting the n_c cushions found by cushion_contacts."""
     S, R, params = scene.S, scene.R, scene.params

@@ -10,10 +10,10 @@ objects.py and result.py, and simulate.py connects the two.
 """
 
 import numpy as np
-from numba import njit
 
 from . import contacts, pocket, transition
 from .bundles import CAP, CODE, EVENTS, ROWS, new_schedule, new_work, record_event, record_row
+from .jit import allocating, kernel
 from .kinds import (
     BALL_BALL,
     BALL_CUSHION,
@@ -32,7 +32,7 @@ from .predict import predict
 from .tolerances import GROUP_WINDOW
 
 
-@njit(cache=True)
+@allocating
 def run(scene, bounds, log):
     """Simulate from the rows scene.S (all at t = 0) until every ball rests or is pocketed.
 
@@ -62,7 +62,7 @@ def run(scene, bounds, log):
         predict(scene, bounds, sched, work, n_touched, now, log.counters)
 
 
-@njit(cache=True)
+@kernel
 def _earliest(sched):
     """The earliest predicted event (time, kind, i, j); ties go to the first found, in a
     fixed order: ball-ball by index pair, then cushions, pockets, transitions by ball."""
@@ -84,7 +84,7 @@ def _earliest(sched):
     return best, kind, bi, bj
 
 
-@njit(cache=True)
+@kernel
 def _room(log, event, n_events, n_rows):
     """True if the log can take n_events more events and n_rows more history rows. Else its
     exit code: EVENT_CAP past the caller's cap (the pending event is kept one past the last,
@@ -100,7 +100,7 @@ def _room(log, event, n_events, n_rows):
     return True
 
 
-@njit(cache=True)
+@kernel
 def _resolve(scene, bounds, sched, work, log, now, event):
     """Bring the balls of the event to `now` and apply it. Returns (the event's kind, pairs
     recorded in work.rec_a/rec_b, balls touched in work.touched); kind NO_EVENT if the log
@@ -130,7 +130,7 @@ def _resolve(scene, bounds, sched, work, log, now, event):
     return kind, 1, 1
 
 
-@njit(cache=True)
+@kernel
 def _resolve_cushions(scene, bounds, sched, work, log, now, event):
     """Every ball meeting cushions within GROUP_WINDOW of `now`, in this one step (the
     event's ball first, the rest by index). Each involves one ball, so they commute, but
@@ -158,7 +158,7 @@ def _resolve_cushions(scene, bounds, sched, work, log, now, event):
     return kind, n_rec, n_touched
 
 
-@njit(cache=True)
+@kernel
 def _commit(scene, log, work, n_touched, now):
     """The touched balls start new segments at `now`: their motion states from their rows
     (z-spin dropped unless tracked), and a history row each."""
@@ -173,7 +173,7 @@ def _commit(scene, log, work, n_touched, now):
         record_row(log, S, st, i)
 
 
-@njit(cache=True)
+@allocating
 def sample(hist, hist_ball, n, times, R, params, out_rows, out_state):
     """Exact states of all balls at ascending `times` from the segment history.
 

@@ -3,8 +3,8 @@
 import math
 
 import numpy as np
-from numba import njit
 
+from .jit import helper, kernel
 from .kinds import VX, VY, WX, WY
 from .roots import first_entry
 from .tolerances import MIN_APPROACH, MIN_DEPTH, POLISH_GAP
@@ -13,14 +13,14 @@ from .tolerances import MIN_APPROACH, MIN_DEPTH, POLISH_GAP
 # line from (x1, y1) to (x2, y2) and n its unit normal into the table.
 
 
-@njit(cache=True)
+@kernel
 def along_rail(rail, x, y):
     """Where the point (x, y) projects onto the rail segment: 0 at its start, 1 at its end."""
     dx, dy = rail[2] - rail[0], rail[3] - rail[1]
     return ((x - rail[0]) * dx + (y - rail[1]) * dy) / (dx * dx + dy * dy)
 
 
-@njit(cache=True)
+@kernel
 def alongside(rail, x, y):
     """True if a centre at (x, y) is alongside the rail segment (beyond its ends the jaw
     points take over)."""
@@ -28,13 +28,13 @@ def alongside(rail, x, y):
     return 0.0 <= u <= 1.0
 
 
-@njit(cache=True)
+@kernel
 def rail_gap(rail, x, y, radius):
     """Signed distance (m) from a ball's surface to the rail's nose line: negative inside."""
     return rail[4] * (x - rail[0]) + rail[5] * (y - rail[1]) - radius
 
 
-@njit(cache=True)
+@kernel
 def point_normal(x, y, px, py):
     """Unit vector from the fixed point (px, py) to (x, y), and the distance between them."""
     dx, dy = x - px, y - py
@@ -42,21 +42,21 @@ def point_normal(x, y, px, py):
     return dx / d, dy / d, d
 
 
-@njit(cache=True)
+@kernel
 def roll(row, radius):
     """Lock a ball's spin to its velocity: rolling without slipping, w = (-vy, vx) / R."""
     row[WX] = -row[VY] / radius
     row[WY] = row[VX] / radius
 
 
-@njit(cache=True)
+@kernel
 def kinetic_energy(vx, vy, wx, wy, wz, radius, mass):
     """Translational plus rotational kinetic energy of a solid ball (J): I = 2/5 m R^2."""
     inertia = 0.4 * mass * radius * radius
     return 0.5 * mass * (vx * vx + vy * vy) + 0.5 * inertia * (wx * wx + wy * wy + wz * wz)
 
 
-@njit(cache=True)
+@kernel
 def distance_entry(dx, dy, dvx, dvy, dax, day, reach, horizon):
     """First tau in [0, horizon] at which a point moving as d0 + dv tau + da tau^2/2 (relative
     to a target) comes within `reach` of it while approaching; inf if never.
@@ -81,7 +81,7 @@ def distance_entry(dx, dy, dvx, dvy, dax, day, reach, horizon):
     return tau
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def _polish(dx, dy, dvx, dvy, hx, hy, reach, tau, horizon):
     """Newton steps on the gap |d(tau)| - reach itself, from the quartic's root.
 

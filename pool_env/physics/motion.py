@@ -12,9 +12,9 @@ A ball rolling along +x has wy = +v/R.
 import math
 
 import numpy as np
-from numba import njit
 
 from .geometry import roll
+from .jit import helper, kernel
 from .kinds import ROLLING, SLIDING, SPINNING, STATIONARY, T0, VX, VY, WX, WY, WZ, X, Y
 from .tolerances import EPS_V, EPS_W, GENTLE_TIME, REACH_SLACK
 
@@ -22,19 +22,19 @@ from .tolerances import EPS_V, EPS_W, GENTLE_TIME, REACH_SLACK
 P_MU_S, P_MU_R, P_MU_SP, P_G, P_E_B, P_E_C, P_F_C = range(7)
 
 
-@njit(cache=True)
+@kernel
 def moving(state):
     """True for the states in which a ball's centre moves (sliding or rolling)."""
     return state == SLIDING or state == ROLLING
 
 
-@njit(cache=True)
+@kernel
 def spin_decel(radius, params):
     """Angular deceleration of z-spin from spinning friction (rad/s^2)."""
     return 5.0 * params[P_MU_SP] * params[P_G] / (2.0 * radius)
 
 
-@njit(cache=True)
+@kernel
 def z_spin_at(wz0, tau, radius, params):
     """z-spin after tau seconds: decays linearly to zero and stays there."""
     if wz0 == 0.0:
@@ -45,13 +45,13 @@ def z_spin_at(wz0, tau, radius, params):
     return left if wz0 > 0.0 else -left
 
 
-@njit(cache=True)
+@kernel
 def slip(vx, vy, wx, wy, radius):
     """Velocity of the cloth contact point (the slip that sliding friction opposes)."""
     return vx - radius * wy, vy + radius * wx
 
 
-@njit(cache=True)
+@kernel
 def trajectory(row, state, t, radius, params):
     """Position, velocity and constant acceleration of a ball at absolute time t.
 
@@ -75,7 +75,7 @@ def trajectory(row, state, t, radius, params):
             vx + ax * tau, vy + ay * tau, ax, ay)
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def acceleration(row, radius, params):
     """Acceleration (ax, ay) of the centre in the motion state the row's velocities imply
     (the state `classify` gives, without snapping the row): friction against the slip while
@@ -92,7 +92,7 @@ def acceleration(row, radius, params):
     return 0.0, 0.0
 
 
-@njit(cache=True)
+@kernel
 def state_at(row, state, t, radius, params, out):
     """Write the full state row of a ball at absolute time t into `out` (closed form)."""
     tau = t - row[T0]
@@ -114,7 +114,7 @@ def state_at(row, state, t, radius, params, out):
     out[T0] = t
 
 
-@njit(cache=True)
+@kernel
 def transition_time(row, state, radius, params):
     """Absolute time at which the ball's motion state next changes (inf if never)."""
     if state == SLIDING:
@@ -129,7 +129,7 @@ def transition_time(row, state, radius, params):
     return np.inf
 
 
-@njit(cache=True)
+@kernel
 def classify(row, radius):
     """Motion state implied by a row's velocities; snaps round-off to exact zeros/rolling."""
     ux, uy = slip(row[VX], row[VY], row[WX], row[WY], radius)
@@ -145,7 +145,7 @@ def classify(row, radius):
     return STATIONARY
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def copy_row(dst, src):
     """dst[:] = src for state rows, as a loop: a slice assignment compiles numpy's broadcasting
     and its error paths (about a second of cold compile per call site)."""
@@ -153,7 +153,7 @@ def copy_row(dst, src):
         dst[c] = src[c]
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def state_of(row, radius):
     """The motion state `classify` would give the row, without snapping it (stationary
     stands for spinning too)."""
@@ -165,7 +165,7 @@ def state_of(row, radius):
     return STATIONARY
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def is_gentle(row, radius, params):
     """True if the ball slides, but so slightly that sliding would end within GENTLE_TIME."""
     ux, uy = slip(row[VX], row[VY], row[WX], row[WY], radius)
@@ -173,7 +173,7 @@ def is_gentle(row, radius, params):
     return EPS_V < un <= 3.5 * params[P_MU_S] * params[P_G] * GENTLE_TIME
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def reroll(row, radius, params):
     """A rolling (or resting) ball given a slip u by a gentle contact slides for
     2|u| / (7 mu_s g) and then rolls at v - 2/7 u. If that slide is over within GENTLE_TIME
@@ -188,7 +188,7 @@ def reroll(row, radius, params):
     return True
 
 
-@njit(cache=True)
+@kernel
 def max_travel(row, state, t, horizon, radius, params):
     """Upper bound on how far the ball's centre moves in [t, t + horizon]."""
     if state != SLIDING and state != ROLLING:

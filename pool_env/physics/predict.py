@@ -8,16 +8,16 @@ a distance bound (`out_of_reach`) before any polynomial is set up.
 import math
 
 import numpy as np
-from numba import njit
 
 from . import cushion, pocket
 from .geometry import distance_entry, rail_gap
+from .jit import kernel
 from .kinds import C_BB, C_BB_REJ, C_CU, C_CU_REJ, C_PO, C_PO_REJ, C_REST, C_TR, POCKETED
 from .motion import max_travel, moving, trajectory, transition_time
 from .tolerances import PARALLEL_SINE, REACH_SLACK
 
 
-@njit(cache=True)
+@kernel
 def out_of_reach(d, dv, da, horizon, reach):
     """True if the path d(tau) = d + dv tau + da tau^2 / 2 (2-vectors as tuples), tau in
     [0, horizon], stays farther than `reach` from the origin: the broad phase that spares
@@ -46,15 +46,15 @@ def out_of_reach(d, dv, da, horizon, reach):
     return gap > sagitta + REACH_SLACK
 
 
-@njit(cache=True)
-def pair_time(scene, sched, i, k, now, counters):
+@kernel
+def pair_time(S, st, R, params, t_tr, i, k, now, counters):
     """Absolute time of the next contact of balls i and k (inf if none before either's next
-    transition)."""
-    S, st, R, params = scene.S, scene.st, scene.R, scene.params
+    transition); S, st, R, params from the Scene, t_tr the Schedule's transition times.
+    (Plain arrays, not the bundles: this runs N times an event.)"""
     if not (moving(st[i]) or moving(st[k])) or st[i] == POCKETED or st[k] == POCKETED:
         counters[C_REST] += 1
         return np.inf
-    horizon = max(min(sched.t_tr[i], sched.t_tr[k]) - now, 0.0)
+    horizon = max(min(t_tr[i], t_tr[k]) - now, 0.0)
     xi, yi, vxi, vyi, axi, ayi = trajectory(S[i], st[i], now, R[i], params)
     xk, yk, vxk, vyk, axk, ayk = trajectory(S[k], st[k], now, R[k], params)
     dx, dy, dvx, dvy, dax, day = xk - xi, yk - yi, vxk - vxi, vyk - vyi, axk - axi, ayk - ayi
@@ -66,7 +66,7 @@ def pair_time(scene, sched, i, k, now, counters):
     return now + distance_entry(dx, dy, dvx, dvy, dax, day, reach, horizon)
 
 
-@njit(cache=True)
+@kernel
 def boundary_times(scene, bounds, sched, i, now, counters):
     """Ball i's next rail or jaw contact (into sched.t_cu, cu_id; jaws numbered after rails)
     and next pocket capture (sched.t_po, po_id)."""
@@ -108,18 +108,18 @@ def boundary_times(scene, bounds, sched, i, now, counters):
     sched.t_cu[i], sched.cu_id[i], sched.t_po[i], sched.po_id[i] = t_cu, cu, t_po, po
 
 
-@njit(cache=True)
+@kernel
 def predict(scene, bounds, sched, work, n_touched, now, counters):
     """Predict the next events of the balls work.touched[:n_touched], each against every ball
     not predicted before it: at the start every ball (each pair once), after an event the
     balls it touched. Transitions first: a pair's horizon is the earlier of the two."""
     S, st, R, params = scene.S, scene.st, scene.R, scene.params
-    touched, done = work.touched, work.done
+    touched, done, t_tr, pair = work.touched, work.done, sched.t_tr, sched.pair
     n = S.shape[0]
     for m in range(n_touched):
         i = touched[m]
         counters[C_TR] += 1
-        sched.t_tr[i] = transition_time(S[i], st[i], R[i], params)
+        t_tr[i] = transition_time(S[i], st[i], R[i], params)
     for k in range(n):
         done[k] = False
     for m in range(n_touched):
@@ -128,4 +128,4 @@ def predict(scene, bounds, sched, work, n_touched, now, counters):
         boundary_times(scene, bounds, sched, i, now, counters)
         for k in range(n):
             if not done[k]:
-                sched.pair[i, k] = sched.pair[k, i] = pair_time(scene, sched, i, k, now, counters)
+                pair[i, k] = pair[k, i] = pair_time(S, st, R, params, t_tr, i, k, now, counters)

@@ -14,34 +14,34 @@ no eigenvalues, and a tangent pass (a double root) is correctly reported as no c
 import math
 
 import numpy as np
-from numba import njit
 
+from .jit import kernel
 from .tolerances import ROOT_MAX_ITER, TOUCH_DEPTHS
 
 
-@njit(cache=True)
+@kernel
 def _f(c0, c1, c2, c3, c4, t):
     return (((c4 * t + c3) * t + c2) * t + c1) * t + c0
 
 
-@njit(cache=True)
+@kernel
 def _df(c1, c2, c3, c4, t):
     return ((4.0 * c4 * t + 3.0 * c3) * t + 2.0 * c2) * t + c1
 
 
-@njit(cache=True)
+@kernel
 def _ddf(c2, c3, c4, t):
     return (12.0 * c4 * t + 6.0 * c3) * t + 2.0 * c2
 
 
-@njit(cache=True)
+@kernel
 def _value_slope(c0, c1, c2, c3, c4, t, derivative):
     if derivative == 0:
         return _f(c0, c1, c2, c3, c4, t), _df(c1, c2, c3, c4, t)
     return _df(c1, c2, c3, c4, t), _ddf(c2, c3, c4, t)
 
 
-@njit(cache=True)
+@kernel
 def _bracket_root(c0, c1, c2, c3, c4, lo, hi, flo, derivative):
     """Root of f (derivative=0) or f' (derivative=1) in [lo, hi], where the function is
     monotone and changes sign (f(lo) = flo on one side of zero).
@@ -80,7 +80,7 @@ def _bracket_root(c0, c1, c2, c3, c4, lo, hi, flo, derivative):
     return lo
 
 
-@njit(cache=True)
+@kernel
 def _inflections(c2, c3, c4, horizon):
     """The roots of f'' = 12 c4 t^2 + 6 c3 t + 2 c2 inside (0, horizon), ascending; inf
     for a missing one. The quadratic is solved in its cancellation-free form."""
@@ -103,7 +103,7 @@ def _inflections(c2, c3, c4, horizon):
     return r1, r2
 
 
-@njit(cache=True)
+@kernel
 def _slope_root(c1, c2, c3, c4, lo, hi, last):
     """The critical point of f on a piece [lo, hi] where f' is monotone (inf if none). A zero
     of f' exactly at an interior knot counts once, as the end of the piece before it."""
@@ -116,7 +116,7 @@ def _slope_root(c1, c2, c3, c4, lo, hi, last):
     return np.inf
 
 
-@njit(cache=True)
+@kernel
 def _critical_points(c1, c2, c3, c4, horizon):
     """Up to three roots of f' in (0, horizon), ascending, inf-padded (no heap allocation:
     this runs for every pair the broad phase lets through)."""
@@ -146,7 +146,7 @@ def _critical_points(c1, c2, c3, c4, horizon):
     return out0, out1, out2
 
 
-@njit(cache=True)
+@kernel
 def first_entry(c0, c1, c2, c3, c4, horizon, min_slope, min_depth):
     """Earliest tau in [0, horizon] at which f(tau) = c0 + c1 tau + ... + c4 tau^4 enters
     f <= 0 falling faster than `min_slope`, or sinks more than `min_depth` below zero however

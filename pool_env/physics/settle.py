@@ -16,9 +16,9 @@ momentum (the engine records it as a "ball_ball_settle" event); it never adds en
 import math
 
 import numpy as np
-from numba import njit
 
 from .geometry import roll
+from .jit import allocating_helper, helper
 from .kinds import SLIDING, T0, VX, VY, WX, WY
 from .motion import acceleration, copy_row, slip, state_of, transition_time
 from .tolerances import EPS_V, PRESS_TOL, SETTLE_HEIGHT, SETTLE_OVERLAP
@@ -27,7 +27,7 @@ from .tolerances import EPS_V, PRESS_TOL, SETTLE_HEIGHT, SETTLE_OVERLAP
 # costs cold-compile time, about 0.1 s).
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def gap_acceleration(bi, bj, nx, ny, ri, rj, params):
     """Second derivative of the gap between two touching balls: their relative acceleration
     along n plus the centripetal part of their relative tangential motion. Negative: their
@@ -38,7 +38,7 @@ def gap_acceleration(bi, bj, nx, ny, ri, rj, params):
     return (axj - axi) * nx + (ayj - ayi) * ny + vt * vt / (ri + rj)
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def pressed(bi, bj, nx, ny, ri, rj, params):
     """True if a contact is a pressed one: the balls' accelerations push them together and a
     bounce at the approach speed would rise less than SETTLE_HEIGHT before they met again
@@ -48,7 +48,7 @@ def pressed(bi, bj, nx, ny, ri, rj, params):
     return a < 0.0 and approach * approach <= -2.0 * a * SETTLE_HEIGHT
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def _response(row, r):
     """How a ball's velocity answers an impulse through its centre: 1 if it slides (dv = J/m),
     5/7 if it rolls or rests (the cloth keeps it rolling, a small impulse's short slide
@@ -56,7 +56,7 @@ def _response(row, r):
     return 1.0 if state_of(row, r) == SLIDING else 5.0 / 7.0
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def _push(bi, bj, nx, ny, w, s, ri, rj, mi, mj, ki, kj):
     """Impulse J along n taking the normal relative velocity from w to s, with velocity
     responses ki, kj (see `_response`); a ball answering 5/7 is left rolling. Returns the
@@ -74,7 +74,7 @@ def _push(bi, bj, nx, ny, w, s, ri, rj, mi, mj, ki, kj):
     return 0.5 * (s * s - w * w) / inv
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def _brake(b, r, m, energy):
     """Cloth friction impulse against the ball's slip removing at least `energy` (J); False
     if the slip cannot supply it. An impulse lam against a slip u changes the energy by
@@ -94,7 +94,7 @@ def _brake(b, r, m, energy):
     return True
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def _cloth_kick(b, p, nx, ny, r, m):
     """Impulse p n (N s) of the cloth at the contact point -R z: dv = p n / m and
     dw = (R p / I) (n_y, -n_x, 0), which changes the slip by 7/2 p n / m in all."""
@@ -105,7 +105,7 @@ def _cloth_kick(b, p, nx, ny, r, m):
     b[WY] -= k * nx
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def _hold(bi, bj, nx, ny, ri, rj, mi, mj):
     """The end of a push along n, at once: the contact impulse J >= 0 and cloth impulses
     P_i, P_j along n that leave no normal relative velocity and no slip along n on either
@@ -140,7 +140,7 @@ def _hold(bi, bj, nx, ny, ri, rj, mi, mj):
     return False
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@allocating_helper
 def _lead(bi, bj, nx, ny, ri, rj, mi, mj, params):
     """Hand the push's momentum over at once: an impulse along n leaving the balls separating
     at s = 1.1 |a| T / 2, a (< 0) the gap's acceleration and T the time to the earlier of
@@ -180,7 +180,7 @@ def _lead(bi, bj, nx, ny, ri, rj, mi, mj, params):
     return True
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def settle(bi, bj, nx, ny, ri, rj, mi, mj, params, overlap):
     """Resolve a pressed contact: two touching balls whose accelerations push them together.
 
@@ -212,7 +212,7 @@ def settle(bi, bj, nx, ny, ri, rj, mi, mj, params, overlap):
     _roll_together(bi, bj, ri, rj, mi, mj)
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def _roll_together(bi, bj, ri, rj, mi, mj):
     """Both balls roll on with their common velocity: the cloth takes out each ball's slip
     (v -= 2/7 u, the rolling velocity sliding would end at), then an internal impulse with
@@ -229,7 +229,7 @@ def _roll_together(bi, bj, ri, rj, mi, mj):
     roll(bj, rj)
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@allocating_helper
 def roll_group(S, R, M, ca, cb, n_c, walls, wall_ball, n_walls):
     """`_roll_together` for each pack, a set of balls linked by the pairs (ca[c], cb[c]),
     c < n_c: each ball rolls at once (the cloth takes its slip), then the pack's balls share
@@ -273,7 +273,7 @@ def roll_group(S, R, M, ca, cb, n_c, walls, wall_ball, n_walls):
                 roll(S[k], R[k])
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def pressed_cushion(b, nx, ny, radius, params):
     """True if the ball is pressed against a cushion (inward normal n): its acceleration
     pushes it into the cushion and a bounce at its approach speed would rise less than
@@ -284,7 +284,7 @@ def pressed_cushion(b, nx, ny, radius, params):
     return a < 0.0 and vn * vn <= -2.0 * a * SETTLE_HEIGHT
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@helper
 def settle_cushion(b, nx, ny, radius):
     """A ball pressed against a cushion by its slip (say, sliding along a rail with spin
     into it) is held there until its slip along n is gone: the cushion keeps its normal

@@ -5,11 +5,10 @@ from __future__ import annotations
 import math
 import time
 
-from numba import njit
-
 from . import engine, fixed
 from .bundles import EVENTS, new_log, prepare
 from .config import Physics
+from .jit import kernel
 from .kinds import BUFFER_FULL, COUNTERS, EVENT_CAP
 from .objects import Balls, Table
 from .result import Result, SimulationError, cap_message, engine_counters, make_result
@@ -18,7 +17,7 @@ from .tolerances import CONTACT_TOLERANCE
 __all__ = ["simulate", "check_on_table", "SimulationError"]
 
 
-@njit(cache=True)
+@kernel
 def _first_off_table(xy, radii, pocketed, length, width, pockets, tol):
     """(1, ball, -1) for a ball outside the rails, (2, ball, pocket) for one over a pocket,
     (0, -1, -1) if every ball on the table is where it may be."""

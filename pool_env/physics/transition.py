@@ -1,8 +1,8 @@
 """Motion transitions: sliding to rolling, rolling to spinning or rest, spinning to rest."""
 
-from numba import njit
 
 from .geometry import roll
+from .jit import kernel
 from .kinds import (
     ROLLING,
     ROLLING_SPINNING,
@@ -22,13 +22,13 @@ from .kinds import (
 from .motion import classify
 
 
-@njit(cache=True)
+@kernel
 def rolling_to_rest(row):
     """Rolling resistance has just stopped the ball; only z-spin may remain."""
     row[VX] = row[VY] = row[WX] = row[WY] = 0.0
 
 
-@njit(cache=True)
+@kernel
 def resolve(row, state, radius):
     """Apply the transition due for a ball in `state` (its row already at the event time);
     returns the event-kind id. Sliding to rolling: the slip has just vanished, so the spin is

@@ -1,0 +1,21 @@
+"""How the simulator's compiled code is compiled: four numba decorators, one home for their options.
+
+Every compiled function is cached on disk (`cache=True`: only the first run on a machine pays
+the compile). Functions that allocate no arrays are compiled without numba's reference
+counting (`_nrt=False`): each array view or array argument otherwise costs an atomic
+increment and decrement, which measured as about half the engine's time. Only the few
+functions that allocate (the loop's entry points, and the rare group solves) keep it.
+Functions called only from compiled code skip the CPython wrapper (it costs about 0.1 s of
+cold compile each).
+"""
+
+from numba import njit
+
+# No allocation: no reference counting. Callable from Python and from compiled code.
+kernel = njit(cache=True, _nrt=False)
+# No allocation, called only from compiled code.
+helper = njit(cache=True, _nrt=False, no_cpython_wrapper=True)
+# Allocates arrays (np.empty and the like): reference counting on.
+allocating = njit(cache=True, _nrt=True)
+# Allocates, called only from compiled code.
+allocating_helper = njit(cache=True, _nrt=True, no_cpython_wrapper=True)
