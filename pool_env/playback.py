@@ -141,7 +141,10 @@ class ShotPlayback:
         if cached is not None:
             return cached
         result, start = self._shot
-        track = sample_shot(result, self._orientation_now() if start is None else start, fps)
+        if start is None:  # kept: a track at another fps must start here too, not at the shot's end
+            start = self._orientation_now()
+            self._shot = (result, start)
+        track = sample_shot(result, start, fps)
         self._tracks[fps] = track
         if not self._rotated:
             self._orientation, self._rotated = track[3][-1], True

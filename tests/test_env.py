@@ -371,6 +371,21 @@ def test_rotation_markers_turn_with_the_ball():
     assert np.allclose(after[1:], before[1:])
 
 
+def test_a_second_frame_rate_of_a_shot_starts_where_the_first_did():
+    frames = {}
+    for mode in (None, "rgb_array", "rgb_array_list"):
+        for order in ((20,), (30, 20), (60, 20)):
+            env = PoolBreakEnv(render_mode=mode, max_shots=3, render_size=(320, 180))
+            env.reset(seed=5)
+            env.step(np.array([0.6, 0.03], dtype=np.float32))
+            for fps in order:
+                shot = env.shot_frames(fps)
+            frames[mode, order] = shot
+    for (mode, order), shot in frames.items():
+        assert len(shot) == len(frames[mode, (20,)])
+        assert all(np.array_equal(a, b) for a, b in zip(shot, frames[mode, (20,)], strict=True)), (mode, order)
+
+
 # --- videos ---------------------------------------------------------------------------------------
 def count_frames(path, size):
     """Decode every frame of the video with ffmpeg; return (frame count, frame shape) checked
