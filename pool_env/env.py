@@ -11,7 +11,6 @@ from gymnasium import logger, spaces
 from .physics import (
     BALL_MASS,
     BALL_RADIUS,
-    EVENT_KINDS,
     Balls,
     Physics,
     SimulationError,
@@ -20,8 +19,9 @@ from .physics import (
     simulate,
     strike,
 )
+from .physics.kinds import BALL_BALL, BALL_BALL_SETTLE, BALL_CUSHION, BALL_POCKET
 from .physics.simulate import check_on_table
-from .render import TableRenderer, integrate_orientation
+from .playback import ShotPlayback
 
 N_BALLS = 16
 CONTACT_TIME = 0.005  # s, the seed report's cue contact time
@@ -31,9 +31,8 @@ MIN_MAGNITUDE = 0.02  # weaker actions are raised to this (0.24 m/s)
 MAX_TIP_OFFSET = 0.5  # in ball radii
 SHAPING_CONTACT = 0.1  # shaping: + for hitting an object ball, - for missing them all
 SHAPING_SPREAD = 0.5  # shaping: weight of the spread gain on a table with pockets
-BALL_BALL, BALL_CUSHION, BALL_POCKET, BALL_BALL_SETTLE = (
-    EVENT_KINDS.index(k) for k in ("ball_ball", "ball_cushion", "ball_pocket", "ball_ball_settle"))
-ORIENTATION_SUBSTEPS = 4  # orientation integration steps per rendered frame
+RESET_OPTIONS = ("balls",)  # the keys reset(options=...) accepts
+NO_EVENTS = np.zeros(0, dtype=np.int64)  # the event arrays of a shot that could not be simulated
 
 
 def decode_observation(obs, table: Table):
@@ -61,10 +60,11 @@ def spread(xy, on_table, table: Table) -> float:
 
 def cue_force(action, spin: bool):
     """Map an action to (force (2,) in N, tip offset (2,) in ball radii); see PoolBreakEnv."""
-    a = np.asarray(action, dtype=np.float64).reshape(-1)
+    a = np.asarray(action, dtype=np.float64)
     size = 4 if spin else 2
-    if a.shape != (size,):
-        raise ValueError(f"action must have {size} entries, got shape {np.shape(action)}")
+    if a.shape != (size,):  # not reshaped: a (1, 2) batch is a mistake of the caller's, not an action
+        raise ValueError(f"action must have shape ({size},) ({size} entries, the action space's shape), "
+                         f"got shape {a.shape}")
     if not np.all(np.isfinite(a)):
         raise ValueError(f"action must be finite, got {a.tolist()}")
     a = np.clip(a, -1.0, 1.0)
@@ -85,23 +85,47 @@ def cue_force(action, spin: bool):
     return MAX_FORCE * d, offset
 
 
-def quaternion_rotations(q) -> np.ndarray:
-    """Rotation matrices (n, 3, 3) of quaternions (n, 4) (w, x, y, z), normalised first; random
-    normal quaternions give uniformly random rotations."""
-    q = np.asarray(q, dtype=np.float64)
-    q = q / np.linalg.norm(q, axis=1, keepdims=True)
-    w, x, y, z = q.T
-    return np.stack([
-        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)], axis=1),
-        np.stack([2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)], axis=1),
-        np.stack([2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], axis=1),
-    ], axis=1)
+def spread_gain(before: Balls, after: Balls, table: Table) -> float:
+    """The spread after a shot minus the spread before it, clipped to [-1, 1]."""
+    gain = spread(after.xy, ~after.pocketed, table) - spread(before.xy, ~before.pocketed, table)
+    return float(min(1.0, max(-1.0, gain)))
 
 
-def _event_arrays(result):
-    """(kind ids, i, j) of a Result's events as arrays (cheaper than its list of Events)."""
-    _, kinds, i, j = result.event_arrays
-    return kinds, i, j
+def shot_info(result, after: Balls, error: str | None = None) -> dict:
+    """A step's `info` (see PoolBreakEnv) from the shot's `Result` and the balls after it; for a
+    shot that could not be simulated, result None, the balls as they were and the error message."""
+    if result is None:
+        kind = i = j = NO_EVENTS
+    else:
+        _, kind, i, j = result.event_arrays
+    contacts = (kind == BALL_BALL) | (kind == BALL_BALL_SETTLE)  # a settle is a (pressed) contact too
+    cue_hits = np.flatnonzero(contacts & ((i == 0) | (j == 0)))
+    info = {
+        "pocketed": i[kind == BALL_POCKET].tolist(),
+        "first_contact": -1 if not cue_hits.size else int(i[cue_hits[0]] + j[cue_hits[0]]),
+        "cushion_hits": int(np.count_nonzero(kind == BALL_CUSHION)),
+        "scratch": bool(after.pocketed[0]),
+        "events": int(kind.size),
+        "shot_duration": 0.0 if result is None else result.duration,
+        "balls_left": int(N_BALLS - 1 - np.count_nonzero(after.pocketed[1:])),
+    }
+    if error is not None:
+        info["error"] = error
+    return info
+
+
+def shot_reward(info: dict, before: Balls, after: Balls, table: Table, scratch_penalty=1.0, shaping=False) -> float:
+    """A shot's reward (see PoolBreakEnv) from its `info` and the balls before and after it."""
+    pocketless = table.pockets.shape[0] == 0
+    if pocketless:
+        reward = spread_gain(before, after, table)
+    else:
+        reward = float(sum(1 for b in info["pocketed"] if b != 0)) - (scratch_penalty if info["scratch"] else 0.0)
+    if shaping:
+        reward += SHAPING_CONTACT if info["first_contact"] >= 0 else -SHAPING_CONTACT
+        if not pocketless:
+            reward += SHAPING_SPREAD * spread_gain(before, after, table)
+    return float(reward)
 
 
 class PoolBreakEnv(gym.Env):
@@ -132,7 +156,9 @@ class PoolBreakEnv(gym.Env):
     the report's 5 ms contact. Lengths below 0.02 are raised to 0.02 (0.24 m/s); the zero
     action strikes along +x at 0.02. The tip offset is in units of the ball radius, seen from
     behind the cue: side > 0 is right English, top > 0 follow, top < 0 draw; an offset longer
-    than 0.5 is scaled to 0.5 (no miscues). A non-finite action raises `ValueError`.
+    than 0.5 is scaled to 0.5 (no miscues). Any array, list or tuple of the action space's
+    shape, (2,) or (4,) with `spin=True`, is an action; another shape (e.g. a batch of one,
+    (1, 2)) or a non-finite entry raises `ValueError`.
 
     ## Observation Space
 
@@ -177,7 +203,8 @@ class PoolBreakEnv(gym.Env):
     ball also gets a random orientation, which only the rendered rotation markers show.
     `reset(seed=...)` is fully deterministic. `reset(options={"balls": balls})` starts from a
     given layout instead: a `pool_env.physics.Balls` of 16 balls at rest, the cue ball on the
-    table (pocketed object balls are allowed), e.g. to practise one shot.
+    table (pocketed object balls are allowed), e.g. to practise one shot. `"balls"` is the only
+    option: any other key (e.g. a typo) raises `ValueError`.
 
     ## Episode End
 
@@ -235,9 +262,12 @@ class PoolBreakEnv(gym.Env):
     trajectory at `metadata["render_fps"]`, first frame (the shot's start) to last (every ball
     at rest); after `reset` it is the single starting frame. `shot_frames(fps)` gives the same
     at any frame rate in every render mode; `pool_env.record_video` and
-    `pool_env.video.ShotVideoRecorder` write whole shots to .mp4. Without a render mode the
-    rotation markers are only tracked through shots whose frames are asked for (it costs
-    time), so they may jump between shots.
+    `pool_env.video.ShotVideoRecorder` write whole shots to .mp4 (`record_video` also to .mov,
+    .mkv and .avi; another extension, e.g. .gif, raises `ValueError` before anything is
+    simulated). Without a render mode the rotation markers are only tracked through shots whose
+    frames are asked for (it costs time), so they may jump between shots. The frames come from
+    `env.playback` (a `pool_env.playback.ShotPlayback`); `env.playback.renderer.world_to_pixel`
+    maps metres to pixels.
     """
 
     metadata = {"render_modes": ["rgb_array", "rgb_array_list"], "render_fps": 30}
@@ -263,8 +293,6 @@ class PoolBreakEnv(gym.Env):
         if not math.isfinite(self.scratch_penalty):
             raise ValueError(f"scratch_penalty must be finite, got {scratch_penalty!r}")
         self.render_size = (int(render_size[0]), int(render_size[1]))
-        if min(self.render_size) <= 0:
-            raise ValueError(f"render_size must be positive (width, height), got {render_size!r}")
         if self.render_size[0] < 8 or self.render_size[1] < 8:
             raise ValueError(f"render_size must be at least 8 x 8 pixels, got {render_size!r}")
         self.pocketless = self.table.pockets.shape[0] == 0
@@ -275,33 +303,24 @@ class PoolBreakEnv(gym.Env):
         self._balls = None
         self._shots = 0
         self._done = True
-        self._orientation = None
-        self._shot = None  # (Result, orientation at its start or None for the reset's) of the last shot
-        self._tracks = {}  # fps -> (frame times, xy, pocketed, orientations) of the last shot
-        self._quaternions = None
-        self._rotated = True  # whether self._orientation is at the end of the last shot
-        # Shots whose rotation is not yet in self._orientation because nothing was drawn after
-        # them (with a render mode): applied in order when a frame is next drawn, so a step
-        # costs no rendering work unless frames are asked for.
-        self._pending = []
-        self._renderer = None
+        # With a render mode the balls' rotation is carried through every shot (lazily); without
+        # one only through the shots whose frames are asked for.
+        self.playback = ShotPlayback(self.table, self.render_size, self.metadata["render_fps"],
+                                     deferred=render_mode is not None)
 
     # --- Gymnasium API ----------------------------------------------------------------------
     def reset(self, *, seed=None, options=None):
+        options = self._check_options(options)
         super().reset(seed=seed)
         rng = self.np_random
         cue_xy = self._cue_start(rng) if self.randomize_cue else None
         rack_seed = int(rng.integers(2**63 - 1))
-        self._quaternions = rng.normal(size=(N_BALLS, 4))  # random orientations, made matrices when drawn
-        balls = (options or {}).get("balls")
+        quaternions = rng.normal(size=(N_BALLS, 4))  # random orientations, made matrices when drawn
+        balls = options.get("balls")
         self._balls = rack(self.table, seed=rack_seed, cue_xy=cue_xy) if balls is None else self._check_balls(balls)
-        self._orientation = None
-        self._rotated = True
-        self._pending = []
         self._shots = 0
         self._done = False
-        self._shot = None
-        self._tracks = {}
+        self.playback.reset(self._balls, quaternions)
         return self._observation(), {}
 
     def step(self, action):
@@ -313,48 +332,22 @@ class PoolBreakEnv(gym.Env):
         before = self._balls
         self._shots += 1
         try:
-            result = simulate(strike(before, force, offset, CONTACT_TIME), self.table, self.physics)
-        except (SimulationError, ValueError) as error:
-            return self._failed(error)
-        after = result.final
-        kind, ei, ej = _event_arrays(result)
-        pocketed = ei[kind == BALL_POCKET].tolist()
-        contacts = (kind == BALL_BALL) | (kind == BALL_BALL_SETTLE)  # a settle is a (pressed) contact too
-        cue_hits = np.flatnonzero(contacts & ((ei == 0) | (ej == 0)))
-        first_contact = -1 if not cue_hits.size else int(ei[cue_hits[0]] + ej[cue_hits[0]])
-        scratch = bool(after.pocketed[0])
-        balls_left = int(N_BALLS - 1 - np.count_nonzero(after.pocketed[1:]))
-
-        if self.pocketless:
-            reward = self._spread_gain(before, after)
+            result, error = simulate(strike(before, force, offset, CONTACT_TIME), self.table, self.physics), None
+        except (SimulationError, ValueError) as exc:
+            result, error = None, f"{type(exc).__name__}: {exc}"
+            logger.warn(f"PoolBreakEnv: the shot could not be simulated and the episode is truncated ({error})")
+        after = before if result is None else result.final
+        info = shot_info(result, after, error)
+        if result is None:  # the balls stay put, and the episode must be reset
+            reward, terminated, truncated = 0.0, False, True
         else:
-            reward = float(sum(1 for b in pocketed if b != 0)) - (self.scratch_penalty if scratch else 0.0)
-        if self.shaping:
-            reward += SHAPING_CONTACT if first_contact >= 0 else -SHAPING_CONTACT
-            if not self.pocketless:
-                reward += SHAPING_SPREAD * self._spread_gain(before, after)
-
-        terminated = self.max_shots == 1 or scratch or (not self.pocketless and balls_left == 0)
-        truncated = not terminated and self._shots >= self.max_shots
-        self._done = terminated or truncated
+            reward = shot_reward(info, before, after, self.table, self.scratch_penalty, self.shaping)
+            terminated = self.max_shots == 1 or info["scratch"] or (not self.pocketless and info["balls_left"] == 0)
+            truncated = not terminated and self._shots >= self.max_shots
         self._balls = after
-        if self.render_mode is not None:
-            self._defer_rotation()
-            self._shot = (result, None)  # it starts where the pending shots leave the balls
-        else:
-            self._shot = (result, self._orientation)
-        self._tracks = {}
-        self._rotated = False
-        info = {
-            "pocketed": pocketed,
-            "first_contact": int(first_contact),
-            "cushion_hits": int(np.count_nonzero(kind == BALL_CUSHION)),
-            "scratch": scratch,
-            "events": int(kind.size),
-            "shot_duration": result.duration,
-            "balls_left": balls_left,
-        }
-        return self._observation(), float(reward), bool(terminated), bool(truncated), info
+        self._done = terminated or truncated
+        self.playback.shot(result)
+        return self._observation(), reward, bool(terminated), bool(truncated), info
 
     def render(self):
         if self.render_mode is None:
@@ -363,100 +356,19 @@ class PoolBreakEnv(gym.Env):
         if self._balls is None:
             raise RuntimeError("call reset() before render()")
         if self.render_mode == "rgb_array":
-            if self._shot is not None and not self._rotated:
-                self._track(self.metadata["render_fps"])  # brings the orientation to the shot's end
-            return self._draw(self._balls.xy, self._balls.pocketed, self._orientation_now())
-        return self.shot_frames()
+            return self.playback.frame()
+        return self.playback.shot_frames()
 
     def close(self):
-        self._renderer = None
-        self._tracks = {}
+        self.playback.close()
 
-    # --- frames -------------------------------------------------------------------------------
     def shot_frames(self, fps=None) -> list[np.ndarray]:
         """The frames of the last shot sampled from the exact trajectory at `fps` (default
         `metadata["render_fps"]`), from its start to every ball at rest; after `reset` the
         single starting frame. Works in every render mode."""
         if self._balls is None:
             raise RuntimeError("call reset() before shot_frames()")
-        if self._shot is None:
-            return [self._draw(self._balls.xy, self._balls.pocketed, self._orientation_now())]
-        _, xy, pocketed, orientation = self._track(self.metadata["render_fps"] if fps is None else fps)
-        return [self._draw(xy[k], pocketed[k], orientation[k]) for k in range(len(xy))]
-
-    def _track(self, fps):
-        """(times (F,), xy (F, 16, 2), pocketed (F, 16), orientation (F, 16, 3, 3)) of the last shot."""
-        fps = float(fps)
-        if not (math.isfinite(fps) and fps > 0):
-            raise ValueError(f"fps must be finite and > 0, got {fps!r}")
-        cached = self._tracks.get(fps)
-        if cached is not None:
-            return cached
-        result, start = self._shot
-        track = self._sample_shot(result, self._orientation_now() if start is None else start, fps)
-        self._tracks[fps] = track
-        if not self._rotated:  # the first track of a shot also advances the balls' orientation
-            self._orientation, self._rotated = track[3][-1], True
-        return track
-
-    @staticmethod
-    def _sample_shot(result, start, fps):
-        """(times (F,), xy (F, 16, 2), pocketed (F, 16), orientation (F, 16, 3, 3)) of a shot
-        sampled at fps from the exact trajectory, the balls starting in orientations `start`."""
-        duration = result.duration
-        times = np.arange(int(math.floor(duration * fps)) + 1) / fps
-        if times[-1] < duration:
-            times = np.append(times, duration)
-        # Angular velocity at the midpoints of ORIENTATION_SUBSTEPS substeps per frame interval:
-        # the midpoint rule is exact while w changes linearly about a fixed axis (sliding, rolling).
-        k = ORIENTATION_SUBSTEPS
-        edges = times[:-1, None] + np.diff(times)[:, None] * (np.arange(k) + 0.5)[None, :] / k
-        mids = edges.reshape(-1)
-        rows, states = result.sample(np.concatenate([times, mids]))
-        frames = len(times)
-        xy = rows[:frames, :, 0:2]
-        pocketed = states[:frames] == 4
-        w = np.nan_to_num(rows[frames:, :, 4:7])
-        dt = np.repeat(np.diff(times) / k, k)
-        steps = integrate_orientation(np.broadcast_to(np.eye(3), (w.shape[0] * N_BALLS, 3, 3)),
-                                      (w * dt[:, None, None]).reshape(-1, 3), 1.0).reshape(-1, N_BALLS, 3, 3)
-        orientation = np.empty((frames, N_BALLS, 3, 3))
-        current = start
-        orientation[0] = current
-        for f in range(1, frames):
-            for s in range((f - 1) * k, f * k):
-                current = steps[s] @ current
-            orientation[f] = current
-        orientation[-1] = integrate_orientation(orientation[-1], np.zeros((N_BALLS, 3)), 0.0)  # re-orthonormalise
-        return times, xy, pocketed, orientation
-
-    def _defer_rotation(self):
-        """Queue the last shot's rotation if it was never applied (no frame was drawn after it)."""
-        if self._shot is not None and not self._rotated:
-            self._pending.append(self._shot[0])
-            self._rotated = True
-
-    @property
-    def renderer(self) -> TableRenderer:
-        """The frame renderer (made on first use); `renderer.world_to_pixel` maps metres to pixels."""
-        radius = BALL_RADIUS if self._balls is None else float(np.max(self._balls.radii))
-        if self._renderer is None or self._renderer.ball_radius != radius:
-            self._renderer = TableRenderer(self.table.length, self.table.width, self.table.pockets, radius,
-                                           self.render_size)
-        return self._renderer
-
-    def _orientation_now(self):
-        """The balls' orientations (16, 3, 3) now (or at the last shot's start, if it was not
-        tracked), after applying the pending shots' rotations in order."""
-        if self._orientation is None:
-            self._orientation = quaternion_rotations(self._quaternions)
-        while self._pending:
-            result = self._pending.pop(0)
-            self._orientation = self._sample_shot(result, self._orientation, self.metadata["render_fps"])[3][-1]
-        return self._orientation
-
-    def _draw(self, xy, pocketed, orientation):
-        return self.renderer.draw(xy, pocketed, orientation)
+        return self.playback.shot_frames(fps)
 
     # --- helpers ------------------------------------------------------------------------------
     def _observation(self):
@@ -470,9 +382,17 @@ class PoolBreakEnv(gym.Env):
         obs[-1] = 2.0 * self._shots / self.max_shots - 1.0
         return obs
 
-    def _spread_gain(self, before, after) -> float:
-        gain = spread(after.xy, ~after.pocketed, self.table) - spread(before.xy, ~before.pocketed, self.table)
-        return float(min(1.0, max(-1.0, gain)))
+    @staticmethod
+    def _check_options(options) -> dict:
+        if options is None:
+            return {}
+        if not isinstance(options, dict):
+            raise TypeError(f"options must be a dict or None, got {type(options).__name__}")
+        unknown = [key for key in options if key not in RESET_OPTIONS]
+        if unknown:
+            raise ValueError(f"unknown reset option {unknown[0]!r}; the accepted options are "
+                             f"{', '.join(repr(key) for key in RESET_OPTIONS)}")
+        return options
 
     def _check_balls(self, balls):
         if not isinstance(balls, Balls) or len(balls) != N_BALLS:
@@ -493,19 +413,3 @@ class PoolBreakEnv(gym.Env):
             if not pockets.shape[0] or np.all(np.hypot(pockets[:, 0] - x, pockets[:, 1] - y) > pockets[:, 2] + r):
                 return (x, y)
         return (0.25 * L, 0.5 * W)
-
-    def _failed(self, error):
-        """End the episode as truncated after a simulator failure; the balls stay put."""
-        message = f"{type(error).__name__}: {error}"
-        logger.warn(f"PoolBreakEnv: the shot could not be simulated and the episode is truncated ({message})")
-        self._done = True
-        if self.render_mode is not None:
-            self._defer_rotation()
-        self._shot = None
-        self._tracks = {}
-        info = {
-            "pocketed": [], "first_contact": -1, "cushion_hits": 0, "scratch": False, "events": 0,
-            "shot_duration": 0.0, "balls_left": int(N_BALLS - 1 - np.count_nonzero(self._balls.pocketed[1:])),
-            "error": message,
-        }
-        return self._observation(), 0.0, False, True, info

@@ -8,6 +8,9 @@ import gymnasium as gym
 import numpy as np
 
 HOLD_SECONDS = 0.5  # the last frame of every episode is held this long
+# Containers ffmpeg writes H.264 into (.gif, .webm, ... are not: the first fails when the writer
+# opens, the second only at the first frame, after a whole shot was simulated).
+VIDEO_EXTENSIONS = (".mp4", ".mov", ".mkv", ".avi")
 
 
 def _base(env):
@@ -17,6 +20,14 @@ def _base(env):
     if not isinstance(base, PoolBreakEnv):
         raise TypeError(f"expected a PoolBreakEnv (possibly wrapped), got {type(base).__name__}")
     return base
+
+
+def _check_path(path):
+    extension = os.path.splitext(os.fspath(path))[1]
+    if extension.lower() not in VIDEO_EXTENSIONS:
+        got = repr(extension) if extension else "none"
+        raise ValueError(f"cannot write a video to {os.fspath(path)!r}: the file name must end in one of "
+                         f"{', '.join(VIDEO_EXTENSIONS)} (H.264 through ffmpeg), got {got}")
 
 
 def _policy_fn(policy, env):
@@ -72,8 +83,10 @@ def record_video(env, policy, path, episodes=1, fps=None, *, seed=None) -> int:
     random actions. Frames are sampled from the exact trajectories at `fps` (default
     `metadata["render_fps"]`) and the video plays at that rate, so in real time; the last
     frame of each episode is held for 0.5 s. `seed` seeds the first reset. Returns the number
-    of frames written.
+    of frames written. `path` may also end in .mov, .mkv or .avi; another extension (e.g.
+    .gif) raises `ValueError` before anything is simulated. A missing folder is created.
     """
+    _check_path(path)
     owned = isinstance(env, str)
     if owned:
         env = gym.make(env, render_mode="rgb_array_list")

@@ -1,12 +1,18 @@
 """Every invalid input raises a clear error naming the problem (the cases tests/test_physics.py
 does not already cover: there, an overlap of balls 0 and 1, a NaN position, an infinite
 velocity, a negative radius, a zero mass, a wrong shape, a ball outside the rails or over a
-pocket, an unknown ball-ball model, e_b > 1, a NaN mu_r, and the event cap)."""
+pocket, an unknown ball-ball model, e_b > 1, a NaN mu_r, and the event cap); and copies and
+pickles of tables and balls keep their arrays read-only (else numba compiles the engine again)."""
 
+import copy
+import pickle
+
+import gymnasium as gym
 import numpy as np
 import pytest
 
-from pool_env.physics import Balls, Physics, SimulationError, Table, rack, simulate, strike
+import pool_env  # noqa: F401  (registers the env ids)
+from pool_env.physics import SEED_MASS, SEED_RADIUS, Balls, Physics, SimulationError, Table, rack, simulate, strike
 
 ONE = [[0.5, 0.5]]
 
@@ -75,11 +81,131 @@ def test_bad_physics_is_named(kwargs, match):
         ((2.0, 1.0), dict(pockets=[(0.5, 0.5, 0.1)]), r"pocket 0 at \(0\.5, 0\.5\) is not on a rail"),
         ((2.0, 1.0), dict(pockets=[(0.0, 0.0, np.nan)]), r"pocket 0 must be finite"),
         ((2.0, 1.0), dict(pockets=[(1.0, 0.0, 0.2), (1.1, 0.0, 0.2)]), r"overlaps another pocket's mouth"),
+        # A pocket entry is (x, y, mouth), not a bare position or a number.
+        ((2.0, 1.0), dict(pockets=[(0, 0)]),
+         r"pocket 0 must be an \(x, y, mouth\) entry: its centre \(m\), on a rail or at a corner, "
+         r"and its mouth width \(m\); got \(0, 0\)"),
+        ((2.0, 1.0), dict(pockets=[(0.0, 0.0, 0.1), 0.5]), r"pocket 1 must be an \(x, y, mouth\) entry.*got 0\.5"),
+        ((2.0, 1.0), dict(pockets=[(0.0, 0.0, "wide")]), r"pocket 0 must be an \(x, y, mouth\) entry"),
+        ((2.0, 1.0), dict(pockets=5), r"pockets must be a sequence of \(x, y, mouth\) entries, or None"),
+        # A mouth must fit: jaw points on the rail(s) it sits on, capture circle short of the
+        # opposite rail.
+        ((2.0, 1.0), dict(pockets=[(0.0, 0.0, 5.0)]),
+         r"pocket 0 at \(0\.0, 0\.0\) has a 5\.0 m mouth, too wide for the 2\.0 x 1\.0 m table: its jaw "
+         r"points must lie on the rails it sits on .* so its mouth can be at most 1\.414 m"),
+        ((2.0, 1.0), dict(pockets=[(1.0, 0.0, 5.0)]), r"pocket 0 .* 5\.0 m mouth, too wide .* at most 2 m"),
+        ((2.0, 1.0), dict(pockets=[(0.05, 0.0, 0.2)]), r"pocket 0 .* 0\.2 m mouth, too wide .* at most 0\.1 m"),
+        ((1.0, 2.0), dict(pockets=[(0.0, 1.0, 2.5)]), r"pocket 0 .* 2\.5 m mouth, too wide .* at most 2 m"),
+        ((2.0, 0.2), dict(pockets=[(1.0, 0.2, 0.5)]), r"pocket 0 .* 0\.5 m mouth, too wide .* at most 0\.4 m"),
     ],
 )
 def test_bad_table_is_named(args, kwargs, match):
     with pytest.raises(ValueError, match=match):
         Table(*args, **kwargs)
+
+
+def test_pockets_none_means_no_pockets():
+    table = Table(2.24, 1.12, pockets=None)
+    assert table.pockets.shape == (0, 3) and table.jaws.shape == (0, 2)
+    np.testing.assert_array_equal(table.rails, Table(2.24, 1.12, pockets=()).rails)
+    assert "None" in Table.__doc__
+
+
+def test_widest_mouths_that_fit_are_accepted():
+    # At the bound the jaw points sit on the rail ends (corner) or meet the next mouth.
+    Table(2.0, 1.0, pockets=[(0.0, 0.0, 2.0**0.5)])
+    Table(2.0, 1.0, pockets=[(1.0, 0.0, 2.0)])
+    eight = Table.eight_foot()
+    assert eight.pockets.shape == (6, 3) and eight.jaws.shape == (12, 2)
+
+
+@pytest.mark.parametrize(
+    "table, kwargs, match",
+    [
+        # Too short: without the check the cue ball overlapped the apex ball at reset.
+        (Table(0.5, 1.12), {},
+         r"the 0\.5 x 1\.12 m table is too small for a rack of balls of radius 0\.028575 m \(jitter 0\.0 m\): "
+         r"the rack needs a playing area of at least 0\.9062 x 0\.2858 m"),
+        (Table(0.2, 0.1), {}, r"the 0\.2 x 0\.1 m table is too small for a rack"),
+        # Too narrow, and the jitter counts: every seed must give a valid rack.
+        (Table(2.24, 0.286), dict(seed=0),
+         r"too small for a rack .* \(jitter 0\.0002 m\): .* at least 0\.9126 x 0\.2878 m"),
+        (Table(0.9125, 1.12), dict(seed=0), r"too small for a rack .* at least 0\.9126 x 0\.2878 m"),
+        # Long and wide enough, but the rack's back corners sit in the corner pockets.
+        (Table(0.92, 0.29, pockets=[(0.92, 0.0, 0.1)]), dict(seed=0),
+         r"the 0\.92 x 0\.29 m table is too small for a rack with these pockets: ball 5's spot "
+         r"\(0\.8894, 0\.0299\) m is over pocket 0 or within the jitter \(0\.0002 m\) of it"),
+        # Balls no taller than the cushion nose would pass under the cushions (han2005 model).
+        (Table.eight_foot(), dict(radius=0.01),
+         r"balls of radius 0\.01 m are too small for this table: its cushion nose is 0\.0362\d* m above the "
+         r"cloth, at or above the top of the balls \(0\.02 m\), so they would pass under the cushions"),
+        (Table.eight_foot(), dict(radius=[0.03] * 16), r"rack's radius must be one finite number > 0"),
+        (Table.eight_foot(), dict(radius=np.nan), r"rack's radius must be one finite number > 0"),
+    ],
+)
+def test_rack_that_does_not_fit_is_named(table, kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        rack(table, **kwargs)
+
+
+def test_racks_that_fit_are_accepted():
+    assert len(rack(Table(0.9126, 0.2878), seed=0)) == 16  # just above the minimum
+    assert len(rack(Table(0.92, 0.29, pockets=[(0.46, 0.0, 0.1)]), seed=0)) == 16  # side pocket clear of the rack
+    # The seed report's 50 mm balls on its own table, and 40 mm balls (above the 36.3 mm nose).
+    seed_rack = rack(Table.seed(), seed=0, radius=SEED_RADIUS, mass=SEED_MASS)
+    assert seed_rack.radius == SEED_RADIUS
+    assert len(rack(Table.eight_foot(), seed=0, radius=0.02)) == 16
+    # A lower cushion nose takes smaller balls.
+    assert len(rack(Table(2.24, 1.12, cushion_height=0.015), seed=0, radius=0.01)) == 16
+
+
+def test_table_is_immutable():
+    table = Table.eight_foot()
+    with pytest.raises(AttributeError, match="Table is immutable: cannot set 'length'"):
+        table.length = 3.0
+    with pytest.raises(ValueError, match="read-only"):
+        table.rails[0, 0] = 1.0
+
+
+@pytest.mark.parametrize("clone", [copy.copy, copy.deepcopy, lambda x: pickle.loads(pickle.dumps(x))],
+                         ids=["copy", "deepcopy", "pickle"])
+def test_copies_keep_arrays_read_only(clone):
+    table = Table.eight_foot()
+    twin = clone(table)
+    for name in ("rails", "jaws", "pockets", "jaw_pockets"):
+        assert getattr(twin, name).flags.writeable is False, name
+        np.testing.assert_array_equal(getattr(twin, name), getattr(table, name))
+    if clone is not copy.copy and clone is not copy.deepcopy:
+        assert twin is not table
+    else:
+        assert twin is table  # immutable: a copy is the table itself
+    balls = strike(rack(table, seed=0), force=(100.0, 0.0))
+    again = clone(balls)
+    for name in ("xy", "v", "w", "pocketed"):
+        assert getattr(again, name).flags.writeable is False, name
+        np.testing.assert_array_equal(getattr(again, name), getattr(balls, name))
+    np.testing.assert_array_equal(again.radii, balls.radii)
+    assert again.radius == balls.radius and again.mass == balls.mass
+    per_ball = clone(Balls([[0.5, 0.5], [0.7, 0.5]], radius=[0.028, 0.03]))
+    assert per_ball.radius.flags.writeable is False
+    physics = Physics.standard()
+    assert simulate(again, clone(table), physics).events == simulate(balls, table, physics).events
+
+
+def test_deep_copied_env_steps_like_the_original():
+    # A deep copy used to make the table's and balls' arrays writable, so numba compiled a
+    # second version of the whole engine (about 12 s) for the copy's first step.
+    env = gym.make("PoolBreak-v0")
+    env.reset(seed=3)
+    twin = copy.deepcopy(env)
+    table = twin.unwrapped.table
+    for name in ("rails", "jaws", "pockets", "jaw_pockets"):
+        assert getattr(table, name).flags.writeable is False, name
+    action = np.array([0.9, 0.1], dtype=np.float32)
+    obs, reward, terminated, truncated, info = env.step(action)
+    obs2, reward2, terminated2, truncated2, info2 = twin.step(action)
+    np.testing.assert_array_equal(obs2, obs)
+    assert (reward2, terminated2, truncated2, info2) == (reward, terminated, truncated, info)
 
 
 def test_bad_simulate_arguments_are_named():

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import pool_env
-from pool_env.env import MAX_FORCE, PoolBreakEnv, cue_force, decode_observation, spread
+from pool_env.env import MAX_FORCE, PoolBreakEnv, cue_force, decode_observation, spread, spread_gain
 from pool_env.physics import BALL_MASS, Balls, Physics, SimulationError, Table
 from pool_env.render import CLOTH_RGB
 from pool_env.video import HOLD_SECONDS, ShotVideoRecorder, record_video
@@ -253,12 +253,12 @@ def test_shaping_is_off_by_default_and_documented_terms():
     _, r_plain, *_ = plain.step(hit)
     _, r_shaped, _, _, info = shaped.step(hit)
     assert r_plain == 0.0 and info["first_contact"] == 5
-    gain = shaped._spread_gain(scene({0: cue, 5: (1.2, 0.56), 6: (1.8, 0.9)}), shaped._balls)
+    gain = spread_gain(scene({0: cue, 5: (1.2, 0.56), 6: (1.8, 0.9)}), shaped._balls, shaped.table)
     assert math.isclose(r_shaped, 0.1 + 0.5 * gain)
     shaped.reset(seed=0, options=layout)
     _, r_miss, _, _, info = shaped.step(np.array([0.0, 0.3], dtype=np.float32))
-    assert info["first_contact"] == -1 and math.isclose(r_miss, -0.1 + 0.5 * shaped._spread_gain(
-        scene({0: cue, 5: (1.2, 0.56), 6: (1.8, 0.9)}), shaped._balls))
+    assert info["first_contact"] == -1 and math.isclose(r_miss, -0.1 + 0.5 * spread_gain(
+        scene({0: cue, 5: (1.2, 0.56), 6: (1.8, 0.9)}), shaped._balls, shaped.table))
 
 
 def test_pocketless_table_rewards_the_spread():
@@ -316,20 +316,20 @@ def test_rgb_array_frame_shows_balls_where_they_are():
     frame = env.render()
     assert frame.shape == (360, 640, 3) and frame.dtype == np.uint8
     cloth = np.array(CLOTH_RGB)
-    rad_px = env.renderer.ball_radius * env.renderer.scale
+    rad_px = env.playback.renderer.ball_radius * env.playback.renderer.scale
     for ball, spot in spots.items():
-        col, row = env.renderer.world_to_pixel(np.array([spot]))[0]
+        col, row = env.playback.renderer.world_to_pixel(np.array([spot]))[0]
         patch = frame[int(row) - 2:int(row) + 3, int(col) - 2:int(col) + 3].reshape(-1, 3).astype(int)
         assert not np.any(np.all(patch == cloth, axis=1)), f"ball {ball} not drawn"
         assert np.all(frame[int(row), int(col + 2 * rad_px)] == cloth)  # and cloth just beside it
     red = frame[..., 0].astype(int) - frame[..., 1]
-    col, row = env.renderer.world_to_pixel(np.array([spots[3]]))[0]
+    col, row = env.playback.renderer.world_to_pixel(np.array([spots[3]]))[0]
     assert red[int(row) - 4:int(row) + 5, int(col) - 4:int(col) + 5].max() > 100  # ball 3 is red
     # The pocketed balls (1, 2, 4, ...) are absent: away from the three balls it is only table.
-    gone = env.renderer.draw(np.zeros((16, 2)), np.ones(16, bool))
+    gone = env.playback.renderer.draw(np.zeros((16, 2)), np.ones(16, bool))
     differs = np.any(frame != gone, axis=2)
     rows, cols = np.nonzero(differs)
-    centres = env.renderer.world_to_pixel(np.array(list(spots.values())))
+    centres = env.playback.renderer.world_to_pixel(np.array(list(spots.values())))
     near = np.min(np.hypot(cols[:, None] + 0.5 - centres[None, :, 0], rows[:, None] + 0.5 - centres[None, :, 1]), 1)
     assert near.max() <= rad_px + 2
 
@@ -355,10 +355,10 @@ def test_rgb_array_list_is_the_whole_shot_and_ends_where_rgb_array_is():
 def test_rotation_markers_turn_with_the_ball():
     env = PoolBreakEnv(render_mode="rgb_array")
     env.reset(seed=0, options={"balls": scene({0: (0.5, 0.56)})})
-    before = env._orientation_now().copy()
+    before = env.playback.orientation.copy()
     env.step(np.array([0.04, 0.0], dtype=np.float32))  # 0.48 m/s along +x: slides, rolls, stops
     env.render()  # the shot's rotation is applied when a frame is drawn (steps do no render work)
-    after = env._orientation_now()
+    after = env.playback.orientation
     assert np.allclose(after[0] @ after[0].T, np.eye(3), atol=1e-9)
     # The ball turns about +y by (distance - slip) / R, the slip while sliding being v0^2 / (7 mu_s g).
     xy, _ = decode_observation(env._observation(), env.table)
@@ -369,6 +369,21 @@ def test_rotation_markers_turn_with_the_ball():
     assert math.isclose(rel[0, 0], math.cos(angle), abs_tol=0.02) and math.isclose(rel[0, 2], math.sin(angle),
                                                                                     abs_tol=0.02)
     assert np.allclose(after[1:], before[1:])
+
+
+def test_a_second_frame_rate_of_a_shot_starts_where_the_first_did():
+    frames = {}
+    for mode in (None, "rgb_array", "rgb_array_list"):
+        for order in ((20,), (30, 20), (60, 20)):
+            env = PoolBreakEnv(render_mode=mode, max_shots=3, render_size=(320, 180))
+            env.reset(seed=5)
+            env.step(np.array([0.6, 0.03], dtype=np.float32))
+            for fps in order:
+                shot = env.shot_frames(fps)
+            frames[mode, order] = shot
+    for (mode, order), shot in frames.items():
+        assert len(shot) == len(frames[mode, (20,)])
+        assert all(np.array_equal(a, b) for a, b in zip(shot, frames[mode, (20,)], strict=True)), (mode, order)
 
 
 # --- videos ---------------------------------------------------------------------------------------

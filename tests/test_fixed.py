@@ -53,6 +53,7 @@ def test_friction_only_is_exact_at_any_step(detection, recheck):
         assert np.allclose(res.at(t).w, exact.at(t).w, rtol=0, atol=1e-9)
 
 
+@pytest.mark.slow
 def test_posteriori_head_on_error_is_first_order():
     # The overlap is found up to one frame late, delta in [0, dt): the striker has run
     # v delta into the object ball, and the push splits that depth equally, so each ball
@@ -75,6 +76,7 @@ def test_posteriori_head_on_error_is_first_order():
     assert errors[2] < errors[0] / 20 and errors[3] < errors[1] / 20
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("balls", [CUT, BANK], ids=["cut", "bank"])
 def test_posteriori_converges_on_cut_and_bank(balls):
     exact = simulate(balls, Table.seed(), Physics.standard())
@@ -83,6 +85,7 @@ def test_posteriori_converges_on_cut_and_bank(balls):
     assert errors[3] < 1e-4  # 0.1 mm at dt = 10 us
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("recheck", [False, True])
 @pytest.mark.parametrize("balls, table", [(HEAD_ON, LONG), (CUT, Table.seed()), (BANK, Table.seed())],
                          ids=["head-on", "cut", "bank"])

@@ -32,6 +32,7 @@ def smoke_run(tmp_path_factory):
     return out_dir / "smoke", proc.stdout
 
 
+@pytest.mark.slow
 def test_smoke_run_writes_every_artefact(smoke_run):
     run_dir, stdout = smoke_run
     assert str(run_dir.resolve()) in stdout  # the run folder is printed
@@ -42,6 +43,7 @@ def test_smoke_run_writes_every_artefact(smoke_run):
     assert (run_dir / "learning_curve.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+@pytest.mark.slow
 def test_smoke_run_evaluates_all_agents_on_the_same_seeds(smoke_run):
     run_dir, stdout = smoke_run
     result = json.loads((run_dir / "eval.json").read_text())
@@ -59,6 +61,7 @@ def test_smoke_run_evaluates_all_agents_on_the_same_seeds(smoke_run):
     assert "| trained" in log and "| heuristic" in log and "| trained" in stdout
 
 
+@pytest.mark.slow
 def test_smoke_run_model_and_video_are_usable(smoke_run):
     import imageio_ffmpeg
 
@@ -71,6 +74,7 @@ def test_smoke_run_model_and_video_are_usable(smoke_run):
     assert frames > 30 and seconds > 1  # a whole shot, not a single frame
 
 
+@pytest.mark.slow
 def test_sac_option_runs(tmp_path):
     proc = run_train("--algo", "sac", "--timesteps", "1200", "--eval-episodes", "5", "--curve-points", "0",
                      "--video-episodes", "0", "--n-envs", "1", "--out", str(tmp_path), "--run-name", "sac",

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -95,6 +96,13 @@ class Balls:
         out._set(xy, v, w, pocketed, like._radii, like._masses)
         return out
 
+    def __reduce__(self):
+        # copy.copy, copy.deepcopy and pickle all rebuild through _rebuild_balls, which marks
+        # the arrays read-only again (a plain copy of a read-only array is writable, and numba
+        # would then compile the whole engine a second time for writable arrays).
+        return _rebuild_balls, (self.xy, self.v, self.w, self.pocketed, self.radius, self.mass,
+                                self._radii, self._masses)
+
     def __len__(self):
         return self.xy.shape[0]
 
@@ -121,6 +129,15 @@ class Balls:
         return float(np.sum(lin + rot))
 
 
+def _rebuild_balls(xy, v, w, pocketed, radius, mass, radii, masses):
+    """Balls from the state `Balls.__reduce__` saved, with the flags `Balls.__init__` gives."""
+    out = Balls.__new__(Balls)
+    out.radius = _readonly(radius) if isinstance(radius, np.ndarray) else radius
+    out.mass = _readonly(mass) if isinstance(mass, np.ndarray) else mass
+    out._set(xy, v, w, pocketed, radii, masses)
+    return out
+
+
 def _check_overlaps(xy, radii, pocketed):
     on = np.flatnonzero(~pocketed)
     if on.size < 2:
@@ -138,32 +155,53 @@ def _check_overlaps(xy, radii, pocketed):
 class Table:
     """A rectangular pool table: playing area `length` x `width` (m) inside the cushion noses.
 
-    `pockets` is a sequence of (x, y, mouth): a pocket centred at a corner or on a rail, with
-    the given mouth width (m, between the jaw points). Rails run between pockets; the rail
-    ends at a mouth are jaw points a ball can hit. A ball drops when its centre enters the
-    pocket's capture circle, which passes through the jaw points (radius mouth/2 on a rail;
-    mouth/sqrt(2) at a corner, where the jaws sit that far along each rail from the corner).
+    `pockets` is a sequence of (x, y, mouth) entries, or None (the same as `()`: no pockets,
+    four straight rails): a pocket centred at a corner or on a rail, with the given mouth
+    width (m, between the jaw points). Rails run between pockets; the rail ends at a mouth
+    are jaw points a ball can hit. A ball drops when its centre enters the pocket's capture
+    circle, which passes through the jaw points (radius mouth/2 on a rail; mouth/sqrt(2) at a
+    corner, where the jaws sit that far along each rail from the corner). A mouth must fit
+    the table: its jaw points lie on the rail (or both rails, at a corner) it sits on, and its
+    capture circle does not reach past the opposite rail; so a rail pocket's mouth is at most
+    twice its distance to the nearer end of its rail and twice the table's depth across it,
+    and a corner mouth at most sqrt(2) times the shorter side. Mouths may touch but not overlap.
+
+    `cushion_height` is the height of the cushion nose above the cloth (m), used by the
+    `han2005` cushion model, which needs the nose below the top of every ball
+    (`cushion_height < 2 R`); a lower ball would pass under the cushion. `rack` checks this.
+
+    Immutable (its arrays are read-only, its attributes cannot be reassigned), so copies,
+    shallow or deep, are the table itself, and a pickled table loads with read-only arrays.
     """
 
     def __init__(self, length, width, pockets=(), cushion_height=0.0363):
-        self.length, self.width = float(length), float(width)
+        set_ = functools.partial(object.__setattr__, self)
+        set_("length", float(length))
+        set_("width", float(width))
         if not (math.isfinite(self.length) and math.isfinite(self.width) and self.length > 0 and self.width > 0):
             raise ValueError(f"table size must be finite and > 0, got {length!r} x {width!r}")
-        self.cushion_height = float(cushion_height)
+        set_("cushion_height", float(cushion_height))
         if not (math.isfinite(self.cushion_height) and self.cushion_height > 0):
             raise ValueError(f"cushion_height must be finite and > 0, got {cushion_height!r}")
+        if pockets is None:
+            pockets = ()
+        try:
+            pockets = list(pockets)
+        except TypeError:
+            raise ValueError(
+                f"pockets must be a sequence of (x, y, mouth) entries, or None for no pockets, got {pockets!r}"
+            ) from None
         L, W = self.length, self.width
-        # Each side: start corner, direction along it, inward normal, length.
-        sides = [((0.0, 0.0), (1.0, 0.0), (0.0, 1.0), L), ((L, W), (-1.0, 0.0), (0.0, -1.0), L),
-                 ((0.0, W), (0.0, -1.0), (1.0, 0.0), W), ((L, 0.0), (0.0, 1.0), (-1.0, 0.0), W)]
+        # Each side: start corner, direction along it, inward normal, length, depth across
+        # the table from it.
+        sides = [((0.0, 0.0), (1.0, 0.0), (0.0, 1.0), L, W), ((L, W), (-1.0, 0.0), (0.0, -1.0), L, W),
+                 ((0.0, W), (0.0, -1.0), (1.0, 0.0), W, L), ((L, 0.0), (0.0, 1.0), (-1.0, 0.0), W, L)]
         cuts = [[] for _ in sides]
         circles, jaws, jaw_pockets = [], [], []
         for number, pocket in enumerate(pockets):
-            x, y, mouth = (float(c) for c in pocket)
-            if not (all(math.isfinite(c) for c in (x, y, mouth)) and mouth > 0):
-                raise ValueError(f"pocket {number} must be finite (x, y, mouth > 0), got {pocket!r}")
+            x, y, mouth = _pocket_entry(number, pocket)
             touching = []
-            for s, (start, along, _, span) in enumerate(sides):
+            for s, (start, along, _, span, _) in enumerate(sides):
                 rel = (x - start[0]) * along[0] + (y - start[1]) * along[1]
                 off = (x - start[0]) * along[1] - (y - start[1]) * along[0]
                 if abs(off) < 1e-12 and -1e-12 <= rel <= span + 1e-12:
@@ -172,9 +210,19 @@ class Table:
                 raise ValueError(f"pocket {number} at ({x}, {y}) is not on a rail or corner of the table")
             corner = len(touching) == 2
             half = mouth / math.sqrt(2.0) if corner else mouth / 2.0
+            # The room the mouth has: along each rail it sits on, to the far end of the rail
+            # (at a corner) or to the nearer end (on a rail); across the table, the depth.
+            room = min(min(sides[s][3] if corner else min(rel, sides[s][3] - rel), sides[s][4]) for s, rel in touching)
+            if half > room + 1e-12:
+                widest = room * (math.sqrt(2.0) if corner else 2.0)
+                raise ValueError(
+                    f"pocket {number} at ({x}, {y}) has a {mouth} m mouth, too wide for the {L} x {W} m table: "
+                    f"its jaw points must lie on the rail{'s' if corner else ''} it sits on and its capture circle "
+                    f"must not reach past the opposite rail, so its mouth can be at most {widest:.4g} m"
+                )
             circles.append((x, y, half))
             for s, rel in touching:
-                start, along, _, span = sides[s]
+                start, along, _, span, _ = sides[s]
                 lo, hi = max(rel - half, 0.0), min(rel + half, span)
                 cuts[s].append((lo, hi, number))
                 for edge in (lo, hi):
@@ -182,7 +230,7 @@ class Table:
                         jaws.append((start[0] + edge * along[0], start[1] + edge * along[1]))
                         jaw_pockets.append(number)
         rails = []
-        for s, (start, along, normal, span) in enumerate(sides):
+        for s, (start, along, normal, span, _) in enumerate(sides):
             pos = 0.0
             for lo, hi, number in sorted(cuts[s]):
                 if lo < pos - 1e-12:
@@ -192,12 +240,31 @@ class Table:
                 pos = hi
             if pos < span:
                 rails.append(_rail(start, along, normal, pos, span))
-        self.rails = _readonly(np.array(rails, dtype=np.float64).reshape(-1, 6))
-        self.jaws = _readonly(np.array(jaws, dtype=np.float64).reshape(-1, 2))
-        self.pockets = _readonly(np.array(circles, dtype=np.float64).reshape(-1, 3))
+        set_("rails", _readonly(np.array(rails, dtype=np.float64).reshape(-1, 6)))
+        set_("jaws", _readonly(np.array(jaws, dtype=np.float64).reshape(-1, 2)))
+        set_("pockets", _readonly(np.array(circles, dtype=np.float64).reshape(-1, 3)))
         # The pocket each jaw point belongs to: the engine skips a pocket's jaws along with
         # the pocket when a ball cannot come near it.
-        self.jaw_pockets = _readonly(np.array(jaw_pockets, dtype=np.int64))
+        set_("jaw_pockets", _readonly(np.array(jaw_pockets, dtype=np.int64)))
+
+    def __setattr__(self, name, value):
+        raise AttributeError(f"Table is immutable: cannot set {name!r} (make a new Table)")
+
+    def __delattr__(self, name):
+        raise AttributeError(f"Table is immutable: cannot delete {name!r}")
+
+    def __copy__(self):
+        return self
+
+    def __deepcopy__(self, memo):
+        # Immutable, so the table itself is its deep copy: its arrays stay read-only (a copied
+        # array would be writable, and numba would compile the whole engine again for it).
+        return self
+
+    def __setstate__(self, state):
+        # Unpickling: numpy loads arrays writable; make them read-only again.
+        for name, value in state.items():
+            object.__setattr__(self, name, _readonly(value) if isinstance(value, np.ndarray) else value)
 
     def __repr__(self):
         return f"Table({self.length} x {self.width} m, {len(self.pockets)} pockets)"
@@ -220,6 +287,24 @@ class Table:
         return cls(L, W, pockets, cushion_height=0.635 * 2 * BALL_RADIUS)
 
 
+def _pocket_entry(number, pocket):
+    """(x, y, mouth) of pocket `number`, checked: three finite numbers, mouth > 0."""
+    try:
+        entry = tuple(pocket)
+    except TypeError:
+        entry = ()
+    try:
+        x, y, mouth = (float(c) for c in entry)
+    except (TypeError, ValueError):
+        raise ValueError(
+            f"pocket {number} must be an (x, y, mouth) entry: its centre (m), on a rail or at a corner, "
+            f"and its mouth width (m); got {pocket!r}"
+        ) from None
+    if not (all(math.isfinite(c) for c in (x, y, mouth)) and mouth > 0):
+        raise ValueError(f"pocket {number} must be finite (x, y, mouth > 0), got {pocket!r}")
+    return x, y, mouth
+
+
 def _rail(start, along, normal, a, b):
     x1, y1 = start[0] + a * along[0], start[1] + a * along[1]
     x2, y2 = start[0] + b * along[0], start[1] + b * along[1]
@@ -239,18 +324,39 @@ def rack(table: Table, seed=None, jitter=None, radius=BALL_RADIUS, mass=BALL_MAS
     disc from `numpy.random.default_rng(seed)`; the ideal spots are spaced 2R + 2 jitter, so
     jittered balls never overlap. It defaults to 0.2 mm when a seed is given and to 0 (a
     perfect frozen rack, every neighbour touching) when it is not.
+
+    `radius` (one number: every ball the same size) and `mass` default to regulation balls;
+    any size works that fits the table. Raises ValueError when it does not: the rack (with
+    its jitter) must lie inside the rails and off every pocket's capture circle, whatever the
+    seed, which takes a playing area of at least 4 (2 sqrt(3) s + R + jitter) x
+    2 (2 s + R + jitter) (s = 2R + 2 jitter; 0.913 x 0.288 m for regulation balls and the
+    default jitter); and the balls must stand taller than the table's cushion nose
+    (2R > `table.cushion_height`), or they would pass under the cushions.
     """
+    if not isinstance(table, Table):
+        raise TypeError(f"table must be pool_env.physics.Table, got {type(table).__name__}")
     if jitter is None:
         jitter = 2e-4 if seed is not None else 0.0
     if not (math.isfinite(jitter) and jitter >= 0):
         raise ValueError(f"jitter must be finite and >= 0, got {jitter!r}")
+    if np.ndim(radius) != 0 or not (math.isfinite(float(radius)) and float(radius) > 0):
+        raise ValueError(f"rack's radius must be one finite number > 0 (every ball the same size), got {radius!r}")
+    radius = float(radius)
+    if 2.0 * radius <= table.cushion_height:
+        raise ValueError(
+            f"balls of radius {radius} m are too small for this table: its cushion nose is "
+            f"{table.cushion_height} m above the cloth, at or above the top of the balls ({2.0 * radius:.4g} m), "
+            "so they would pass under the cushions; use balls with 2R > cushion_height, or a lower cushion_height"
+        )
     spacing = 2.0 * radius + 2.0 * jitter
-    apex_x, mid_y = 0.75 * table.length, 0.5 * table.width
+    L, W = table.length, table.width
+    apex_x, mid_y = 0.75 * L, 0.5 * W
     xy = np.zeros((16, 2))
-    xy[0] = cue_xy if cue_xy is not None else (0.25 * table.length, mid_y)
+    xy[0] = cue_xy if cue_xy is not None else (0.25 * L, mid_y)
     for row, numbers in enumerate(RACK_ORDER):
         for k, number in enumerate(numbers):
             xy[number] = (apex_x + row * spacing * math.sqrt(3.0) / 2.0, mid_y + (k - row / 2.0) * spacing)
+    _check_rack_fits(table, xy, radius, jitter, cue_xy is None)
     if jitter > 0:
         rng = np.random.default_rng(seed)
         angle = rng.uniform(0.0, 2.0 * math.pi, 15)
@@ -258,3 +364,50 @@ def rack(table: Table, seed=None, jitter=None, radius=BALL_RADIUS, mass=BALL_MAS
         xy[1:, 0] += dist * np.cos(angle)
         xy[1:, 1] += dist * np.sin(angle)
     return Balls(xy, radius=radius, mass=mass)
+
+
+def _check_rack_fits(table, xy, radius, jitter, check_cue):
+    """Raise ValueError if a rack ball could sit outside the rails or over a pocket: the 15
+    object balls anywhere within `jitter` of their spots, and the cue ball on the head spot
+    (when `check_cue`; a cue_xy the caller chose is checked where it is simulated). Scalar
+    arithmetic first (`rack` runs at every env reset): the exact check per ball only runs
+    when a pocket comes near the rack's bounding box."""
+    L, W = table.length, table.width
+    s, reach, tol = 2.0 * radius + 2.0 * jitter, radius + jitter, CONTACT_TOLERANCE
+    # The object balls' spots span x in [0.75 L, 0.75 L + 2 sqrt(3) s], y in W/2 +- 2 s.
+    x_lo, x_hi = 0.75 * L - reach, 0.75 * L + 2.0 * math.sqrt(3.0) * s + reach
+    y_lo, y_hi = 0.5 * W - 2.0 * s - reach, 0.5 * W + 2.0 * s + reach
+    if x_lo < -tol or x_hi > L + tol or y_lo < -tol or y_hi > W + tol or (check_cue and 0.25 * L < radius - tol):
+        raise ValueError(
+            f"the {L} x {W} m table is too small for a rack of balls of radius {radius} m "
+            f"(jitter {jitter} m): the rack needs a playing area of at least "
+            f"{_up(4.0 * (2.0 * math.sqrt(3.0) * s + reach))} x {_up(2.0 * (2.0 * s + reach))} m"
+        )
+    for px, py, pr in table.pockets.tolist():
+        near = math.hypot(max(x_lo - px, 0.0, px - x_hi), max(y_lo - py, 0.0, py - y_hi)) < pr
+        if check_cue:
+            near = near or math.hypot(xy[0, 0] - px, xy[0, 1] - py) < pr + radius
+        if near:
+            break
+    else:
+        return
+    first = 0 if check_cue else 1
+    spots = xy[first:]
+    margin = np.full(len(spots), jitter)
+    if check_cue:
+        margin[0] = 0.0
+    pockets = table.pockets
+    gap = np.hypot(spots[:, None, 0] - pockets[None, :, 0], spots[:, None, 1] - pockets[None, :, 1])
+    over = gap - pockets[None, :, 2] < margin[:, None]  # over the pocket or within the jitter of it
+    if np.any(over):
+        i, k = np.argwhere(over)[0]
+        x, y = spots[i]
+        raise ValueError(
+            f"the {L} x {W} m table is too small for a rack with these pockets: ball {i + first}'s spot "
+            f"({x:.4f}, {y:.4f}) m is over pocket {k} or within the jitter ({jitter} m) of it"
+        )
+
+
+def _up(length):
+    """A length rounded up to 0.1 mm, for messages stating a minimum."""
+    return f"{math.ceil(length * 1e4 - 1e-9) / 1e4:.4f}"
