@@ -14,6 +14,8 @@ import numpy as np
 
 from pool_env.bench.speed import fmt_time as _fmt_time
 from pool_env.physics import BALL_MASS, BALL_RADIUS, Balls, Physics, Table, rack, simulate, strike
+from pool_env.physics.kinds import POCKETED, VX, VY, WX, WZ
+from pool_env.physics.objects import kinetic_energy
 
 # The cue is a 5 ms push (the report's eq. 2.1); force = m v / 5 ms gives the speed v.
 CONTACT = 0.005
@@ -133,21 +135,19 @@ def timed(fn, budget=0.02, max_reps=25):
     return result, best
 
 
-def _kinetic(rows, balls):
-    m, r = balls.masses, balls.radii
-    return 0.5 * m * np.sum(rows[..., 2:4] ** 2, axis=-1) + 0.2 * m * r**2 * np.sum(rows[..., 4:7] ** 2, axis=-1)
-
-
 def energies(result, times):
     """Kinetic energy (J) at each time, a pocketed ball counting with the energy it dropped
     with: otherwise a drop found at a frame end instead of mid-frame would count as an energy
     error of the whole ball for up to a frame."""
+    radii, masses = result.final.radii, result.final.masses
     rows, states = result.sample(times)
-    total = np.sum(np.where(states == 4, 0.0, _kinetic(rows, result.final)), axis=1)
+    per_ball = kinetic_energy(rows[..., VX:VY + 1], rows[..., WX:WZ + 1], radii, masses)
+    total = np.sum(np.where(states == POCKETED, 0.0, per_ball), axis=1)
     for e in result.events:
         if e.kind == "ball_pocket":
             before, _ = result.sample(np.array([max(e.time - 1e-9, 0.0)]))
-            total[times >= e.time] += _kinetic(before[0], result.final)[e.i]
+            row = before[0, e.i]
+            total[times >= e.time] += kinetic_energy(row[VX:VY + 1], row[WX:WZ + 1], radii[e.i], masses[e.i])
     return total
 
 

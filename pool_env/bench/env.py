@@ -68,13 +68,14 @@ def _frames_per_second(mode, seconds, seed, size):
                 frames += env.render().shape[0] > 0
         wall, cpu = clock.wall(), clock.cpu()
     else:
-        base = env.unwrapped
         env.reset(seed=seed)
         action = np.array([1.0, 0.0], dtype=np.float32)  # a break, then random shots
         wall = cpu = 0.0
         while wall < seconds:
-            _, _, terminated, truncated, _ = env.step(action)  # the physics is not timed
-            base._tracks = {}  # time the trajectory sampling and orientation too, not only the drawing
+            # The physics is not timed. The step hands the playback a new shot, whose frames are
+            # not sampled yet: the render below samples the trajectory and carries the balls'
+            # orientation through it, then draws, and all three are timed.
+            _, _, terminated, truncated, _ = env.step(action)
             clock = _Clock()
             frames += len(env.render())
             wall, cpu = wall + clock.wall(), cpu + clock.cpu()

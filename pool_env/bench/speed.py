@@ -1,9 +1,19 @@
-"""`python -m pool_env.bench speed`: simulator speed against the targets of issue 2."""
+"""`python -m pool_env.bench speed`: simulator speed against the targets of the engine-shape issue.
+
+Every figure is measured in fresh interpreters through the public API only (`simulate`,
+`Physics`, `Table`, `rack`, `strike` and this module's `break_shot` / `two_ball_shot`), so
+`--against PATH` can measure another checkout of the project (one that has the same API,
+e.g. `git archive <commit> | tar -x -C /tmp/old`) the same way in the same run: the two
+versions take turns (ABBA order), and each figure's ratio ours / theirs is printed. The
+machine is noisy (absolute times vary by half), the ratios much less.
+"""
 
 from __future__ import annotations
 
 import argparse
 import collections
+import contextlib
+import json
 import math
 import os
 import statistics
@@ -11,23 +21,75 @@ import subprocess
 import sys
 import tempfile
 import time
+from pathlib import Path
+from typing import NamedTuple
 
-# Targets from the physics issue, measured on one core after warm-up.
+# Targets of the engine-shape issue (seconds), one core, after warm-up unless stated.
 TARGETS = {
-    "break": 0.5e-3,
-    "two_ball": 30e-6,
+    "break": 0.40e-3,
+    "two_ball": 20e-6,
     "import": 0.5,
     "first_shot": 0.3,
     "cold_compile": 10.0,
 }
+# (key, what, how it must compare with its target); the table's rows, in order.
+FIGURES = (
+    ("break", "16-ball break at 8 m/s, median over racks", "<="),
+    ("two_ball", "2-ball shot (2 m/s, 15 deg cut)", "<="),
+    ("import", "import pool_env, fresh process", "<"),
+    ("first_shot", "first shot, fresh process, warm numba cache", "<="),
+    ("cold_compile", "cold compile (empty numba cache)", "<="),
+)
 
+# Fresh-interpreter programs: each prints one JSON line, with the file pool_env came from (so
+# the caller can check it measured the version it meant to). WORKER's arguments: racks,
+# timed runs per rack, timed runs of the 2-ball shot.
+IMPORT = (
+    "import json, time; t0 = time.perf_counter(); import pool_env; "
+    "print(json.dumps({'file': pool_env.__file__, 'seconds': time.perf_counter() - t0}))"
+)
 FIRST_SHOT = (
-    "import time; t0 = time.perf_counter(); "
+    "import json, time; t0 = time.perf_counter(); "
     "from pool_env.physics import Physics, Table, rack, simulate, strike; "
     "t = Table.eight_foot(); "
     "simulate(strike(rack(t, seed=0), force=(8 * 0.170097 / 0.005, 0.0)), t, Physics.standard()); "
-    "print(time.perf_counter() - t0)"
+    "seconds = time.perf_counter() - t0; "
+    "import pool_env; print(json.dumps({'file': pool_env.__file__, 'seconds': seconds}))"
 )
+WORKER = """
+import json, sys, time
+import pool_env
+from pool_env.bench.speed import break_shot, two_ball_shot
+from pool_env.physics import Physics, simulate
+
+racks, repeats, two_repeats = (int(a) for a in sys.argv[1:4])
+physics = Physics.standard()
+
+def timed(balls, table, n):
+    simulate(balls, table, physics)  # warm-up: loads the compiled code on the first call
+    out = []
+    for _ in range(n):
+        t0 = time.perf_counter()
+        simulate(balls, table, physics)
+        out.append(time.perf_counter() - t0)
+    return out
+
+brk, events = [], []
+for seed in range(racks):
+    balls, table = break_shot(seed)
+    brk.append(timed(balls, table, repeats))
+    events.append(simulate(balls, table, physics).stats["events"])
+balls, table = two_ball_shot()
+two = timed(balls, table, two_repeats)
+print(json.dumps({"file": pool_env.__file__, "break": brk, "events": events, "two_ball": two,
+                  "two_ball_events": simulate(balls, table, physics).stats["events"]}))
+"""
+OURS = str(Path(__file__).resolve().parents[2])  # the checkout this module belongs to
+
+
+class Version(NamedTuple):
+    name: str  # "ours" or "theirs"
+    root: str  # the folder holding its pool_env package
 
 
 def break_shot(seed):
@@ -48,28 +110,6 @@ def two_ball_shot():
     cut = math.radians(15.0)
     balls = Balls([[0.5, 0.56], [1.0, 0.56 + 2 * BALL_RADIUS * math.sin(cut)]])
     return strike(balls, force=(2.0 * BALL_MASS / 0.005, 0.0)), Table.eight_foot()
-
-
-def time_calls(fn, repeats):
-    """Median and min seconds per call over `repeats` timed calls (after one warm-up call)."""
-    fn()
-    samples = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        samples.append(time.perf_counter() - t0)
-    return statistics.median(samples), min(samples)
-
-
-def fresh_process(code, env=None, runs=3):
-    """Median wall time printed by `code` in fresh interpreters (or measured around it)."""
-    times = []
-    for _ in range(runs):
-        t0 = time.perf_counter()
-        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True)
-        wall = time.perf_counter() - t0
-        times.append(float(out.stdout.strip().splitlines()[-1]) if out.stdout.strip() else wall)
-    return statistics.median(times)
 
 
 def _table_shape(table):
@@ -282,54 +322,131 @@ def fmt_time(seconds, us_digits=1):
     return f"{seconds:.2f} s"
 
 
-def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m pool_env.bench speed", description=__doc__)
-    parser.add_argument("--seeds", type=int, default=20, help="seeded racks for the break figure")
-    parser.add_argument("--repeats", type=int, default=30, help="timed runs per rack")
-    parser.add_argument("--no-cold", action="store_true", help="skip the cold-compile measurement (~10 s)")
-    args = parser.parse_args(argv)
+def run_python(code, version, args=(), env=None):
+    """Run `code` in a fresh interpreter that imports `version`'s pool_env; its JSON output.
 
-    if hasattr(os, "sched_setaffinity"):
-        os.sched_setaffinity(0, {min(os.sched_getaffinity(0))})  # one core, as the targets say
+    The folder goes first on the path (PYTHONPATH and the working directory, which `-c` puts
+    first), ahead of any installed pool_env; the output says which file was imported."""
+    env = dict(os.environ if env is None else env)
+    env["PYTHONPATH"] = os.pathsep.join(p for p in (version.root, env.get("PYTHONPATH")) if p)
+    out = subprocess.run([sys.executable, "-c", code, *map(str, args)], cwd=version.root, env=env,
+                         capture_output=True, text=True)
+    if out.returncode != 0:
+        raise RuntimeError(f"{version.name} ({version.root}) failed:\n{out.stderr.strip()[-3000:]}")
+    data = json.loads(out.stdout.strip().splitlines()[-1])
+    if Path(version.root).resolve() not in Path(data["file"]).resolve().parents:
+        raise RuntimeError(f"{version.name}: pool_env came from {data['file']}, not from {version.root}")
+    return data
+
+
+def interleaved(versions, rounds, measure):
+    """{name: [measure(version) per round]}, the versions taking turns in ABBA order, so a
+    drift in the machine's speed weighs on each alike."""
+    out = {v.name: [] for v in versions}
+    for r in range(rounds):
+        for v in versions if r % 2 == 0 else versions[::-1]:
+            out[v.name].append(measure(v))
+    return out
+
+
+def shot_figures(runs):
+    """The break and 2-ball figures of one version from its WORKER runs (one per round).
+
+    break: the median over racks of each rack's median over all its timed runs; two_ball: the
+    median of all timed runs; by_round: both figures from each round alone."""
+    def brk(run_list):
+        racks = len(run_list[0]["break"])
+        return statistics.median(statistics.median(t for run in run_list for t in run["break"][s])
+                                 for s in range(racks))
+
+    def two(run_list):
+        return statistics.median(t for run in run_list for t in run["two_ball"])
+
+    return {"break": brk(runs), "two_ball": two(runs), "events": runs[0]["events"],
+            "two_ball_events": runs[0]["two_ball_events"],
+            "by_round": [(brk([run]), two([run])) for run in runs]}
+
+
+def cold_run(version):
+    """The first shot in a fresh process with an empty numba cache (NUMBA_CACHE_DIR set to a
+    new folder): numba compiles everything the shot uses."""
+    with tempfile.TemporaryDirectory() as cache:
+        return run_python(FIRST_SHOT, version, env=dict(os.environ, NUMBA_CACHE_DIR=cache))["seconds"]
+
+
+def measure_all(versions, args):
+    """{name: {figure key: seconds, ...}} for every version, each figure interleaved."""
+    figures = {v.name: {} for v in versions}
+    per_round = math.ceil(args.repeats / args.rounds)
+    two_per_round = math.ceil(30 * args.repeats / args.rounds)
+    shots = interleaved(versions, args.rounds,
+                        lambda v: run_python(WORKER, v, (args.seeds, per_round, two_per_round)))
+    for name, runs in shots.items():
+        figures[name].update(shot_figures(runs))
+    # The workers above loaded every version's compiled code, so its numba cache is warm.
+    for key, code in (("import", IMPORT), ("first_shot", FIRST_SHOT)):
+        times = interleaved(versions, args.runs, lambda v, c=code: run_python(c, v)["seconds"])
+        for name, samples in times.items():
+            figures[name][key] = statistics.median(samples)
+    if not args.no_cold:
+        for name, samples in interleaved(versions, 1, cold_run).items():
+            figures[name]["cold_compile"] = samples[0]
+    return figures
+
+
+def _notes(key, ours, theirs, args):
+    """The notes column of one figure's row."""
+    if key == "break":
+        ev = ours["events"]
+        note = (f"{args.seeds} racks, {statistics.median(ev):.0f} events (range {min(ev)}-{max(ev)}), "
+                f"{ours['break'] / statistics.median(ev) * 1e6:.2f} us/event")
+        if theirs:
+            same = theirs["events"] == ev
+            note += "; theirs the same events per rack" if same else \
+                f"; theirs {statistics.median(theirs['events']):.0f} events (other racks' counts differ)"
+    elif key == "two_ball":
+        note = f"{ours['two_ball_events']} events" + (f" (theirs {theirs['two_ball_events']})" if theirs else "")
+    elif key == "cold_compile":
+        note = "first shot, numba compiling everything (one run)"
+    else:
+        what = "fresh interpreter" if key == "import" else "import + rack + strike + simulate"
+        note = f"{what}, median of {args.runs}"
+    if theirs and key in ("break", "two_ball") and args.rounds > 1:
+        k = 0 if key == "break" else 1
+        ratios = [a[k] / b[k] for a, b in zip(ours["by_round"], theirs["by_round"])]
+        note += f"; ratio by round {min(ratios):.2f}-{max(ratios):.2f}"
+    return note
+
+
+def print_table(figures, against, args):
+    ours, theirs = figures["ours"], figures.get("theirs")
+    print("pool_env speed (one core; fresh processes; after warm-up unless stated)")
+    if theirs:
+        print(f"ours: {OURS}; theirs: {against} (measured in turns in the same run)")
+    print()
+    head = ["figure", "ours" if theirs else "measured", "target", "met"]
+    head += ["theirs", "ours / theirs"] if theirs else []
+    print("| " + " | ".join(head + ["notes"]) + " |")
+    print("| " + " | ".join(["---"] * (len(head) + 1)) + " |")
+    for key, what, op in FIGURES:
+        value, target = ours.get(key), TARGETS[key]
+        if value is None:
+            cells = [what, "not measured", f"{op} {fmt_time(target)}", "-"] + (["-", "-"] if theirs else [])
+            print("| " + " | ".join(cells + ["skipped (--quick)" if args.quick else "skipped (--no-cold)"]) + " |")
+            continue
+        met = value < target if op == "<" else value <= target
+        cells = [what, fmt_time(value), f"{op} {fmt_time(target)}", "yes" if met else "NO"]
+        if theirs:
+            cells += [fmt_time(theirs[key]), f"{value / theirs[key]:.2f}"]
+        print("| " + " | ".join(cells + [_notes(key, ours, theirs, args)]) + " |")
+
+
+def print_work_done():
+    """Where the time goes on the break: the engine's counters from one run of rack 0."""
     from pool_env.physics import Physics, simulate
 
-    physics = Physics.standard()
-    rows = []
-    medians, events = [], []
-    for seed in range(args.seeds):
-        balls, table = break_shot(seed)
-        med, _ = time_calls(lambda b=balls, t=table: simulate(b, t, physics), args.repeats)
-        medians.append(med)
-        events.append(simulate(balls, table, physics).stats["events"])
-    brk = statistics.median(medians)
-    ev = statistics.median(events)
-    rows.append(("break, median", brk, TARGETS["break"],
-                 f"{ev:.0f} events (range {min(events)}-{max(events)}), {brk / ev * 1e6:.2f} us/event"))
-
-    balls, table = two_ball_shot()
-    two, _ = time_calls(lambda: simulate(balls, table, physics), args.repeats * 30)
-    n2 = simulate(balls, table, physics).stats["events"]
-    rows.append(("2-ball shot (2 m/s, 15 deg cut)", two, TARGETS["two_ball"], f"{n2} events"))
-
-    imp = fresh_process("import time; t0 = time.perf_counter(); import pool_env; print(time.perf_counter() - t0)")
-    rows.append(("import pool_env", imp, TARGETS["import"], "fresh interpreter"))
-    first = fresh_process(FIRST_SHOT)
-    rows.append(("first shot, fresh process, warm cache", first, TARGETS["first_shot"],
-                 "import pool_env.physics + rack + strike + simulate"))
-    if not args.no_cold:
-        with tempfile.TemporaryDirectory() as cache:
-            env = dict(os.environ, NUMBA_CACHE_DIR=cache)
-            cold = fresh_process(FIRST_SHOT, env=env, runs=1)
-        rows.append(("cold compile (empty numba cache)", cold, TARGETS["cold_compile"], "first shot, compiling"))
-
-    print("pool_env speed (one core, after warm-up unless stated)\n")
-    print("| figure | measured | target | met | notes |\n| --- | --- | --- | --- | --- |")
-    for name, value, target, note in rows:
-        print(f"| {name} | {fmt_time(value)} | < {fmt_time(target)} | {'yes' if value < target else 'NO'} | {note} |")
-
-    # Where the time goes on the break: counters from one run.
     balls, table = break_shot(0)
-    stats = simulate(balls, table, physics).stats
+    stats = simulate(balls, table, Physics.standard()).stats
     print("\nbreak, seed 0: work done")
     for key in ("ball_ball", "ball_cushion", "ball_pocket"):
         computed, rejected = stats[f"{key}_predictions"], stats[f"{key}_rejected"]
@@ -337,9 +454,63 @@ def main(argv=None) -> int:
               f"{rejected:>5} rejected by the broad phase")
     print(f"  resting pairs skipped without any arithmetic: {stats['resting_pairs_skipped']}")
 
-    peer = pooltool_figures(args.seeds, repeats=max(3, args.repeats // 6))
-    if peer is None:
+
+def parse_args(argv):
+    parser = argparse.ArgumentParser(prog="python -m pool_env.bench speed", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--against", metavar="PATH",
+                        help="a checkout of another version: measure it too, in turns, and print ours / theirs")
+    parser.add_argument("--seeds", type=int, help="seeded racks for the break figure (default 20, --quick 5)")
+    parser.add_argument("--repeats", type=int,
+                        help="timed runs per rack over all rounds, 30 x as many 2-ball shots (default 30, --quick 8)")
+    parser.add_argument("--rounds", type=int, help="turns each version takes at the shots (default 6, --quick 2)")
+    parser.add_argument("--runs", type=int,
+                        help="fresh processes per version for import and first shot (default 5, --quick 2)")
+    parser.add_argument("--no-cold", action="store_true",
+                        help="skip the cold compile (10-20 s per version, compiling from scratch)")
+    parser.add_argument("--quick", action="store_true",
+                        help="a rough look in well under a minute: fewer racks, runs and rounds, no cold "
+                             "compile, no pooltool")
+    args = parser.parse_args(argv)
+    for name, full, quick in (("seeds", 20, 5), ("repeats", 30, 8), ("rounds", 6, 2), ("runs", 5, 2)):
+        if getattr(args, name) is None:
+            setattr(args, name, quick if args.quick else full)
+        if getattr(args, name) < 1:
+            parser.error(f"--{name} must be at least 1")
+    args.no_cold = args.no_cold or args.quick
+    if args.against is not None:
+        args.against = str(Path(args.against).resolve())
+        if not (Path(args.against) / "pool_env" / "__init__.py").is_file():
+            parser.error(f"--against {args.against}: no pool_env package there")
+    return args
+
+
+@contextlib.contextmanager
+def one_core():
+    """Run this process, and the subprocesses it starts, on one core (as the targets say)."""
+    if not hasattr(os, "sched_setaffinity"):
+        yield
+        return
+    cores = os.sched_getaffinity(0)
+    os.sched_setaffinity(0, {min(cores)})
+    try:
+        yield
+    finally:
+        os.sched_setaffinity(0, cores)
+
+
+def main(argv=None) -> int:
+    args = parse_args(argv)
+    versions = [Version("ours", OURS)] + ([Version("theirs", args.against)] if args.against else [])
+    with one_core():
+        figures = measure_all(versions, args)
+        peer = None if args.quick else pooltool_figures(args.seeds, repeats=max(3, args.repeats // 6))
+    print_table(figures, args.against, args)
+    print_work_done()
+    ours = figures["ours"]
+    if peer is not None:
+        print_pooltool(peer, {"break": (ours["break"], ours["events"]),
+                              "two_ball": (ours["two_ball"], ours["two_ball_events"])})
+    elif not args.quick:
         print("\npooltool: not importable here, no side-by-side figures (see README, 'Comparing with pooltool').")
-    else:
-        print_pooltool(peer, {"break": (brk, events), "two_ball": (two, n2)})
     return 0

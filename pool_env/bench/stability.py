@@ -104,25 +104,24 @@ def random_break(rng, physics="mixed"):
 
 def most_contacts(result):
     """The most contact events between the same two bodies (balls, or a ball and a cushion)."""
-    _, kinds, ei, ej = result.event_arrays
-    from pool_env.physics import EVENT_KINDS
+    from pool_env.physics.kinds import BALL_BALL_KINDS, BALL_CUSHION
 
-    contact = np.isin(kinds, [EVENT_KINDS.index(k) for k in ("ball_ball", "ball_ball_settle", "ball_cushion")])
+    _, kinds, ei, ej = result.event_arrays
+    contact = np.isin(kinds, (*BALL_BALL_KINDS, BALL_CUSHION))
     if not contact.any():
         return 0
-    cushion = kinds[contact] == EVENT_KINDS.index("ball_cushion")
+    cushion = kinds[contact] == BALL_CUSHION
     keys = np.stack([ei[contact], np.where(cushion, -1 - ej[contact], ej[contact])], axis=1)
     return int(np.unique(keys, axis=0, return_counts=True)[1].max())
 
 
 def run(shots, seed=0, first=0, physics="mixed", rerun_every=10, show=3, verbose=True):
     """Run the sweep; returns a summary dict (see `main` for what it prints)."""
-    from pool_env.physics import EVENT_KINDS
     from pool_env.physics.invariants import run_checked
+    from pool_env.physics.kinds import BALL_BALL_SETTLE
 
     failures = collections.defaultdict(list)
     events, settles, contacts = [], [], []
-    settle_kind = EVENT_KINDS.index("ball_ball_settle")
     worst = None
     wall = time.perf_counter()
     for k in range(first, first + shots):
@@ -135,7 +134,7 @@ def run(shots, seed=0, first=0, physics="mixed", rerun_every=10, show=3, verbose
             continue
         n = len(result.event_times)
         events.append(n)
-        settles.append(int(np.count_nonzero(result.event_arrays[1] == settle_kind)))
+        settles.append(int(np.count_nonzero(result.event_arrays[1] == BALL_BALL_SETTLE)))
         contacts.append(most_contacts(result))
         if worst is None or n > worst[1]:
             worst = (k, n, description)

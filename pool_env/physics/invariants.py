@@ -29,7 +29,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .kinds import BALL_BALL, BALL_BALL_KINDS, BALL_CUSHION, POCKETED
+from .kinds import BALL_BALL, BALL_BALL_KINDS, BALL_CUSHION, POCKETED, VX, VY, WX, WZ, X, Y
+from .objects import kinetic_energy
 from .result import SimulationError
 from .simulate import simulate
 
@@ -50,15 +51,6 @@ class Violation(NamedTuple):
     detail: str
 
 
-def kinetic_energy(rows, states, radii, masses):
-    """(translational, rotational) kinetic energy of the balls on the table, per sample:
-    rows (T, N, 8) and states (T, N) as `Result.sample` returns them."""
-    on = states != POCKETED
-    trans = 0.5 * masses * np.sum(rows[..., 2:4] ** 2, axis=-1)
-    rot = 0.5 * 0.4 * masses * radii**2 * np.sum(rows[..., 4:7] ** 2, axis=-1)
-    return np.sum(np.where(on, trans, 0.0), axis=-1), np.sum(np.where(on, rot, 0.0), axis=-1)
-
-
 def samples(result, balls=None):
     """(instants, kind ids per instant, times, rows, states): the distinct event times, and
     the states at t = 0 and just before and just after each instant (sample 2k + 1 is just
@@ -73,7 +65,7 @@ def samples(result, balls=None):
     if balls is not None:
         starts = [0, 1] if instants.size and instants[0] == 0.0 else [0]
         for s in starts:
-            rows[s, :, 0:2], rows[s, :, 2:4], rows[s, :, 4:7] = balls.xy, balls.v, balls.w
+            rows[s, :, X:Y + 1], rows[s, :, VX:VY + 1], rows[s, :, WX:WZ + 1] = balls.xy, balls.v, balls.w
             states[s] = np.where(balls.pocketed, POCKETED, 0)
     return instants, kinds, times, rows, states
 
@@ -99,7 +91,7 @@ def check(result, balls=None, first_only=False) -> list[Violation]:
         add("non_finite", times[s], f"non-finite state at t = {times[s]!r}")
         rows = np.where(bad, 0.0, rows)
     on = states != POCKETED
-    x, y = rows[..., 0], rows[..., 1]
+    x, y = rows[..., X], rows[..., Y]
 
     n = rows.shape[1]
     if n > 1:
@@ -127,8 +119,8 @@ def check(result, balls=None, first_only=False) -> list[Violation]:
         s, i = np.argwhere(outside)[0]
         add("off_table", times[s], f"ball {i} left the table at ({x[s, i]:.6g}, {y[s, i]:.6g}) at t = {times[s]!r}")
 
-    trans, rot = kinetic_energy(rows, states, radii, masses)
-    total = trans + rot
+    energy = kinetic_energy(rows[..., VX:VY + 1], rows[..., WX:WZ + 1], radii, masses)
+    total = np.sum(np.where(on, energy, 0.0), axis=-1)
     rise = np.diff(total)
     for k, ks in enumerate(kinds):  # rise[2k + 1] is across instant k
         seeded_bb = physics.ball_ball == "seed" and any(kind in ks for kind in BALL_BALL_KINDS)
@@ -140,7 +132,7 @@ def check(result, balls=None, first_only=False) -> list[Violation]:
         add("energy", times[s + 1], f"kinetic energy rose by {rise[s]:.3g} J at t = {times[s + 1]!r}")
 
     if physics.ball_ball in MOMENTUM_MODELS:
-        p = masses[:, None] * rows[..., 2:4] * on[..., None]
+        p = masses[:, None] * rows[..., VX:VY + 1] * on[..., None]
         for k, ks in enumerate(kinds):
             if ks == {BALL_BALL}:
                 change = np.hypot(*(p[2 * k + 2].sum(axis=0) - p[2 * k + 1].sum(axis=0)))

@@ -122,11 +122,17 @@ class Balls:
 
     def energy(self) -> float:
         """Kinetic energy (translation and rotation) of the balls on the table (J)."""
-        on = ~self.pocketed
-        m, r = self._masses[on], self._radii[on]
-        lin = 0.5 * m * np.sum(self.v[on] ** 2, axis=1)
-        rot = 0.5 * 0.4 * m * r**2 * np.sum(self.w[on] ** 2, axis=1)
-        return float(np.sum(lin + rot))
+        return float(np.sum(kinetic_energy(self.v, self.w, self._radii, self._masses)[~self.pocketed]))
+
+
+def kinetic_energy(v, w, radii, masses) -> np.ndarray:
+    """Kinetic energy (J) of each ball, translation plus rotation (a solid ball: I = 2/5 m R^2).
+
+    v (..., N, 2) velocities and w (..., N, 3) spins, any leading axes (the samples of a
+    trajectory, say); radii and masses (N,). Pocketed balls count like any other: callers
+    mask them (`Balls.energy`, `invariants.check`). `geometry.kinetic_energy` is the
+    compiled one-ball kernel of the same formula."""
+    return 0.5 * masses * np.sum(v**2, axis=-1) + 0.2 * masses * radii**2 * np.sum(w**2, axis=-1)
 
 
 def _rebuild_balls(xy, v, w, pocketed, radius, mass, radii, masses):

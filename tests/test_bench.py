@@ -1,0 +1,77 @@
+"""The benchmarks' helpers: the shared kinetic energy, the speed bench's A/B machinery."""
+
+import numpy as np
+import pytest
+
+from pool_env.bench import speed
+from pool_env.physics import Balls, Physics, simulate
+from pool_env.physics.geometry import kinetic_energy as ball_energy_kernel
+from pool_env.physics.kinds import VX, VY, WX, WZ
+from pool_env.physics.objects import kinetic_energy
+
+
+def _balls(rng, pocketed):
+    n = len(pocketed)
+    xy = np.column_stack([0.1 + 0.2 * np.arange(n), np.full(n, 0.5)])
+    return Balls(xy, v=rng.normal(size=(n, 2)), w=30 * rng.normal(size=(n, 3)),
+                 radius=rng.uniform(0.02, 0.03, n), mass=rng.uniform(0.1, 0.2, n), pocketed=pocketed)
+
+
+def test_kinetic_energy_is_the_compiled_kernel_per_ball_and_balls_energy_skips_pocketed():
+    balls = _balls(np.random.default_rng(0), [False, True, False, False])
+    per_ball = kinetic_energy(balls.v, balls.w, balls.radii, balls.masses)
+    kernel = [ball_energy_kernel(*balls.v[i], *balls.w[i], balls.radii[i], balls.masses[i]) for i in range(4)]
+    np.testing.assert_allclose(per_ball, kernel, rtol=1e-15)
+    assert balls.energy() == pytest.approx(per_ball[[0, 2, 3]].sum(), rel=1e-15)
+
+
+def test_kinetic_energy_broadcasts_over_samples():
+    balls = _balls(np.random.default_rng(1), [False] * 3)
+    result = simulate(balls, speed.two_ball_shot()[1], Physics.standard())
+    rows, _ = result.sample(np.linspace(0.0, result.duration, 7))
+    stacked = kinetic_energy(rows[..., VX:VY + 1], rows[..., WX:WZ + 1], balls.radii, balls.masses)
+    assert stacked.shape == (7, 3)
+    for k in range(7):
+        at = result.at(float(np.linspace(0.0, result.duration, 7)[k]))
+        assert stacked[k][~at.pocketed].sum() == pytest.approx(at.energy(), rel=1e-12)
+
+
+def test_interleaved_takes_turns_abba():
+    versions = [speed.Version("ours", "a"), speed.Version("theirs", "b")]
+    order = []
+    out = speed.interleaved(versions, 4, lambda v: order.append(v.name) or len(order))
+    assert order == ["ours", "theirs", "theirs", "ours"] * 2
+    assert out == {"ours": [1, 4, 5, 8], "theirs": [2, 3, 6, 7]}
+
+
+def test_shot_figures_pool_the_rounds_per_rack():
+    runs = [{"break": [[1.0, 2.0], [10.0, 10.0]], "events": [5, 6], "two_ball": [1.0, 3.0], "two_ball_events": 2},
+            {"break": [[3.0, 4.0], [30.0, 30.0]], "events": [5, 6], "two_ball": [5.0], "two_ball_events": 2}]
+    fig = speed.shot_figures(runs)
+    # rack medians over both rounds: 2.5 and 20; the break figure is their median
+    assert fig["break"] == pytest.approx(11.25)
+    assert fig["two_ball"] == 3.0
+    assert fig["by_round"] == [(5.75, 2.0), (16.75, 5.0)]
+
+
+def test_run_python_refuses_a_folder_whose_pool_env_it_did_not_import(tmp_path):
+    with pytest.raises(RuntimeError, match="not from"):
+        speed.run_python(speed.IMPORT, speed.Version("theirs", str(tmp_path)))
+
+
+def test_quick_skips_the_cold_compile_and_rejects_a_folder_without_pool_env(tmp_path):
+    args = speed.parse_args(["--quick"])
+    assert args.no_cold and (args.seeds, args.rounds) == (5, 2)
+    assert speed.parse_args(["--quick", "--seeds", "3"]).seeds == 3
+    with pytest.raises(SystemExit):
+        speed.parse_args(["--against", str(tmp_path)])
+
+
+@pytest.mark.slow
+def test_speed_against_itself_prints_every_figure_and_a_ratio(capsys):
+    argv = ["--quick", "--seeds", "1", "--repeats", "1", "--rounds", "1", "--runs", "1", "--against", speed.OURS]
+    assert speed.main(argv) == 0
+    out = capsys.readouterr().out
+    for _, what, _ in speed.FIGURES:
+        assert what in out
+    assert "| ours / theirs |" in out and "skipped (--quick)" in out
