@@ -26,7 +26,7 @@ SEED, ELASTIC, FRICTIONAL = (BALL_BALL_MODELS.index(name) for name in ("seed", "
 ALCIATORE_A, ALCIATORE_B, ALCIATORE_C = 9.951e-3, 0.108, 1.088
 
 
-@kernel
+@helper
 def _normal_impulse(bi, bj, nx, ny, mi, mj, e):
     """Apply the restitution impulse along n; returns its magnitude (0 if not approaching)."""
     approach = (bi[VX] - bj[VX]) * nx + (bi[VY] - bj[VY]) * ny
@@ -40,7 +40,7 @@ def _normal_impulse(bi, bj, nx, ny, mi, mj, e):
     return jn
 
 
-@kernel
+@helper
 def seed(bi, bj, nx, ny, ri, rj, mi, mj, params):
     """The report's model (its eq. 3.4 and code listing 5): normal components exchanged by the
     1-D elastic formula, then scaled by e; tangential components kept; no spin transfer, and
@@ -60,20 +60,20 @@ def seed(bi, bj, nx, ny, ri, rj, mi, mj, params):
     _roll(bj, rj)
 
 
-@kernel
+@helper
 def _roll(b, r):
     """Set the spin of a ball to rolling without slipping at its current velocity."""
     roll(b, r)
     b[WZ] = 0.0
 
 
-@kernel
+@helper
 def elastic(bi, bj, nx, ny, ri, rj, mi, mj, params):
     """Frictionless contact: restitution e_b along the line of centres, spins untouched."""
     _normal_impulse(bi, bj, nx, ny, mi, mj, params[P_E_B])
 
 
-@kernel
+@helper
 def frictional(bi, bj, nx, ny, ri, rj, mi, mj, params):
     """Restitution e_b along n plus Coulomb friction at the contact point with Alciatore's
     speed-dependent coefficient: gives cut-induced throw and spin transfer.
@@ -127,7 +127,7 @@ def _apply_friction(bi, bj, nx, ny, ri, rj, mi, mj, p_t, p_z):
     _spin_kick(bj, rj / ij, p_t, p_z, tx, ty)
 
 
-@kernel
+@helper
 def _spin_kick(b, r_over_i, p_t, p_z, tx, ty):
     """dw = (R / I) (P_t z - P_z t): the friction impulse's moment about the centre."""
     b[WX] -= r_over_i * p_z * tx

@@ -10,7 +10,7 @@ from collections import namedtuple
 import numpy as np
 
 from .config import BALL_BALL_MODELS, CUSHION_MODELS
-from .jit import allocating, kernel
+from .jit import allocating, allocating_helper, helper
 from .kinds import BUFFER_FULL, DONE, EVENT_CAP, POCKETED
 
 Scene = namedtuple("Scene", ["S", "st", "R", "M", "params", "bb_model", "cu_model", "spin"])
@@ -46,7 +46,7 @@ impulses), its balls (member (N,) flags, queue (N,) ids) and their rows at the c
 (2, 8)); and done (N,), the balls already re-predicted."""
 
 
-@allocating
+@allocating_helper
 def new_schedule(n):
     """Nothing predicted yet, no ball has met another."""
     inf = np.inf
@@ -54,7 +54,7 @@ def new_schedule(n):
                     np.full((n, n), inf), np.full((n, n), -inf), np.full(n, -inf), np.full(n, -inf))
 
 
-@allocating
+@allocating_helper
 def new_work(n):
     """Scratch space for N balls."""
     return Work(np.empty(n * n, dtype=np.int64), np.empty(n * n, dtype=np.int64), np.empty(n * n),
@@ -73,7 +73,7 @@ def new_log(n_events, n_rows, cap, n_counters):
                np.empty(n_rows, dtype=np.int64), np.zeros(n_counters, dtype=np.int64), size)
 
 
-@kernel
+@helper
 def record_row(log, S, st, i):
     """Append ball i's current row and state to the history (BUFFER_FULL if there is no room)."""
     h = log.size[ROWS]
@@ -87,7 +87,7 @@ def record_row(log, S, st, i):
     log.size[ROWS] = h + 1
 
 
-@kernel
+@helper
 def record_event(log, t, kind, i, j):
     """Append an event. Past the event cap the exit code becomes EVENT_CAP (the event is still
     kept if there is room: the error message names it); with no room, BUFFER_FULL."""

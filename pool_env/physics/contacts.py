@@ -132,7 +132,7 @@ def _gather_pressed(scene, bounds, sched, work, now):
     the next contact, which pushes back, without end): then PACK, each pressed chain, with
     the balls that met others within LOOP_WINDOW and touch it, rolling on together."""
     n = scene.S.shape[0]
-    n_c, tail = 1, 2
+    n_c, tail = np.int64(1), np.int64(2)  # typed, not literal: see jit.py
     for a in range(n):
         for k in range(a + 1, n):
             if sched.pair[a, k] <= now + GROUP_WINDOW and not _listed(work, n_c, a, k) and \
@@ -144,10 +144,10 @@ def _gather_pressed(scene, bounds, sched, work, now):
         alone = alone and sched.met[a, b] < now - LOOP_WINDOW
         alone = alone and not (_touches_cushion(scene, bounds, now, a) or _touches_cushion(scene, bounds, now, b))
     grown = n_c
-    tail, n_c = _grow(scene, sched, work, now, tail, n_c, True)
+    tail, n_c = _grow(scene, sched, work, now, tail, n_c, np.bool_(True))
     if alone and n_c == grown:
         return n_c, (LONE if n_c == 1 else SETTLES)
-    tail, n_c = _grow(scene, sched, work, now, tail, n_c, False)
+    tail, n_c = _grow(scene, sched, work, now, tail, n_c, np.bool_(False))
     return n_c, PACK
 
 
@@ -159,7 +159,7 @@ def _gather_group(scene, sched, work, now, bi, bj):
     inputs would not give symmetric outputs). In resolve_group unlinked contacts stay
     independent. GROUP, or CLUSTER if one of the pairs met within LOOP_WINDOW."""
     n = scene.S.shape[0]
-    n_c, tail = 1, 2
+    n_c, tail = np.int64(1), np.int64(2)  # typed, not literal: see jit.py
     for a in range(n):
         for k in range(a + 1, n):
             if not (sched.pair[a, k] <= now + GROUP_WINDOW) or _listed(work, n_c, a, k):
@@ -190,14 +190,14 @@ def _cluster(scene, sched, work, now, n_c, bi, bj):
     for c in range(n_c):
         if sched.met[ca[c], cb[c]] >= now - LOOP_WINDOW:
             looping[label[ca[c]]] = True
-    tail = 0
+    tail = np.int64(0)
     for k in range(n):
         member[k] = member[k] and looping[label[k]]
         if member[k]:
             queue[tail] = k
             tail += 1
-    tail, _ = _grow(scene, sched, work, now, tail, n_c, False)
-    n_c = 1
+    tail, _ = _grow(scene, sched, work, now, tail, n_c, np.bool_(False))
+    n_c = np.int64(1)
     for m in range(tail):
         for m2 in range(m + 1, tail):
             a, k = queue[m], queue[m2]

@@ -12,7 +12,7 @@ import numpy as np
 
 from .config import CUSHION_MODELS
 from .geometry import alongside, distance_entry, rail_gap, roll
-from .jit import allocating, kernel
+from .jit import allocating_helper, helper, kernel
 from .kinds import SLIDING, VX, VY, WX, WY, WZ
 from .motion import P_E_C, P_F_C, copy_row, reroll, state_of, trajectory
 from .roots import first_entry
@@ -25,7 +25,7 @@ SEED, RESTITUTION, HAN2005 = (CUSHION_MODELS.index(name) for name in ("seed", "r
 # Rail rows in the table arrays: see geometry.py.
 
 
-@kernel
+@helper
 def rail_time(row, state, t, horizon, radius, params, rail):
     """Earliest tau in [0, horizon] at which the ball meets `rail` moving into it (or inf).
 
@@ -44,7 +44,7 @@ def rail_time(row, state, t, horizon, radius, params, rail):
     return tau
 
 
-@kernel
+@helper
 def point_time(row, state, t, horizon, radius, params, px, py, reach):
     """Earliest tau at which the ball's centre comes within `reach` of the fixed point (px, py)
     while approaching: a jaw point (reach = R) or a pocket's capture circle."""
@@ -52,7 +52,7 @@ def point_time(row, state, t, horizon, radius, params, px, py, reach):
     return distance_entry(x - px, y - py, vx, vy, ax, ay, reach, horizon)
 
 
-@kernel
+@helper
 def seed(b, nx, ny, radius, params):
     """The report's model (eq. 3.9 and code listing 6): mirror the velocity in the rail, then
     scale the whole velocity by e_c; the ball leaves rolling."""
@@ -66,7 +66,7 @@ def seed(b, nx, ny, radius, params):
     b[WZ] = 0.0
 
 
-@kernel
+@helper
 def restitution(b, nx, ny, radius, params):
     """Normal component reversed and scaled by e_c, tangential component and spin kept."""
     vn = b[VX] * nx + b[VY] * ny
@@ -77,7 +77,7 @@ def restitution(b, nx, ny, radius, params):
     b[VY] -= k * ny
 
 
-@kernel
+@helper
 def han2005(b, nx, ny, radius, params, height):
     """Han (2005) cushion: the rail touches the ball above its equator, at height h, so the
     impulse acts along a line tilted by theta = asin(h/R - 1); restitution e_c on the normal
@@ -154,7 +154,7 @@ _ORDERS2 = ((0, 1), (1, 0))
 _ORDERS3 = ((0, 1, 2), (0, 2, 1), (1, 0, 2), (1, 2, 0), (2, 0, 1), (2, 1, 0))
 
 
-@allocating
+@allocating_helper
 def resolve_group(model, b, normals, n_c, radius, params, height):
     """A ball meeting n_c (2 or 3) cushions at once, say driven exactly into a corner.
 

@@ -13,7 +13,7 @@ import numpy as np
 
 from . import contacts, pocket, transition
 from .bundles import CAP, CODE, EVENTS, ROWS, new_schedule, new_work, record_event, record_row
-from .jit import allocating, kernel
+from .jit import allocating, helper
 from .kinds import (
     BALL_BALL,
     BALL_CUSHION,
@@ -30,6 +30,10 @@ from .kinds import (
 from .motion import classify, copy_row, state_at
 from .predict import predict
 from .tolerances import GROUP_WINDOW
+
+# The room every event needs at least: one event, up to two history rows (typed, not literal
+# constants: see jit.py).
+ONE_EVENT, TWO_ROWS = np.int64(1), np.int64(2)
 
 
 @allocating
@@ -50,7 +54,7 @@ def run(scene, bounds, log):
         t, kind, bi, bj = _earliest(sched)
         if kind == NO_EVENT:
             return DONE
-        if not _room(log, (t, kind, bi, bj), 1, 2):
+        if not _room(log, (t, kind, bi, bj), ONE_EVENT, TWO_ROWS):
             return log.size[CODE]
         now = max(t, now)
         kind, n_rec, n_touched = _resolve(scene, bounds, sched, work, log, now, (t, kind, bi, bj))
@@ -62,7 +66,7 @@ def run(scene, bounds, log):
         predict(scene, bounds, sched, work, n_touched, now, log.counters)
 
 
-@kernel
+@helper
 def _earliest(sched):
     """The earliest predicted event (time, kind, i, j); ties go to the first found, in a
     fixed order: ball-ball by index pair, then cushions, pockets, transitions by ball."""
@@ -84,7 +88,7 @@ def _earliest(sched):
     return best, kind, bi, bj
 
 
-@kernel
+@helper
 def _room(log, event, n_events, n_rows):
     """True if the log can take n_events more events and n_rows more history rows. Else its
     exit code: EVENT_CAP past the caller's cap (the pending event is kept one past the last,
@@ -100,7 +104,7 @@ def _room(log, event, n_events, n_rows):
     return True
 
 
-@kernel
+@helper
 def _resolve(scene, bounds, sched, work, log, now, event):
     """Bring the balls of the event to `now` and apply it. Returns (the event's kind, pairs
     recorded in work.rec_a/rec_b, balls touched in work.touched); kind NO_EVENT if the log
@@ -130,7 +134,7 @@ def _resolve(scene, bounds, sched, work, log, now, event):
     return kind, 1, 1
 
 
-@kernel
+@helper
 def _resolve_cushions(scene, bounds, sched, work, log, now, event):
     """Every ball meeting cushions within GROUP_WINDOW of `now`, in this one step (the
     event's ball first, the rest by index). Each involves one ball, so they commute, but
@@ -158,7 +162,7 @@ def _resolve_cushions(scene, bounds, sched, work, log, now, event):
     return kind, n_rec, n_touched
 
 
-@kernel
+@helper
 def _commit(scene, log, work, n_touched, now):
     """The touched balls start new segments at `now`: their motion states from their rows
     (z-spin dropped unless tracked), and a history row each."""

@@ -64,7 +64,7 @@ import numpy as np
 from . import ball_ball, cushion, pocket, transition
 from .bundles import CODE, EVENTS, ROWS, new_log, prepare, record_event, record_row
 from .geometry import alongside, rail_gap
-from .jit import allocating, kernel
+from .jit import allocating, helper
 from .kinds import (
     BALL_BALL,
     BALL_CUSHION,
@@ -107,7 +107,7 @@ Frame.__doc__ = """Per-frame scratch: each ball's next transition time t_tr, pos
 deepest cushion penetration] seen (m)."""
 
 
-@kernel
+@helper
 def _rebase(scene, frame, i, t):
     """Make ball i's state row start at time t (closed form), ready to be changed there."""
     S = scene.S
@@ -116,7 +116,7 @@ def _rebase(scene, frame, i, t):
         S[i, c] = frame.row[c]
 
 
-@kernel
+@helper
 def _new_segment(scene, frame, log, i, t):
     """After ball i's row changed at time t: its new motion state, segment and next transition."""
     S, st = scene.S, scene.st
@@ -129,7 +129,7 @@ def _new_segment(scene, frame, log, i, t):
     record_row(log, S, st, i)
 
 
-@kernel
+@helper
 def _advance_to(T, scene, frame, log):
     """Apply, in time order, every motion transition due at or before time T."""
     n = scene.S.shape[0]
@@ -146,7 +146,7 @@ def _advance_to(T, scene, frame, log):
         record_event(log, best, kind, who, -1)
 
 
-@kernel
+@helper
 def _positions(scene, frame, t):
     """Every ball's position and velocity at time t, from its current segment."""
     S, st = scene.S, scene.st
@@ -158,14 +158,14 @@ def _positions(scene, frame, t):
             frame.px[i], frame.py[i], frame.vx[i], frame.vy[i] = S[i, X], S[i, Y], 0.0, 0.0
 
 
-@kernel
+@helper
 def _near_edge(x, y, margin, bounds):
     """Whether a centre is within `margin` of the table's outline (only there can a rail, a jaw
     or a pocket be reached)."""
     return x < margin or y < margin or x > bounds.length - margin or y > bounds.width - margin
 
 
-@kernel
+@helper
 def _cushion_depths(scene, bounds, frame):
     """Record how deep balls stand in the rails or jaws at a frame end (priori mode)."""
     R, px, py, rails, jaws = scene.R, frame.px, frame.py, bounds.rails, bounds.jaws
@@ -182,7 +182,7 @@ def _cushion_depths(scene, bounds, frame):
                 frame.depth[MAX_CUSHION] = max(frame.depth[MAX_CUSHION], depth)
 
 
-@kernel
+@helper
 def _place(S, i, k, nx, ny, depth, M):
     """Move balls i and k apart along n (from i to k) by `depth` (together if negative), each by
     the other's mass share: the centre of mass and the line of centres stay put."""
@@ -193,7 +193,7 @@ def _place(S, i, k, nx, ny, depth, M):
     S[k, Y] += ny * depth * share_k
 
 
-@kernel
+@helper
 def _posteriori_pairs(t, scene, frame, log):
     """Find and fix the ball-ball overlaps standing at the frame end t: push apart, then collide."""
     S, st, R, M, px, py = scene.S, scene.st, scene.R, scene.M, frame.px, frame.py
@@ -234,7 +234,7 @@ def _posteriori_pairs(t, scene, frame, log):
             _new_segment(scene, frame, log, k, t)
 
 
-@kernel
+@helper
 def _posteriori_cushions(t, scene, bounds, frame, log):
     """Find and fix the balls standing in a rail or a jaw at the frame end t."""
     S, R, px, py, rails, jaws = scene.S, scene.R, frame.px, frame.py, bounds.rails, bounds.jaws
@@ -273,7 +273,7 @@ def _posteriori_cushions(t, scene, bounds, frame, log):
                 break
 
 
-@kernel
+@helper
 def _priori_pairs_of(scene, frame, log, i, best, touch, balls_too, measure):
     """The earliest contact of ball i with a ball k > i before `best`, predicted by
     straight-line motion (the report's eq. 3.1): (tau, k), k = -1 if none. With `measure`,
@@ -318,7 +318,7 @@ def _priori_pairs_of(scene, frame, log, i, best, touch, balls_too, measure):
     return best, which
 
 
-@kernel
+@helper
 def _priori_cushion(scene, bounds, frame, log, i, best):
     """Ball i's earliest straight-line contact with a rail's nose line or a jaw circle before
     `best`: (tau, cushion id), id -1 if none."""
@@ -359,7 +359,7 @@ def _priori_cushion(scene, bounds, frame, log, i, best):
     return best, which
 
 
-@kernel
+@helper
 def _priori_next(scene, bounds, stepping, frame, log, horizon, balls_too, measure):
     """The earliest contact in [0, horizon) predicted by straight-line motion: pairs (the
     report's eq. 3.1) and each ball against the rails' nose lines and the jaw circles, ball by
@@ -381,7 +381,7 @@ def _priori_next(scene, bounds, stepping, frame, log, horizon, balls_too, measur
     return best, kind, bi, bj
 
 
-@kernel
+@helper
 def _priori_ball_ball(now, scene, frame, log, i, j, recheck):
     """Resolve the predicted contact of balls i and j at `now` (both rebased there); returns
     whether the rest of the frame may still see ball-ball contacts."""
@@ -407,7 +407,7 @@ def _priori_ball_ball(now, scene, frame, log, i, j, recheck):
     return balls_too
 
 
-@kernel
+@helper
 def _priori_cushion_contact(now, scene, bounds, frame, log, i, j):
     """Resolve ball i's predicted contact with cushion j (rails first, then jaw points) at
     `now` (the ball rebased there)."""
@@ -429,7 +429,7 @@ def _priori_cushion_contact(now, scene, bounds, frame, log, i, j):
     _new_segment(scene, frame, log, i, now)
 
 
-@kernel
+@helper
 def _priori_frame(t0, t1, scene, bounds, stepping, frame, log):
     """One frame of the report's a-priori loop: predict, resolve the earliest, (re)predict."""
     now = t0
@@ -453,7 +453,7 @@ def _priori_frame(t0, t1, scene, bounds, stepping, frame, log):
             _priori_cushion_contact(now, scene, bounds, frame, log, i, j)
 
 
-@kernel
+@helper
 def _pockets(t, scene, bounds, frame, log):
     """Drop every ball whose centre is inside a capture circle (or off the table) at frame end t."""
     S, st, pockets, px, py = scene.S, scene.st, bounds.pockets, frame.px, frame.py
@@ -485,7 +485,7 @@ def _pockets(t, scene, bounds, frame, log):
         record_event(log, t, BALL_POCKET, i, which)
 
 
-@kernel
+@helper
 def _translating(st):
     for i in range(st.shape[0]):
         if moving(st[i]):

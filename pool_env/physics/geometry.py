@@ -13,14 +13,14 @@ from .tolerances import MIN_APPROACH, MIN_DEPTH, POLISH_GAP
 # line from (x1, y1) to (x2, y2) and n its unit normal into the table.
 
 
-@kernel
+@helper
 def along_rail(rail, x, y):
     """Where the point (x, y) projects onto the rail segment: 0 at its start, 1 at its end."""
     dx, dy = rail[2] - rail[0], rail[3] - rail[1]
     return ((x - rail[0]) * dx + (y - rail[1]) * dy) / (dx * dx + dy * dy)
 
 
-@kernel
+@helper
 def alongside(rail, x, y):
     """True if a centre at (x, y) is alongside the rail segment (beyond its ends the jaw
     points take over)."""
@@ -28,13 +28,13 @@ def alongside(rail, x, y):
     return 0.0 <= u <= 1.0
 
 
-@kernel
+@helper
 def rail_gap(rail, x, y, radius):
     """Signed distance (m) from a ball's surface to the rail's nose line: negative inside."""
     return rail[4] * (x - rail[0]) + rail[5] * (y - rail[1]) - radius
 
 
-@kernel
+@helper
 def point_normal(x, y, px, py):
     """Unit vector from the fixed point (px, py) to (x, y), and the distance between them."""
     dx, dy = x - px, y - py
@@ -42,7 +42,7 @@ def point_normal(x, y, px, py):
     return dx / d, dy / d, d
 
 
-@kernel
+@helper
 def roll(row, radius):
     """Lock a ball's spin to its velocity: rolling without slipping, w = (-vy, vx) / R."""
     row[WX] = -row[VY] / radius
@@ -56,7 +56,7 @@ def kinetic_energy(vx, vy, wx, wy, wz, radius, mass):
     return 0.5 * mass * (vx * vx + vy * vy) + 0.5 * inertia * (wx * wx + wy * wy + wz * wz)
 
 
-@kernel
+@helper
 def distance_entry(dx, dy, dvx, dvy, dax, day, reach, horizon):
     """First tau in [0, horizon] at which a point moving as d0 + dv tau + da tau^2/2 (relative
     to a target) comes within `reach` of it while approaching; inf if never.

@@ -7,6 +7,11 @@ increment and decrement, which measured as about half the engine's time. Only th
 functions that allocate (the loop's entry points, and the rare group solves) keep it.
 Functions called only from compiled code skip the CPython wrapper (it costs about 0.1 s of
 cold compile each).
+
+Numba compiles a callee once per argument-type signature, and a constant argument (`f(x, 1)`,
+`f(x, True)`, or a variable still holding its first constant) is typed as a literal: each
+call site with another constant compiles the callee again. Such arguments are written
+`np.int64(1)` or `np.bool_(True)`: typed, not literal, so one compiled version serves all.
 """
 
 from numba import njit

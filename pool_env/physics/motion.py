@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from .geometry import roll
-from .jit import helper, kernel
+from .jit import helper
 from .kinds import ROLLING, SLIDING, SPINNING, STATIONARY, T0, VX, VY, WX, WY, WZ, X, Y
 from .tolerances import EPS_V, EPS_W, GENTLE_TIME, REACH_SLACK
 
@@ -22,19 +22,19 @@ from .tolerances import EPS_V, EPS_W, GENTLE_TIME, REACH_SLACK
 P_MU_S, P_MU_R, P_MU_SP, P_G, P_E_B, P_E_C, P_F_C = range(7)
 
 
-@kernel
+@helper
 def moving(state):
     """True for the states in which a ball's centre moves (sliding or rolling)."""
     return state == SLIDING or state == ROLLING
 
 
-@kernel
+@helper
 def spin_decel(radius, params):
     """Angular deceleration of z-spin from spinning friction (rad/s^2)."""
     return 5.0 * params[P_MU_SP] * params[P_G] / (2.0 * radius)
 
 
-@kernel
+@helper
 def z_spin_at(wz0, tau, radius, params):
     """z-spin after tau seconds: decays linearly to zero and stays there."""
     if wz0 == 0.0:
@@ -45,13 +45,13 @@ def z_spin_at(wz0, tau, radius, params):
     return left if wz0 > 0.0 else -left
 
 
-@kernel
+@helper
 def slip(vx, vy, wx, wy, radius):
     """Velocity of the cloth contact point (the slip that sliding friction opposes)."""
     return vx - radius * wy, vy + radius * wx
 
 
-@kernel
+@helper
 def trajectory(row, state, t, radius, params):
     """Position, velocity and constant acceleration of a ball at absolute time t.
 
@@ -92,7 +92,7 @@ def acceleration(row, radius, params):
     return 0.0, 0.0
 
 
-@kernel
+@helper
 def state_at(row, state, t, radius, params, out):
     """Write the full state row of a ball at absolute time t into `out` (closed form)."""
     tau = t - row[T0]
@@ -114,7 +114,7 @@ def state_at(row, state, t, radius, params, out):
     out[T0] = t
 
 
-@kernel
+@helper
 def transition_time(row, state, radius, params):
     """Absolute time at which the ball's motion state next changes (inf if never)."""
     if state == SLIDING:
@@ -129,7 +129,7 @@ def transition_time(row, state, radius, params):
     return np.inf
 
 
-@kernel
+@helper
 def classify(row, radius):
     """Motion state implied by a row's velocities; snaps round-off to exact zeros/rolling."""
     ux, uy = slip(row[VX], row[VY], row[WX], row[WY], radius)
@@ -188,7 +188,7 @@ def reroll(row, radius, params):
     return True
 
 
-@kernel
+@helper
 def max_travel(row, state, t, horizon, radius, params):
     """Upper bound on how far the ball's centre moves in [t, t + horizon]."""
     if state != SLIDING and state != ROLLING:

@@ -2,19 +2,19 @@
 
 
 from .geometry import distance_entry
-from .jit import kernel
+from .jit import helper
 from .kinds import VX, VY, WX, WY, WZ
 from .motion import trajectory
 
 
-@kernel
+@helper
 def capture_time(row, state, t, horizon, radius, params, pocket):
     """Earliest tau in [0, horizon] at which the centre enters pocket [cx, cy, r] (or inf)."""
     x, y, vx, vy, ax, ay = trajectory(row, state, t, radius, params)
     return distance_entry(x - pocket[0], y - pocket[1], vx, vy, ax, ay, pocket[2], horizon)
 
 
-@kernel
+@helper
 def capture(row):
     """The ball is off the table: it keeps the position where it dropped, and stops."""
     row[VX] = row[VY] = row[WX] = row[WY] = row[WZ] = 0.0

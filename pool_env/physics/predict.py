@@ -11,13 +11,13 @@ import numpy as np
 
 from . import cushion, pocket
 from .geometry import distance_entry, rail_gap
-from .jit import kernel
+from .jit import helper
 from .kinds import C_BB, C_BB_REJ, C_CU, C_CU_REJ, C_PO, C_PO_REJ, C_REST, C_TR, POCKETED
 from .motion import max_travel, moving, trajectory, transition_time
 from .tolerances import PARALLEL_SINE, REACH_SLACK
 
 
-@kernel
+@helper
 def out_of_reach(d, dv, da, horizon, reach):
     """True if the path d(tau) = d + dv tau + da tau^2 / 2 (2-vectors as tuples), tau in
     [0, horizon], stays farther than `reach` from the origin: the broad phase that spares
@@ -46,7 +46,7 @@ def out_of_reach(d, dv, da, horizon, reach):
     return gap > sagitta + REACH_SLACK
 
 
-@kernel
+@helper
 def pair_time(S, st, R, params, t_tr, i, k, now, counters):
     """Absolute time of the next contact of balls i and k (inf if none before either's next
     transition); S, st, R, params from the Scene, t_tr the Schedule's transition times.
@@ -66,7 +66,7 @@ def pair_time(S, st, R, params, t_tr, i, k, now, counters):
     return now + distance_entry(dx, dy, dvx, dvy, dax, day, reach, horizon)
 
 
-@kernel
+@helper
 def boundary_times(scene, bounds, sched, i, now, counters):
     """Ball i's next rail or jaw contact (into sched.t_cu, cu_id; jaws numbered after rails)
     and next pocket capture (sched.t_po, po_id)."""
@@ -108,7 +108,7 @@ def boundary_times(scene, bounds, sched, i, now, counters):
     sched.t_cu[i], sched.cu_id[i], sched.t_po[i], sched.po_id[i] = t_cu, cu, t_po, po
 
 
-@kernel
+@helper
 def predict(scene, bounds, sched, work, n_touched, now, counters):
     """Predict the next events of the balls work.touched[:n_touched], each against every ball
     not predicted before it: at the start every ball (each pair once), after an event the

@@ -15,33 +15,37 @@ import math
 
 import numpy as np
 
-from .jit import kernel
+from .jit import helper
 from .tolerances import ROOT_MAX_ITER, TOUCH_DEPTHS
 
+# Which function _bracket_root solves: f itself or its slope f' (typed, not literal
+# constants: one compiled version serves both, see jit.py).
+VALUE, SLOPE = np.int64(0), np.int64(1)
 
-@kernel
+
+@helper
 def _f(c0, c1, c2, c3, c4, t):
     return (((c4 * t + c3) * t + c2) * t + c1) * t + c0
 
 
-@kernel
+@helper
 def _df(c1, c2, c3, c4, t):
     return ((4.0 * c4 * t + 3.0 * c3) * t + 2.0 * c2) * t + c1
 
 
-@kernel
+@helper
 def _ddf(c2, c3, c4, t):
     return (12.0 * c4 * t + 6.0 * c3) * t + 2.0 * c2
 
 
-@kernel
+@helper
 def _value_slope(c0, c1, c2, c3, c4, t, derivative):
     if derivative == 0:
         return _f(c0, c1, c2, c3, c4, t), _df(c1, c2, c3, c4, t)
     return _df(c1, c2, c3, c4, t), _ddf(c2, c3, c4, t)
 
 
-@kernel
+@helper
 def _bracket_root(c0, c1, c2, c3, c4, lo, hi, flo, derivative):
     """Root of f (derivative=0) or f' (derivative=1) in [lo, hi], where the function is
     monotone and changes sign (f(lo) = flo on one side of zero).
@@ -80,7 +84,7 @@ def _bracket_root(c0, c1, c2, c3, c4, lo, hi, flo, derivative):
     return lo
 
 
-@kernel
+@helper
 def _inflections(c2, c3, c4, horizon):
     """The roots of f'' = 12 c4 t^2 + 6 c3 t + 2 c2 inside (0, horizon), ascending; inf
     for a missing one. The quadratic is solved in its cancellation-free form."""
@@ -103,20 +107,20 @@ def _inflections(c2, c3, c4, horizon):
     return r1, r2
 
 
-@kernel
+@helper
 def _slope_root(c1, c2, c3, c4, lo, hi, last):
     """The critical point of f on a piece [lo, hi] where f' is monotone (inf if none). A zero
     of f' exactly at an interior knot counts once, as the end of the piece before it."""
     dlo = _df(c1, c2, c3, c4, lo)
     dhi = _df(c1, c2, c3, c4, hi)
     if (dlo > 0.0 and dhi < 0.0) or (dlo < 0.0 and dhi > 0.0):
-        return _bracket_root(0.0, c1, c2, c3, c4, lo, hi, dlo, 1)
+        return _bracket_root(0.0, c1, c2, c3, c4, lo, hi, dlo, SLOPE)
     if dhi == 0.0 and not last:
         return hi
     return np.inf
 
 
-@kernel
+@helper
 def _critical_points(c1, c2, c3, c4, horizon):
     """Up to three roots of f' in (0, horizon), ascending, inf-padded (no heap allocation:
     this runs for every pair the broad phase lets through)."""
@@ -146,7 +150,7 @@ def _critical_points(c1, c2, c3, c4, horizon):
     return out0, out1, out2
 
 
-@kernel
+@helper
 def first_entry(c0, c1, c2, c3, c4, horizon, min_slope, min_depth):
     """Earliest tau in [0, horizon] at which f(tau) = c0 + c1 tau + ... + c4 tau^4 enters
     f <= 0 falling faster than `min_slope`, or sinks more than `min_depth` below zero however
@@ -187,18 +191,18 @@ def first_entry(c0, c1, c2, c3, c4, horizon, min_slope, min_depth):
             hi = horizon
         hhi = _f(h0, c1, c2, c3, c4, hi)
         if hlo > 0.0 and hhi <= 0.0:
-            root = _bracket_root(h0, c1, c2, c3, c4, lo, hi, hlo, 0)
+            root = _bracket_root(h0, c1, c2, c3, c4, lo, hi, hlo, VALUE)
             if _df(c1, c2, c3, c4, root) < -min_slope:
                 return root
             if hhi < -min_depth:
                 # Crossing too slowly to count, but sinking on: pressed together. Found
                 # where the depth is reached (a time the caller can resolve and move past).
-                return _bracket_root(h0 + min_depth, c1, c2, c3, c4, root, hi, min_depth, 0)
+                return _bracket_root(h0 + min_depth, c1, c2, c3, c4, root, hi, min_depth, VALUE)
             # A graze: f only touches zero (a shallow dip at most). Keep looking further on.
         elif -min_depth <= hlo <= 0.0 and hhi < -min_depth:
             # Touching and sinking (from the start, or after a rise too small to register, as
             # when f' starts at a subnormal): the instant the depth is reached.
-            return _bracket_root(h0 + min_depth, c1, c2, c3, c4, lo, hi, hlo + min_depth, 0)
+            return _bracket_root(h0 + min_depth, c1, c2, c3, c4, lo, hi, hlo + min_depth, VALUE)
         if hi == horizon:
             break
         lo, hlo = hi, hhi

@@ -2,7 +2,7 @@
 
 
 from .geometry import roll
-from .jit import kernel
+from .jit import helper
 from .kinds import (
     ROLLING,
     ROLLING_SPINNING,
@@ -22,13 +22,13 @@ from .kinds import (
 from .motion import classify
 
 
-@kernel
+@helper
 def rolling_to_rest(row):
     """Rolling resistance has just stopped the ball; only z-spin may remain."""
     row[VX] = row[VY] = row[WX] = row[WY] = 0.0
 
 
-@kernel
+@helper
 def resolve(row, state, radius):
     """Apply the transition due for a ball in `state` (its row already at the event time);
     returns the event-kind id. Sliding to rolling: the slip has just vanished, so the spin is
