@@ -12,7 +12,7 @@ import numpy as np
 
 from .config import CUSHION_MODELS
 from .geometry import alongside, distance_entry, rail_gap, roll
-from .jit import allocating_helper, helper, kernel
+from .jit import allocating, helper, kernel
 from .kinds import SLIDING, VX, VY, WX, WY, WZ
 from .motion import P_E_C, P_F_C, copy_row, reroll, state_of, trajectory
 from .roots import first_entry
@@ -154,7 +154,7 @@ _ORDERS2 = ((0, 1), (1, 0))
 _ORDERS3 = ((0, 1, 2), (0, 2, 1), (1, 0, 2), (1, 2, 0), (2, 0, 1), (2, 1, 0))
 
 
-@allocating_helper
+@allocating
 def resolve_group(model, b, normals, n_c, radius, params, height):
     """A ball meeting n_c (2 or 3) cushions at once, say driven exactly into a corner.
 

@@ -6,7 +6,8 @@ counting (`_nrt=False`): each array view or array argument otherwise costs an at
 increment and decrement, which measured as about half the engine's time. Only the few
 functions that allocate (the loop's entry points, and the rare group solves) keep it.
 Functions called only from compiled code skip the CPython wrapper (it costs about 0.1 s of
-cold compile each).
+cold compile each); calling one of those (`helper`, `allocating_helper`) from Python crashes
+the interpreter, so a function a test or a user calls directly is a `kernel` or `allocating`.
 
 Numba compiles a callee once per argument-type signature, and a constant argument (`f(x, 1)`,
 `f(x, True)`, or a variable still holding its first constant) is typed as a literal: each
