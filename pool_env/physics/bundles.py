@@ -9,7 +9,6 @@ from collections import namedtuple
 
 import numpy as np
 
-from .config import BALL_BALL_MODELS, CUSHION_MODELS
 from .jit import allocating, allocating_helper, helper
 from .kinds import BUFFER_FULL, DONE, EVENT_CAP, POCKETED
 
@@ -125,15 +124,27 @@ def _pack(xy, v, w, pocketed):
 
 
 def prepare(balls, table, physics, max_events):
-    """What every simulation method starts from: the Scene (its S and st the initial state:
-    copy them before a run, which works in place), the table's Bounds and the event cap."""
+    """What every simulation method starts from: the Scene at t = 0 (fresh arrays: a run
+    works in place), the table's Bounds and the event cap."""
     cap = default_event_cap(len(balls)) if max_events is None else int(max_events)
     if cap < 0:
         raise ValueError(f"max_events must be >= 0, got {max_events!r}")
-    S0, st0, any_z_spin = _pack(balls.xy, balls.v, balls.w, balls.pocketed)
+    return scene_of(balls, physics), bounds_of(table), cap
+
+
+def scene_of(balls, physics):
+    """The balls and the physics as a Scene at t = 0 (fresh S and st arrays)."""
+    S, st, any_z_spin = _pack(balls.xy, balls.v, balls.w, balls.pocketed)
     spin = bool(physics.spin and (any_z_spin or physics.can_create_spin()))
-    scene = Scene(S0, st0, balls.radii, balls.masses, physics.as_array(), BALL_BALL_MODELS.index(physics.ball_ball),
-                  CUSHION_MODELS.index(physics.cushion), spin)
-    bounds = Bounds(table.rails, table.jaws, table.jaw_pockets, table.pockets, float(table.cushion_height),
-                    float(table.length), float(table.width))
-    return scene, bounds, cap
+    bb_model, cu_model = physics.model_ids()
+    return Scene(S, st, balls.radii, balls.masses, physics.as_array(), bb_model, cu_model, spin)
+
+
+def bounds_of(table):
+    """The table's arrays as Bounds, built once per (immutable) Table."""
+    bounds = table.__dict__.get("_bounds")
+    if bounds is None:
+        bounds = Bounds(table.rails, table.jaws, table.jaw_pockets, table.pockets, float(table.cushion_height),
+                        float(table.length), float(table.width))
+        object.__setattr__(table, "_bounds", bounds)
+    return bounds

@@ -66,6 +66,9 @@ class Physics:
         # The engine's view of the coefficients, built once (see motion.P_*).
         params = np.array([self.mu_s, self.mu_r, self.mu_sp, self.g, self.e_b, self.e_c, self.f_c])
         object.__setattr__(self, "_params", params)
+        # The model ids the compiled code dispatches on (each name's position in its tuple).
+        ids = (BALL_BALL_MODELS.index(self.ball_ball), CUSHION_MODELS.index(self.cushion))
+        object.__setattr__(self, "_model_ids", ids)
 
     @classmethod
     def seed(cls) -> Physics:
@@ -88,6 +91,10 @@ class Physics:
     def can_create_spin(self) -> bool:
         """True when a collision model can give a ball z-spin it did not have."""
         return self.ball_ball == "frictional" or self.cushion == "han2005"
+
+    def model_ids(self) -> tuple[int, int]:
+        """The ball-ball and cushion model ids the compiled engine dispatches on."""
+        return self._model_ids
 
     def as_array(self) -> np.ndarray:
         """The coefficients in the order the compiled engine reads them (see motion.P_*)."""

@@ -62,7 +62,7 @@ from collections import namedtuple
 import numpy as np
 
 from . import ball_ball, cushion, pocket, transition
-from .bundles import CODE, EVENTS, ROWS, new_log, prepare, record_event, record_row
+from .bundles import CODE, EVENTS, ROWS, new_log, prepare, record_event, record_row, scene_of
 from .geometry import alongside, rail_gap
 from .jit import allocating, helper
 from .kinds import (
@@ -82,7 +82,7 @@ from .kinds import (
     Y,
 )
 from .motion import P_G, P_MU_R, P_MU_S, classify, moving, state_at, trajectory, transition_time
-from .result import Result, SimulationError, cap_message, make_result
+from .result import Result, SimulationError, cap_message
 from .tolerances import CONTACT_TOLERANCE, MIN_APPROACH
 
 DETECTIONS = ("posteriori", "priori")
@@ -554,8 +554,8 @@ def simulate_fixed(balls, table, physics, max_events=None, dt=1.0 / 60.0, detect
     dt = check_options(dt, detection, recheck)
     wall = time.perf_counter()
     n = len(balls)
-    scene0, bounds, cap = prepare(balls, table, physics, max_events)
-    params = scene0.params
+    scene, bounds, cap = prepare(balls, table, physics, max_events)
+    params = scene.params
     # The straight-line prediction's own error over a frame: each ball may drift 1/2 a dt^2
     # off it, a = mu_s g (sliding) or mu_r g (rolling).
     touch = CONTACT_TOLERANCE + 2.0 * max(params[P_MU_S], params[P_MU_R]) * params[P_G] * dt * dt
@@ -564,7 +564,6 @@ def simulate_fixed(balls, table, physics, max_events=None, dt=1.0 / 60.0, detect
     size = min(cap, 256 + 16 * n)
     hist_size = 2 * size + n
     while True:
-        scene = scene0._replace(S=scene0.S.copy(), st=scene0.st.copy())
         log = new_log(size, hist_size, cap, len(COUNTERS))
         depth = np.zeros(2)
         code = run(scene, bounds, stepping, log, depth)
@@ -575,6 +574,7 @@ def simulate_fixed(balls, table, physics, max_events=None, dt=1.0 / 60.0, detect
             hist_size *= 4
         if log.size[EVENTS] >= log.t.shape[0]:
             size = min(cap, 4 * size)
+        scene = scene_of(balls, physics)
     if code == EVENT_CAP:
         raise SimulationError(cap_message(cap, log, int(log.size[EVENTS]) - 1))
     if code == STEP_CAP:
@@ -589,4 +589,4 @@ def simulate_fixed(balls, table, physics, max_events=None, dt=1.0 / 60.0, detect
         out.update(method="fixed", dt=dt, detection=detection, recheck=bool(recheck))
         return out
 
-    return make_result(balls, table, physics, scene, log, wall, counters)
+    return Result(balls, physics, table, scene, log, wall, counters)

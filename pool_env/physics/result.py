@@ -26,32 +26,39 @@ class Event(NamedTuple):
 
 
 class Result:
-    """The outcome of `simulate`: see `events`, `at`, `sample`, `final`, `duration`, `stats`."""
+    """The outcome of `simulate`: see `events`, `at`, `sample`, `final`, `duration`, `stats`.
 
-    def __init__(self, balls, physics, table, event_arrays, history, final, stats, sampler):
+    Built from a finished run (its final Scene and its Log); everything is derived from them
+    on first use, so a caller that reads only the final state pays for nothing else."""
+
+    def __init__(self, balls, physics, table, scene, log, wall, counters):
         self._balls, self.physics, self.table = balls, physics, table
-        self._ev_t, self._ev_kind, self._ev_i, self._ev_j = event_arrays
-        self._hist, self._hist_ball = history
-        self._final_fn, self._final = final, None
-        self._stats_fn, self._stats = stats, None
-        self._sampler = sampler
-        self._events = None
+        self._scene, self._log, self._wall, self._counters = scene, log, wall, counters
+        self._arrays = self._final = self._stats = self._events = None
+
+    @property
+    def event_arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """The events as arrays (times, kind ids into EVENT_KINDS, i, j): what `events` holds,
+        without building a Python object per event."""
+        if self._arrays is None:
+            log, n = self._log, int(self._log.size[EVENTS])
+            self._arrays = (log.t[:n], log.kind[:n], log.i[:n], log.j[:n])
+        return self._arrays
 
     @property
     def events(self) -> list[Event]:
         """All events in time order."""
         if self._events is None:
-            self._events = [
-                Event(float(t), EVENT_KINDS[k], int(i), int(j))
-                for t, k, i, j in zip(self._ev_t, self._ev_kind, self._ev_i, self._ev_j)
-            ]
+            self._events = [Event(float(t), EVENT_KINDS[k], int(i), int(j)) for t, k, i, j in zip(*self.event_arrays)]
         return self._events
 
     @property
     def final(self):
         """The balls when everything rests (Balls; `.pocketed` marks balls off the table)."""
         if self._final is None:
-            self._final = self._final_fn()
+            S, st = self._scene.S, self._scene.st
+            self._final = self._balls._trusted(S[:, 0:2].copy(), S[:, 2:4].copy(), S[:, 4:7].copy(), st == POCKETED,
+                                               self._balls)
         return self._final
 
     @property
@@ -60,31 +67,37 @@ class Result:
         ball_cushion, ball_pocket), resting pairs skipped, whether spin was tracked, the
         number of pockets, and the wall time of the simulation (s)."""
         if self._stats is None:
-            self._stats = self._stats_fn()
+            kinds = self.event_arrays[1]
+            out = {kind: int(c) for kind, c in zip(EVENT_KINDS, np.bincount(kinds, minlength=len(EVENT_KINDS)))}
+            out["events"] = int(kinds.size)
+            out.update(self._counters())
+            out["spin_tracked"] = self._scene.spin
+            out["pockets"] = int(self.table.pockets.shape[0])
+            out["wall_time"] = self._wall
+            self._stats = out
         return self._stats
 
     @property
     def event_times(self) -> np.ndarray:
         """The event times (s), ascending."""
-        return self._ev_t
-
-    @property
-    def event_arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """The events as arrays (times, kind ids into EVENT_KINDS, i, j): what `events` holds,
-        without building a Python object per event."""
-        return self._ev_t, self._ev_kind, self._ev_i, self._ev_j
+        return self.event_arrays[0]
 
     @property
     def duration(self) -> float:
         """Time of the last event (s): when the last ball came to rest."""
-        return float(self._ev_t[-1]) if self._ev_t.size else 0.0
+        times = self.event_arrays[0]
+        return float(times[-1]) if times.size else 0.0
 
     def sample(self, times):
         """Exact states at the given times: (rows (T, N, 8) with columns x, y, vx, vy, wx, wy,
-        wz, t; states (T, N) motion-state codes, 4 = pocketed)."""
+        wz, t; states (T, N) motion-state codes, see STATE_NAMES)."""
         times = np.asarray(times, dtype=np.float64)
         order = np.argsort(times, kind="stable")
-        rows, states = self._sampler(np.ascontiguousarray(times[order]))
+        n_rows, n = int(self._log.size[ROWS]), len(self._balls)
+        rows = np.empty((times.size, n, 8))
+        states = np.empty((times.size, n), dtype=np.int64)
+        sample(self._log.hist[:n_rows], self._log.hist_ball[:n_rows], n, np.ascontiguousarray(times[order]),
+               self._balls.radii, self._scene.params, rows, states)
         inverse = np.empty_like(order)
         inverse[order] = np.arange(order.size)
         return rows[inverse], states[inverse]
@@ -97,42 +110,10 @@ class Result:
         rows, states = self.sample(np.array([t]))
         row = rows[0]
         return self._balls._trusted(row[:, 0:2].copy(), row[:, 2:4].copy(), row[:, 4:7].copy(),
-                              states[0] == POCKETED, self._balls)
+                                    states[0] == POCKETED, self._balls)
 
     def __repr__(self):
-        return f"Result({len(self._ev_t)} events, duration={self.duration:.3f} s)"
-
-
-def make_result(balls, table, physics, scene, log, wall, counters):
-    """Wrap a finished run in a Result: the final state (scene.S, scene.st), the log's events
-    and segment history, the wall time (s) and a callable giving the run's own counters. The
-    final state and the stats are built only when asked for. Shared by the event engine and
-    the fixed-step methods (fixed.py)."""
-    S, st, spin = scene.S, scene.st, scene.spin
-    n_ev, n_hist = int(log.size[EVENTS]), int(log.size[ROWS])
-    events = (log.t[:n_ev], log.kind[:n_ev], log.i[:n_ev], log.j[:n_ev])
-    hist, hist_ball = log.hist[:n_hist], log.hist_ball[:n_hist]
-
-    def final():
-        return balls._trusted(S[:, 0:2].copy(), S[:, 2:4].copy(), S[:, 4:7].copy(), st == POCKETED, balls)
-
-    def stats():
-        by_kind = np.bincount(events[1], minlength=len(EVENT_KINDS))
-        out = {kind: int(c) for kind, c in zip(EVENT_KINDS, by_kind)}
-        out["events"] = n_ev
-        out.update(counters())
-        out["spin_tracked"] = spin
-        out["pockets"] = int(table.pockets.shape[0])
-        out["wall_time"] = wall
-        return out
-
-    def sampler(times):
-        rows = np.empty((times.size, S.shape[0], 8))
-        states = np.empty((times.size, S.shape[0]), dtype=np.int64)
-        sample(hist, hist_ball, S.shape[0], times, balls.radii, scene.params, rows, states)
-        return rows, states
-
-    return Result(balls, physics, table, events, (hist, hist_ball), final, stats, sampler)
+        return f"Result({len(self.event_arrays[0])} events, duration={self.duration:.3f} s)"
 
 
 def engine_counters(log):

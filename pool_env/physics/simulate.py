@@ -6,12 +6,12 @@ import math
 import time
 
 from . import engine, fixed
-from .bundles import EVENTS, new_log, prepare
+from .bundles import EVENTS, new_log, prepare, scene_of
 from .config import Physics
 from .jit import kernel
 from .kinds import BUFFER_FULL, COUNTERS, EVENT_CAP
 from .objects import Balls, Table
-from .result import Result, SimulationError, cap_message, engine_counters, make_result
+from .result import Result, SimulationError, cap_message, engine_counters
 from .tolerances import CONTACT_TOLERANCE
 
 __all__ = ["simulate", "check_on_table", "SimulationError"]
@@ -75,17 +75,18 @@ def simulate(balls: Balls, table: Table, physics: Physics | None = None, method:
 def _run_events(balls, table, physics, max_events):
     wall = time.perf_counter()
     n = len(balls)
-    scene0, bounds, cap = prepare(balls, table, physics, max_events)
+    scene, bounds, cap = prepare(balls, table, physics, max_events)
     # Output buffers start small (a break takes ~100 events) and grow on demand; a rerun from
-    # the start is exact because the simulation is deterministic.
+    # the start (a fresh Scene: the run works in place) is exact, the simulation being
+    # deterministic.
     size = min(cap, 256 + 16 * n)
     while True:
-        scene = scene0._replace(S=scene0.S.copy(), st=scene0.st.copy())  # the engine works in place
         log = new_log(size, n + 2 * size + 2, cap, len(COUNTERS))
         code = engine.run(scene, bounds, log)
         if code != BUFFER_FULL:
             break
         size = min(cap, 4 * size)
+        scene = scene_of(balls, physics)
     if code == EVENT_CAP:
         raise SimulationError(cap_message(cap, log, int(log.size[EVENTS])))
-    return make_result(balls, table, physics, scene, log, time.perf_counter() - wall, lambda: engine_counters(log))
+    return Result(balls, physics, table, scene, log, time.perf_counter() - wall, lambda: engine_counters(log))
