@@ -401,7 +401,7 @@ class PoolBreakEnv(gym.Env):
             raise ValueError("options['balls'] must be at rest (zero velocities and spins)")
         if balls.pocketed[0]:
             raise ValueError("options['balls']: the cue ball (ball 0) must be on the table")
-        check_on_table(balls, self.table)
+        check_on_table(balls, self.table, self.physics)
         return balls
 
     def _cue_start(self, rng):

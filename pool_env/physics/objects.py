@@ -7,6 +7,8 @@ import math
 
 import numpy as np
 
+from .tolerances import CONTACT_TOLERANCE, PLACEMENT_SLACK
+
 # Regulation pool ball (WPA equipment specifications): 2.25 in diameter, 5.5-6 oz.
 BALL_RADIUS = 0.028575
 BALL_MASS = 0.170097
@@ -14,9 +16,6 @@ BALL_MASS = 0.170097
 SEED_RADIUS = 0.025
 SEED_MASS = 0.15
 
-# Balls may touch within this tolerance (m): a frozen rack computed in floating point sits a
-# few ulps either side of exact contact.
-CONTACT_TOLERANCE = 1e-9
 
 
 def _readonly(a):
@@ -210,7 +209,7 @@ class Table:
             for s, (start, along, _, span, _) in enumerate(sides):
                 rel = (x - start[0]) * along[0] + (y - start[1]) * along[1]
                 off = (x - start[0]) * along[1] - (y - start[1]) * along[0]
-                if abs(off) < 1e-12 and -1e-12 <= rel <= span + 1e-12:
+                if abs(off) < PLACEMENT_SLACK and -PLACEMENT_SLACK <= rel <= span + PLACEMENT_SLACK:
                     touching.append((s, rel))
             if not touching:
                 raise ValueError(f"pocket {number} at ({x}, {y}) is not on a rail or corner of the table")
@@ -219,7 +218,7 @@ class Table:
             # The room the mouth has: along each rail it sits on, to the far end of the rail
             # (at a corner) or to the nearer end (on a rail); across the table, the depth.
             room = min(min(sides[s][3] if corner else min(rel, sides[s][3] - rel), sides[s][4]) for s, rel in touching)
-            if half > room + 1e-12:
+            if half > room + PLACEMENT_SLACK:
                 widest = room * (math.sqrt(2.0) if corner else 2.0)
                 raise ValueError(
                     f"pocket {number} at ({x}, {y}) has a {mouth} m mouth, too wide for the {L} x {W} m table: "
@@ -239,7 +238,7 @@ class Table:
         for s, (start, along, normal, span, _) in enumerate(sides):
             pos = 0.0
             for lo, hi, number in sorted(cuts[s]):
-                if lo < pos - 1e-12:
+                if lo < pos - PLACEMENT_SLACK:
                     raise ValueError(f"pocket {number} overlaps another pocket's mouth")
                 if lo > pos:
                     rails.append(_rail(start, along, normal, pos, lo))

@@ -57,10 +57,15 @@ def _response(row, r):
 
 
 @helper
-def _push(bi, bj, nx, ny, w, s, ri, rj, mi, mj, ki, kj):
+def _push(bi, bj, n, w, s, radii, masses, responses):
     """Impulse J along n taking the normal relative velocity from w to s, with velocity
-    responses ki, kj (see `_response`); a ball answering 5/7 is left rolling. Returns the
-    kinetic energy it adds, (s^2 - w^2) / 2 / (ki/mi + kj/mj)."""
+    responses (ki, kj) (see `_response`); a ball answering 5/7 is left rolling. radii and
+    masses are the pairs (ri, rj), (mi, mj). Returns the kinetic energy it adds,
+    (s^2 - w^2) / 2 / (ki/mi + kj/mj)."""
+    nx, ny = n
+    ri, rj = radii
+    mi, mj = masses
+    ki, kj = responses
     inv = ki / mi + kj / mj
     j = (s - w) / inv
     bi[VX] -= ki * j * nx / mi
@@ -155,7 +160,7 @@ def _lead(bi, bj, nx, ny, ri, rj, mi, mj, params):
     for _ in range(4):
         copy_row(ti, bi)
         copy_row(tj, bj)
-        _push(ti, tj, nx, ny, w, max(s, w, 0.0), ri, rj, mi, mj, ki, kj)
+        _push(ti, tj, (nx, ny), w, max(s, w, 0.0), (ri, rj), (mi, mj), (ki, kj))
         a = gap_acceleration(ti, tj, nx, ny, ri, rj, params)
         if a >= 0.0:
             break
@@ -167,7 +172,7 @@ def _lead(bi, bj, nx, ny, ri, rj, mi, mj, params):
         s = need
     copy_row(ti, bi)
     copy_row(tj, bj)
-    gain = _push(ti, tj, nx, ny, w, max(s, w, 0.0), ri, rj, mi, mj, ki, kj)
+    gain = _push(ti, tj, (nx, ny), w, max(s, w, 0.0), (ri, rj), (mi, mj), (ki, kj))
     if gain > 0.0:
         gain = gain * (1.0 + 1e-9) + 1e-300
         uix, uiy = slip(ti[VX], ti[VY], ti[WX], ti[WY], ri)

@@ -18,9 +18,11 @@ __all__ = ["simulate", "check_on_table", "SimulationError"]
 
 
 @kernel
-def _first_off_table(xy, radii, pocketed, length, width, pockets, tol):
+def _first_misplaced(xy, radii, pocketed, length, width, pockets, nose):
     """(1, ball, -1) for a ball outside the rails, (2, ball, pocket) for one over a pocket,
+    (3, ball, -1) for one no taller than the cushion nose height `nose` (0 for no such limit),
     (0, -1, -1) if every ball on the table is where it may be."""
+    tol = CONTACT_TOLERANCE
     for i in range(xy.shape[0]):
         if pocketed[i]:
             continue
@@ -30,13 +32,18 @@ def _first_off_table(xy, radii, pocketed, length, width, pockets, tol):
         for k in range(pockets.shape[0]):
             if math.hypot(x - pockets[k, 0], y - pockets[k, 1]) < pockets[k, 2]:
                 return 2, i, k
+        if 2.0 * r <= nose:
+            return 3, i, -1
     return 0, -1, -1
 
 
-def check_on_table(balls: Balls, table: Table) -> None:
-    """Raise ValueError for a ball outside the rails or resting over a pocket."""
-    code, i, k = _first_off_table(balls.xy, balls.radii, balls.pocketed, table.length, table.width,
-                                  table.pockets, CONTACT_TOLERANCE)
+def check_on_table(balls: Balls, table: Table, physics: Physics | None = None) -> None:
+    """Raise ValueError for a ball outside the rails or resting over a pocket, and (with a
+    physics using the han2005 cushion, which touches a ball at the nose height h) for a ball
+    no taller than h: it would pass under the nose and never be stopped."""
+    nose = table.cushion_height if physics is not None and physics.cushion == "han2005" else 0.0
+    code, i, k = _first_misplaced(balls.xy, balls.radii, balls.pocketed, table.length, table.width, table.pockets,
+                                  nose)
     if code == 0:
         return
     x, y = balls.xy[i]
@@ -45,7 +52,13 @@ def check_on_table(balls: Balls, table: Table) -> None:
             f"ball {i} at ({x:.4f}, {y:.4f}) m is outside the rails of the {table.length} x {table.width} m "
             f"table (its centre must be at least R = {balls.radii[i]} m from every rail)"
         )
-    raise ValueError(f"ball {i} at ({x:.4f}, {y:.4f}) m sits over pocket {k}")
+    if code == 2:
+        raise ValueError(f"ball {i} at ({x:.4f}, {y:.4f}) m sits over pocket {k}")
+    raise ValueError(
+        f"ball {i} (radius {balls.radii[i]} m) is no taller than the cushion nose at {table.cushion_height} m: "
+        f"the han2005 cushion cannot touch it; use a Table with cushion_height < {2.0 * balls.radii[i]} m, or "
+        f"another cushion model (Physics(cushion='restitution'))"
+    )
 
 
 def simulate(balls: Balls, table: Table, physics: Physics | None = None, method: str = "events",
@@ -66,7 +79,7 @@ def simulate(balls: Balls, table: Table, physics: Physics | None = None, method:
         raise ValueError(f"unknown method {method!r}; available: 'events', 'fixed'")
     if method == "events" and options:
         raise TypeError(f"method 'events' takes no options, got {sorted(options)}")
-    check_on_table(balls, table)
+    check_on_table(balls, table, physics)
     if method == "fixed":
         return fixed.simulate_fixed(balls, table, physics, max_events, **options)
     return _run_events(balls, table, physics, max_events)

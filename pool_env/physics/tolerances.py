@@ -9,6 +9,9 @@ guard (a contact computed in float64 on a 2 m table is good to about 1e-16 m).
 # Balls may touch within this (m): a frozen rack computed in floating point sits a few ulps
 # either side of exact contact, and a ball may rest this close to a rail.
 CONTACT_TOLERANCE = 1e-9
+# Table geometry: a pocket centre this close (m) to a rail's line, or a mouth this close to a
+# rail's end or another mouth, is on it (round-off in the coordinates a user types).
+PLACEMENT_SLACK = 1e-12
 
 # --- motion -------------------------------------------------------------------------------
 # Speeds (m/s) and spins (rad/s) below these are exact zeros: round-off left by a collision
