@@ -91,6 +91,7 @@ def main(args: Args) -> Path:
 
     import pool_env
     from agents import BreakAgent, SB3Agent, baselines, evaluate, format_table, paired_difference
+    from pool_env.physics import warm_up
 
     # --- the run folder and logging: everything this run makes goes in `run_dir` ---
     name = args.run_name or f"{datetime.now():%Y%m%d-%H%M%S}-{args.env_id}-{args.algo}-s{args.seed}"
@@ -115,6 +116,9 @@ def main(args: Args) -> Path:
     curve_seeds = list(range(args.eval_seed + 10_000_000, args.eval_seed + 10_000_000 + args.curve_episodes))
     log.info("env %s %s, pool_env %s, algo %s, %d timesteps on %d envs", args.env_id, env_kwargs,
              pool_env.__version__, args.algo.upper(), args.timesteps, args.n_envs)
+    # Compile the physics (or load it from numba's cache) once, here, with a word on a first
+    # run, rather than in each worker process behind a frozen progress bar.
+    log.info("physics ready in %.1f s", warm_up())
 
     # --- training envs: Monitor logs every episode to monitor/*.csv (the learning curve) ---
     vec_cls = {"subproc": SubprocVecEnv, "dummy": DummyVecEnv}.get(args.vec_env)

@@ -5,9 +5,9 @@ from .cue import strike
 from .kinds import EVENT_KINDS, STATE_NAMES
 from .objects import BALL_MASS, BALL_RADIUS, SEED_MASS, SEED_RADIUS, Balls, Table, rack
 from .result import Event, Result, SimulationError
-from .simulate import simulate
+from .simulate import simulate, warm_up
 
 __all__ = [
     "Balls", "Table", "Physics", "simulate", "strike", "rack", "Event", "Result", "SimulationError",
-    "EVENT_KINDS", "STATE_NAMES", "BALL_RADIUS", "BALL_MASS", "SEED_RADIUS", "SEED_MASS",
+    "EVENT_KINDS", "STATE_NAMES", "warm_up", "BALL_RADIUS", "BALL_MASS", "SEED_RADIUS", "SEED_MASS",
 ]

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import math
+import os
+import sys
 import time
 
 from . import engine, fixed
@@ -86,6 +88,8 @@ def simulate(balls: Balls, table: Table, physics: Physics | None = None, method:
 
 
 def _run_events(balls, table, physics, max_events):
+    if not _compiled[0]:
+        return _first_run(balls, table, physics, max_events)
     wall = time.perf_counter()
     n = len(balls)
     scene, bounds, cap = prepare(balls, table, physics, max_events)
@@ -103,3 +107,46 @@ def _run_events(balls, table, physics, max_events):
     if code == EVENT_CAP:
         raise SimulationError(cap_message(cap, log, int(log.size[EVENTS])))
     return Result(balls, physics, table, scene, log, time.perf_counter() - wall, lambda: engine_counters(log))
+
+
+# Whether engine.run is compiled in this process (set after the first run).
+_compiled = [False]
+# The cold compile measured on a 2-core machine (README, "Speed"): what the notice promises.
+COLD_COMPILE_SECONDS = 20
+
+
+def engine_is_cached() -> bool:
+    """True if numba's on-disk cache holds the compiled engine (a run loads it in well under a
+    second); False on a machine where it was never compiled (or the cache was cleared)."""
+    try:
+        return os.path.exists(engine.run._cache._cache_file._index_path)
+    except AttributeError:  # numba's private layout changed: assume cached, say nothing
+        return True
+
+
+def _first_run(balls, table, physics, max_events):
+    """The first simulation in a process: if the engine is not in numba's cache yet, say so
+    (it compiles for about COLD_COMPILE_SECONDS, once per machine) and how long it took."""
+    cold = not engine_is_cached()
+    if cold:
+        print(f"pool_env: compiling the physics engine (first use on this machine, about {COLD_COMPILE_SECONDS} s); "
+              "later runs load it from numba's cache in under a second", file=sys.stderr, flush=True)
+    start = time.perf_counter()
+    _compiled[0] = True
+    try:
+        return _run_events(balls, table, physics, max_events)
+    finally:
+        if cold:
+            print(f"pool_env: physics engine compiled in {time.perf_counter() - start:.1f} s", file=sys.stderr,
+                  flush=True)
+
+
+def warm_up() -> float:
+    """Compile the event engine (or load it from numba's cache) now, by simulating one short
+    shot, rather than in the middle of whatever runs first; returns the seconds it took.
+    train.py calls it before it starts its environments (and their worker processes)."""
+    start = time.perf_counter()
+    table = Table.eight_foot()
+    result = simulate(Balls([[0.5, 0.5], [1.0, 0.55]], v=[[1.0, 0.0], [0.0, 0.0]]), table, Physics.standard())
+    result.at(0.1)  # the trajectory sampler (rendering) too
+    return time.perf_counter() - start
