@@ -582,11 +582,7 @@ def simulate_fixed(balls, table, physics, max_events=None, dt=1.0 / 60.0, detect
                               f"({max_steps} frames of {dt} s)")
     wall = time.perf_counter() - wall
 
-    def counters():
-        out = {name: int(c) for name, c in zip(COUNTERS, log.counters)}
-        out["max_overlap_depth"] = float(depth[MAX_OVERLAP])
-        out["max_cushion_depth"] = float(depth[MAX_CUSHION])
-        out.update(method="fixed", dt=dt, detection=detection, recheck=bool(recheck))
-        return out
-
+    counters = {name: int(c) for name, c in zip(COUNTERS, log.counters)}
+    counters.update(max_overlap_depth=float(depth[MAX_OVERLAP]), max_cushion_depth=float(depth[MAX_CUSHION]),
+                    method="fixed", dt=dt, detection=detection, recheck=bool(recheck))
     return Result(balls, physics, table, scene, log, wall, counters)

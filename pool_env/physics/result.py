@@ -28,8 +28,10 @@ class Event(NamedTuple):
 class Result:
     """The outcome of `simulate`: see `events`, `at`, `sample`, `final`, `duration`, `stats`.
 
-    Built from a finished run (its final Scene and its Log); everything is derived from them
-    on first use, so a caller that reads only the final state pays for nothing else."""
+    Built from a finished run (its final Scene and its Log, and for the fixed-step methods
+    their own counters; None means the event engine's, read from the Log); everything is
+    derived from them on first use, so a caller that reads only the final state pays for
+    nothing else. Plain arrays and namedtuples: a Result pickles and deep-copies."""
 
     def __init__(self, balls, physics, table, scene, log, wall, counters):
         self._balls, self.physics, self.table = balls, physics, table
@@ -70,7 +72,7 @@ class Result:
             kinds = self.event_arrays[1]
             out = {kind: int(c) for kind, c in zip(EVENT_KINDS, np.bincount(kinds, minlength=len(EVENT_KINDS)))}
             out["events"] = int(kinds.size)
-            out.update(self._counters())
+            out.update(engine_counters(self._log) if self._counters is None else self._counters)
             out["spin_tracked"] = self._scene.spin
             out["pockets"] = int(self.table.pockets.shape[0])
             out["wall_time"] = self._wall

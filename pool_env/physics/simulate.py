@@ -13,7 +13,7 @@ from .config import Physics
 from .jit import kernel
 from .kinds import BUFFER_FULL, COUNTERS, EVENT_CAP
 from .objects import Balls, Table
-from .result import Result, SimulationError, cap_message, engine_counters
+from .result import Result, SimulationError, cap_message
 from .tolerances import CONTACT_TOLERANCE
 
 __all__ = ["simulate", "check_on_table", "SimulationError"]
@@ -106,7 +106,7 @@ def _run_events(balls, table, physics, max_events):
         scene = scene_of(balls, physics)
     if code == EVENT_CAP:
         raise SimulationError(cap_message(cap, log, int(log.size[EVENTS])))
-    return Result(balls, physics, table, scene, log, time.perf_counter() - wall, lambda: engine_counters(log))
+    return Result(balls, physics, table, scene, log, time.perf_counter() - wall, None)
 
 
 # Whether engine.run is compiled in this process (set after the first run).
