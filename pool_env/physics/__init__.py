@@ -1,5 +1,6 @@
 """pool_env.physics: exact continuous-time, event-based pool physics."""
 
+from .batch import simulate_batch
 from .config import Physics
 from .cue import strike
 from .kinds import EVENT_KINDS, STATE_NAMES
@@ -8,6 +9,6 @@ from .result import Event, Result, SimulationError
 from .simulate import simulate, warm_up
 
 __all__ = [
-    "Balls", "Table", "Physics", "simulate", "strike", "rack", "Event", "Result", "SimulationError",
+    "Balls", "Table", "Physics", "simulate", "simulate_batch", "strike", "rack", "Event", "Result", "SimulationError",
     "EVENT_KINDS", "STATE_NAMES", "warm_up", "BALL_RADIUS", "BALL_MASS", "SEED_RADIUS", "SEED_MASS",
 ]

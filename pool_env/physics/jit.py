@@ -21,7 +21,8 @@ from numba import njit
 kernel = njit(cache=True, _nrt=False)
 # No allocation, called only from compiled code.
 helper = njit(cache=True, _nrt=False, no_cpython_wrapper=True)
-# Allocates arrays (np.empty and the like): reference counting on.
-allocating = njit(cache=True, _nrt=True)
+# Allocates arrays (np.empty and the like): reference counting on. Releases the GIL while it
+# runs when called from Python (engine.run, fixed.run), so threads simulate scenes in parallel.
+allocating = njit(cache=True, _nrt=True, nogil=True)
 # Allocates, called only from compiled code.
 allocating_helper = njit(cache=True, _nrt=True, no_cpython_wrapper=True)

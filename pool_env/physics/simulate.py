@@ -115,6 +115,11 @@ _compiled = [False]
 COLD_COMPILE_SECONDS = 20
 
 
+def compiled_here() -> bool:
+    """True once the event engine has run in this process (compiled or loaded from the cache)."""
+    return _compiled[0]
+
+
 def engine_is_cached() -> bool:
     """True if numba's on-disk cache holds the compiled engine (a run loads it in well under a
     second); False on a machine where it was never compiled (or the cache was cleared)."""
