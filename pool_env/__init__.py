@@ -3,12 +3,15 @@
 import gymnasium
 
 __version__ = "0.1.0"
-__all__ = ["PoolBreakEnv", "record_video", "__version__"]
+__all__ = ["PoolBreakEnv", "PoolVectorEnv", "record_video", "__version__"]
 
-# Registered by entry-point string so that `import pool_env` stays light (no numba, no physics).
+# Registered by entry-point strings so that `import pool_env` stays light (no numba, no physics).
+# `gymnasium.make_vec(id, num_envs=N, vectorization_mode="vector_entry_point")` makes a
+# PoolVectorEnv (one simulate_batch call per step), with the id's kwargs (max_shots) passed on.
 for _id, _kwargs in (("PoolBreak-v0", {"max_shots": 1}), ("PoolBreakRun-v0", {"max_shots": 30})):
     if _id not in gymnasium.registry:
-        gymnasium.register(id=_id, entry_point="pool_env.env:PoolBreakEnv", kwargs=_kwargs)
+        gymnasium.register(id=_id, entry_point="pool_env.env:PoolBreakEnv",
+                           vector_entry_point="pool_env.vector:PoolVectorEnv", kwargs=_kwargs)
 
 
 def __getattr__(name):
@@ -16,6 +19,10 @@ def __getattr__(name):
         from .env import PoolBreakEnv
 
         return PoolBreakEnv
+    if name == "PoolVectorEnv":
+        from .vector import PoolVectorEnv
+
+        return PoolVectorEnv
     if name == "record_video":
         from .video import record_video
 

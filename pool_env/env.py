@@ -243,6 +243,32 @@ class PoolBreakEnv(gym.Env):
 
     The balls are regulation pool balls (57.15 mm, 170 g) on every table.
 
+    ## State for Planners
+
+    A planner can look ahead without stepping: `env.unwrapped.balls` (read-only property) is
+    the balls now, a `pool_env.physics.Balls` at rest (read-only arrays; None before the first
+    `reset`), and `env.unwrapped.strike(action)` returns the struck `Balls` that `step(action)`
+    would simulate (the action checked and mapped as above; nothing in the env changes). So
+    `simulate(env.unwrapped.strike(action), env.unwrapped.table, env.unwrapped.physics)` is the
+    very shot `step(action)` plays (the same `Result`, bit for bit), and
+    `pool_env.physics.simulate_batch` tries many candidate actions at once. The physics only
+    reads `Balls`, so a planner cannot disturb the episode.
+
+    ```python
+    from pool_env.physics import simulate_batch
+
+    env = gym.make("PoolBreakRun-v0").unwrapped
+    env.reset(seed=0)
+    candidates = [[1.0, 0.0], [1.0, 0.05], [0.9, -0.05]]
+    results = simulate_batch([env.strike(a) for a in candidates], env.table, env.physics)
+    best = max(range(3), key=lambda k: int(results[k].final.pocketed[1:].sum()) - results[k].final.pocketed[0])
+    obs, reward, terminated, truncated, info = env.step(candidates[best])
+    ```
+
+    A vector env of these stepping many shots at once (one `simulate_batch` per step) is
+    `pool_env.vector.PoolVectorEnv`: `gymnasium.make_vec(id, num_envs=N,
+    vectorization_mode="vector_entry_point")`.
+
     ```python
     import gymnasium as gym
     import pool_env
@@ -324,30 +350,9 @@ class PoolBreakEnv(gym.Env):
         return self._observation(), {}
 
     def step(self, action):
-        if self._balls is None:
-            raise RuntimeError("call reset() before step()")
-        if self._done:
-            raise RuntimeError("the episode is over; call reset()")
-        force, offset = cue_force(action, self.spin)
-        before = self._balls
-        self._shots += 1
-        try:
-            result, error = simulate(strike(before, force, offset, CONTACT_TIME), self.table, self.physics), None
-        except (SimulationError, ValueError) as exc:
-            result, error = None, f"{type(exc).__name__}: {exc}"
-            logger.warn(f"PoolBreakEnv: the shot could not be simulated and the episode is truncated ({error})")
-        after = before if result is None else result.final
-        info = shot_info(result, after, error)
-        if result is None:  # the balls stay put, and the episode must be reset
-            reward, terminated, truncated = 0.0, False, True
-        else:
-            reward = shot_reward(info, before, after, self.table, self.scratch_penalty, self.shaping)
-            terminated = self.max_shots == 1 or info["scratch"] or (not self.pocketless and info["balls_left"] == 0)
-            truncated = not terminated and self._shots >= self.max_shots
-        self._balls = after
-        self._done = terminated or truncated
-        self.playback.shot(result)
-        return self._observation(), reward, bool(terminated), bool(truncated), info
+        struck = self._strike_or_error(action)  # (a) the action checked, the struck balls
+        outcome = self._simulate(struck)  # (b) the shot's Result, or the error it raised
+        return self._finish(outcome)  # (c) observation, reward, terminated, truncated, info
 
     def render(self):
         if self.render_mode is None:
@@ -369,6 +374,74 @@ class PoolBreakEnv(gym.Env):
         if self._balls is None:
             raise RuntimeError("call reset() before shot_frames()")
         return self.playback.shot_frames(fps)
+
+    # --- state for planners -----------------------------------------------------------------
+    @property
+    def balls(self) -> Balls | None:
+        """The balls now (`pool_env.physics.Balls`, read-only arrays, all at rest): where the
+        last shot left them, or the starting layout after `reset`; None before the first reset."""
+        return self._balls
+
+    def strike(self, action) -> Balls:
+        """The struck `Balls` that `step(action)` would simulate from the balls now: the cue
+        ball moving (and spinning) as the action says, the others as they are. Changes nothing;
+        `simulate(env.strike(action), env.table, env.physics)` is the shot `step` plays.
+        Raises ValueError for an action `step` refuses, RuntimeError before `reset`."""
+        if self._balls is None:
+            raise RuntimeError("call reset() before strike()")
+        force, offset = cue_force(action, self.spin)
+        return strike(self._balls, force, offset, CONTACT_TIME)
+
+    # --- the phases of a step (a vector env runs (b) for many envs at once) ---------------------
+    def _strike_or_error(self, action):
+        """Phase (a): check that a shot may be played and the action (raising as `step` does),
+        and strike: the struck Balls, or the ValueError striking raised (a failed shot, as if the
+        simulator had raised it)."""
+        if self._balls is None:
+            raise RuntimeError("call reset() before step()")
+        if self._done:
+            raise RuntimeError("the episode is over; call reset()")
+        force, offset = cue_force(action, self.spin)
+        try:
+            return strike(self._balls, force, offset, CONTACT_TIME)
+        except ValueError as exc:
+            return exc
+
+    def _simulate(self, struck):
+        """Phase (b): the shot's Result, or the SimulationError or ValueError it raised (phase
+        (a)'s error passed on); `simulate_batch` gives the same for many shots."""
+        if isinstance(struck, Exception):
+            return struck
+        try:
+            return simulate(struck, self.table, self.physics)
+        except (SimulationError, ValueError) as exc:
+            return exc
+
+    def _finish(self, outcome):
+        """Phase (c): the step's (observation, reward, terminated, truncated, info) from the
+        shot's Result, or its SimulationError or ValueError (the shot failed: the balls stay
+        put and the episode is truncated); any other exception is raised."""
+        if isinstance(outcome, Exception):
+            if not isinstance(outcome, (SimulationError, ValueError)):
+                raise outcome
+            result, error = None, f"{type(outcome).__name__}: {outcome}"
+            logger.warn(f"PoolBreakEnv: the shot could not be simulated and the episode is truncated ({error})")
+        else:
+            result, error = outcome, None
+        before = self._balls
+        self._shots += 1
+        after = before if result is None else result.final
+        info = shot_info(result, after, error)
+        if result is None:  # the balls stay put, and the episode must be reset
+            reward, terminated, truncated = 0.0, False, True
+        else:
+            reward = shot_reward(info, before, after, self.table, self.scratch_penalty, self.shaping)
+            terminated = self.max_shots == 1 or info["scratch"] or (not self.pocketless and info["balls_left"] == 0)
+            truncated = not terminated and self._shots >= self.max_shots
+        self._balls = after
+        self._done = terminated or truncated
+        self.playback.shot(result)
+        return self._observation(), reward, bool(terminated), bool(truncated), info
 
     # --- helpers ------------------------------------------------------------------------------
     def _observation(self):

@@ -1,0 +1,238 @@
+"""`PoolVectorEnv`: many `PoolBreakEnv`s stepped together, every step's shots simulated in one
+`simulate_batch` call (on threads: the compiled engine releases the GIL)."""
+
+from __future__ import annotations
+
+from numbers import Integral
+from typing import Any
+
+import numpy as np
+from gymnasium.vector import AutoresetMode, VectorEnv
+from gymnasium.vector.utils import batch_space
+
+from .env import PoolBreakEnv
+from .physics import simulate_batch
+
+
+class PoolVectorEnv(VectorEnv):
+    """`num_envs` `PoolBreakEnv`s (made with the same keyword arguments) as one Gymnasium 1.x
+    vector env. Each `step` checks every sub-env's action and strikes its cue ball, simulates
+    all the shots of the step in ONE `pool_env.physics.simulate_batch` call (`threads` threads,
+    default: every core), then builds each sub-env's observation, reward, end flags and info.
+    The results are exactly those of `gymnasium.make_vec(id, num_envs, vectorization_mode="sync")`
+    in the same autoreset mode, step for step (the tests compare them), only faster.
+
+    ```python
+    import gymnasium as gym
+    import pool_env
+
+    envs = gym.make_vec("PoolBreakRun-v0", num_envs=8, vectorization_mode="vector_entry_point")
+    obs, infos = envs.reset(seed=0)  # sub-env k is seeded 0 + k
+    obs, rewards, terminations, truncations, infos = envs.step(envs.action_space.sample())
+    ```
+
+    Arguments (all keywords; `gymnasium.make_vec` passes its `num_envs`, the id's registered
+    kwargs, e.g. `max_shots`, and its own keyword arguments):
+
+    | argument | default | meaning |
+    | --- | --- | --- |
+    | `num_envs` | 1 | sub-envs |
+    | `autoreset_mode` | `AutoresetMode.NEXT_STEP` | `NEXT_STEP`, `SAME_STEP`, `DISABLED` (or a value: `"SameStep"`) |
+    | `threads` | None (every core) | threads `simulate_batch` runs shots on; results do not depend on it |
+    | `max_episode_steps` | None | truncate an episode after this many steps, as `gymnasium.make`'s `TimeLimit` does |
+    | anything else | | passed to every `PoolBreakEnv` (`render_mode`, `max_shots`, `spin`, `table`, ...) |
+
+    Autoreset, as Gymnasium's `SyncVectorEnv` does it (`metadata["autoreset_mode"]`):
+
+    - `NEXT_STEP` (Gymnasium's default): the step after a sub-env's episode ends resets it
+      (unseeded: its random generator runs on) and ignores its action; nothing is simulated
+      for it, its reward is 0, its flags False and its info that of `reset` (empty).
+    - `SAME_STEP`: the step that ends an episode resets the sub-env at once; the returned
+      observation is the new episode's first, and the episode's last observation and info
+      are in `infos["final_obs"]` (an object array, None for the other sub-envs) and
+      `infos["final_info"]` (a dict of arrays), masked by `infos["_final_obs"]` and
+      `infos["_final_info"]`.
+    - `DISABLED`: nothing is reset; call `reset(options={"reset_mask": mask})` (a bool array
+      of shape (num_envs,)) for the finished sub-envs before stepping them again.
+
+    `infos` is a dict of arrays with a `_key` mask per key (`VectorEnv._add_info`), e.g.
+    `infos["pocketed"][k]` and `infos["_pocketed"][k]`. `render()` returns the sub-envs'
+    frames (a tuple), `envs.envs[k]` is sub-env k, and `call`, `get_attr` and `set_attr` reach
+    the sub-envs like SyncVectorEnv's. A shot the simulator cannot finish truncates its own
+    sub-env's episode (`infos["error"]`), as in `PoolBreakEnv`; an action of the wrong shape
+    or a non-finite one raises ValueError before anything changes.
+    """
+
+    metadata = {**PoolBreakEnv.metadata, "autoreset_mode": AutoresetMode.NEXT_STEP}
+
+    def __init__(self, num_envs: int = 1, autoreset_mode: AutoresetMode | str = AutoresetMode.NEXT_STEP,
+                 threads: int | None = None, max_episode_steps: int | None = None, **env_kwargs: Any):
+        if not isinstance(num_envs, Integral) or num_envs < 1:
+            raise ValueError(f"num_envs must be an integer >= 1, got {num_envs!r}")
+        if threads is not None and (not isinstance(threads, Integral) or threads < 1):
+            raise ValueError(f"threads must be None (every core) or an integer >= 1, got {threads!r}")
+        if max_episode_steps is not None and (not isinstance(max_episode_steps, Integral) or max_episode_steps < 1):
+            raise ValueError(f"max_episode_steps must be None or an integer >= 1, got {max_episode_steps!r}")
+        self.autoreset_mode = autoreset_mode if isinstance(autoreset_mode, AutoresetMode) \
+            else AutoresetMode(autoreset_mode)
+        self.num_envs = int(num_envs)
+        self.threads = None if threads is None else int(threads)
+        self.max_episode_steps = None if max_episode_steps is None else int(max_episode_steps)
+        self.env_kwargs = dict(env_kwargs)
+        self.envs = [PoolBreakEnv(**env_kwargs) for _ in range(self.num_envs)]
+        first = self.envs[0]
+        self.table, self.physics = first.table, first.physics
+        self.render_mode = first.render_mode
+        self.metadata = {**first.metadata, "autoreset_mode": self.autoreset_mode}
+
+        self.single_observation_space = first.observation_space
+        self.single_action_space = first.action_space
+        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
+        self.action_space = batch_space(self.single_action_space, self.num_envs)
+
+        n = self.num_envs
+        self._obs_size = self.single_observation_space.shape[0]
+        self._rewards = np.zeros(n, dtype=np.float64)
+        self._terminations = np.zeros(n, dtype=np.bool_)
+        self._truncations = np.zeros(n, dtype=np.bool_)
+        self._observations = np.zeros((n, self._obs_size), dtype=np.float32)
+        self._autoreset_envs = np.zeros(n, dtype=np.bool_)  # which sub-envs' episodes ended last step
+        self._elapsed = np.zeros(n, dtype=np.int64)  # steps in the current episode (max_episode_steps)
+
+    # --- Gymnasium's vector API ---------------------------------------------------------------
+    def reset(self, *, seed: int | list[int | None] | None = None, options: dict[str, Any] | None = None):
+        """Reset every sub-env (or those of `options["reset_mask"]`): `seed` None (unseeded),
+        an int s (sub-env k gets s + k) or a list of num_envs ints or Nones; the other options
+        go to every sub-env's `reset` (e.g. `{"balls": balls}`). Returns (observations, infos)."""
+        n = self.num_envs
+        if seed is None:
+            seeds = [None] * n
+        elif isinstance(seed, Integral):
+            seeds = [int(seed) + k for k in range(n)]
+        else:
+            seeds = list(seed)
+        if len(seeds) != n:
+            raise ValueError(f"If seeds are passed as a list the length must match num_envs={n} "
+                             f"but got length={len(seeds)}.")
+        mask = None
+        if options is not None and "reset_mask" in options:
+            options = dict(options)
+            mask = options.pop("reset_mask")
+            if not isinstance(mask, np.ndarray):
+                raise TypeError(f"`options['reset_mask']` must be a numpy array, got {type(mask)}")
+            if mask.shape != (n,):
+                raise ValueError(f"`options['reset_mask']` must have shape `({n},)`, got {mask.shape}")
+            if mask.dtype != np.bool_:
+                raise TypeError(f"`options['reset_mask']` must have `dtype=np.bool_`, got {mask.dtype}")
+            if not np.any(mask):
+                raise ValueError(f"`options['reset_mask']` must contain a boolean array with at least one True "
+                                 f"value, got reset_mask={mask}")
+        if mask is None:
+            reset = range(n)
+            observations = np.empty((n, self._obs_size), dtype=np.float32)
+        else:
+            reset = np.flatnonzero(mask).tolist()
+            observations = self._observations.copy()
+        infos: dict[str, Any] = {}
+        for k in reset:
+            observations[k], info = self.envs[k].reset(seed=seeds[k], options=options)
+            if info:
+                infos = self._add_info(infos, info, k)
+            self._terminations[k] = self._truncations[k] = self._autoreset_envs[k] = False
+            self._elapsed[k] = 0
+        self._observations = observations
+        return observations.copy(), infos
+
+    def step(self, actions):
+        """Step every sub-env: (observations (num_envs, 49), rewards, terminations, truncations,
+        infos); one `simulate_batch` call plays all the shots of the step."""
+        n, envs = self.num_envs, self.envs
+        if len(actions) != n:
+            raise ValueError(f"actions must hold one action per sub-env ({n}), got {len(actions)}")
+        if self.autoreset_mode == AutoresetMode.NEXT_STEP:
+            resetting = self._autoreset_envs.tolist()
+        else:
+            if self.autoreset_mode == AutoresetMode.DISABLED and self._autoreset_envs.any():
+                raise RuntimeError(f"sub-envs {np.flatnonzero(self._autoreset_envs).tolist()} ended their "
+                                   "episodes; reset them with reset(options={'reset_mask': mask}) first "
+                                   "(autoreset_mode DISABLED)")
+            resetting = [False] * n
+
+        # (a) every action checked and every shot struck before anything changes
+        shots = [k for k in range(n) if not resetting[k]]
+        struck = [envs[k]._strike_or_error(actions[k]) for k in shots]
+        # (b) all the shots of the step at once
+        playable = [s for s in struck if not isinstance(s, Exception)]
+        results = iter(simulate_batch(playable, self.table, self.physics, threads=self.threads))
+        outcomes = [s if isinstance(s, Exception) else next(results) for s in struck]
+        # (c) each sub-env finishes its shot (or, NEXT_STEP, resets), in order
+        observations = np.empty((n, self._obs_size), dtype=np.float32)
+        rewards, terminations, truncations = self._rewards, self._terminations, self._truncations
+        same_step = self.autoreset_mode == AutoresetMode.SAME_STEP
+        outcome_of = dict(zip(shots, outcomes))
+        infos: dict[str, Any] = {}
+        for k in range(n):
+            env = envs[k]
+            if resetting[k]:
+                observations[k], info = env.reset()
+                rewards[k], terminations[k], truncations[k] = 0.0, False, False
+                self._elapsed[k] = 0
+            else:
+                obs, rewards[k], terminations[k], truncated, info = env._finish(outcome_of[k])
+                self._elapsed[k] += 1
+                truncations[k] = truncated or (self.max_episode_steps is not None
+                                               and self._elapsed[k] >= self.max_episode_steps)
+                if same_step and (terminations[k] or truncations[k]):
+                    infos = self._add_info(infos, {"final_obs": obs, "final_info": info}, k)
+                    obs, info = env.reset()
+                    self._elapsed[k] = 0
+                observations[k] = obs
+            if info:
+                infos = self._add_info(infos, info, k)
+        self._observations = observations
+        self._autoreset_envs = terminations | truncations
+        return observations.copy(), rewards.copy(), terminations.copy(), truncations.copy(), infos
+
+    def render(self):
+        """The sub-envs' renders, a tuple: frames (H, W, 3) in "rgb_array" mode, lists of the
+        last shot's frames in "rgb_array_list" mode."""
+        return tuple(env.render() for env in self.envs)
+
+    def close_extras(self, **kwargs: Any):
+        """Close every sub-env."""
+        for env in self.envs:
+            env.close()
+
+    @property
+    def np_random_seed(self) -> tuple[int, ...]:
+        """The sub-envs' seeds (a tuple)."""
+        return self.get_attr("np_random_seed")
+
+    @property
+    def np_random(self) -> tuple[np.random.Generator, ...]:
+        """The sub-envs' random generators (a tuple)."""
+        return self.get_attr("np_random")
+
+    def call(self, name: str, *args: Any, **kwargs: Any) -> tuple[Any, ...]:
+        """Call method `name` of every sub-env with these arguments (or read the attribute, if
+        it is not callable); a tuple of the results."""
+        out = []
+        for env in self.envs:
+            attr = getattr(env, name)
+            out.append(attr(*args, **kwargs) if callable(attr) else attr)
+        return tuple(out)
+
+    def get_attr(self, name: str) -> tuple[Any, ...]:
+        """Attribute `name` of every sub-env, a tuple."""
+        return self.call(name)
+
+    def set_attr(self, name: str, values: list[Any] | tuple[Any, ...] | Any):
+        """Set attribute `name` of the sub-envs: one value each (a list or tuple of num_envs)
+        or the same value for all."""
+        if not isinstance(values, (list, tuple)):
+            values = [values] * self.num_envs
+        if len(values) != self.num_envs:
+            raise ValueError("Values must be a list or tuple with length equal to the number of environments. "
+                             f"Got `{len(values)}` values for {self.num_envs} environments.")
+        for env, value in zip(self.envs, values):
+            setattr(env, name, value)
