@@ -8,6 +8,7 @@ BENCHES = {
     "env": "environment steps/s and rendering frames/s",
     "accuracy": "fixed-step methods against the exact engine: error vs wall time",
     "stability": "random-scene sweep checking the invariants after every event",
+    "vector": "shots/s of the native vector env beside SB3's and Gymnasium's, and of simulate_batch",
 }
 
 
