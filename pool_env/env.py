@@ -47,6 +47,19 @@ def decode_observation(obs, table: Table):
     return xy, on_table
 
 
+def observations(xy, pocketed, shots, max_shots, table: Table, out):
+    """Write the observations (see PoolBreakEnv) of n envs into `out` (n, 49) float32, from the
+    balls' positions xy (n, 16, 2), their pocketed flags (n, 16) and the shots taken (n,) of
+    `max_shots`. One env's is `PoolBreakEnv._observation`; a vector env builds all at once."""
+    per_ball = out[:, :-1].reshape(out.shape[0], N_BALLS, 3)
+    # Centres lie at least R inside the rails, so these are within (-1, 1).
+    per_ball[:, :, 0:2] = xy * (2.0 / table.length, 2.0 / table.width) - 1.0
+    per_ball[:, :, 2] = 1.0
+    per_ball[pocketed] = (0.0, 0.0, -1.0)
+    out[:, -1] = 2.0 * shots / max_shots - 1.0
+    return out
+
+
 def spread(xy, on_table, table: Table) -> float:
     """Mean nearest-neighbour distance of the object balls on the table, in units of
     sqrt(L W / 15) (the spacing of 15 balls on a square grid covering the table); 0 with fewer than two."""
@@ -65,24 +78,27 @@ def cue_force(action, spin: bool):
     if a.shape != (size,):  # not reshaped: a (1, 2) batch is a mistake of the caller's, not an action
         raise ValueError(f"action must have shape ({size},) ({size} entries, the action space's shape), "
                          f"got shape {a.shape}")
-    if not np.all(np.isfinite(a)):
-        raise ValueError(f"action must be finite, got {a.tolist()}")
-    a = np.clip(a, -1.0, 1.0)
-    d = a[:2]
-    magnitude = math.hypot(d[0], d[1])
+    values = a.tolist()  # Python floats: the same IEEE arithmetic as numpy's, without its per-call cost
+    if not all(math.isfinite(v) for v in values):
+        raise ValueError(f"action must be finite, got {values}")
+    values = [min(max(v, -1.0), 1.0) for v in values]  # np.clip(a, -1, 1)
+    dx, dy = values[0], values[1]
+    magnitude = math.hypot(dx, dy)
     if magnitude == 0.0:
-        d = np.array([MIN_MAGNITUDE, 0.0])
+        dx, dy = MIN_MAGNITUDE, 0.0
     elif magnitude > 1.0:
-        d = d / magnitude
+        dx, dy = dx / magnitude, dy / magnitude
     elif magnitude < MIN_MAGNITUDE:
-        d = d * (MIN_MAGNITUDE / magnitude)
-    offset = np.zeros(2)
+        scale = MIN_MAGNITUDE / magnitude
+        dx, dy = dx * scale, dy * scale
+    side = top = 0.0
     if spin:
-        offset = MAX_TIP_OFFSET * a[2:4]
-        length = math.hypot(offset[0], offset[1])
+        side, top = MAX_TIP_OFFSET * values[2], MAX_TIP_OFFSET * values[3]
+        length = math.hypot(side, top)
         if length > MAX_TIP_OFFSET:
-            offset *= MAX_TIP_OFFSET / length
-    return MAX_FORCE * d, offset
+            scale = MAX_TIP_OFFSET / length
+            side, top = side * scale, top * scale
+    return np.array((MAX_FORCE * dx, MAX_FORCE * dy)), np.array((side, top))
 
 
 def spread_gain(before: Balls, after: Balls, table: Table) -> float:
@@ -336,17 +352,7 @@ class PoolBreakEnv(gym.Env):
 
     # --- Gymnasium API ----------------------------------------------------------------------
     def reset(self, *, seed=None, options=None):
-        options = self._check_options(options)
-        super().reset(seed=seed)
-        rng = self.np_random
-        cue_xy = self._cue_start(rng) if self.randomize_cue else None
-        rack_seed = int(rng.integers(2**63 - 1))
-        quaternions = rng.normal(size=(N_BALLS, 4))  # random orientations, made matrices when drawn
-        balls = options.get("balls")
-        self._balls = rack(self.table, seed=rack_seed, cue_xy=cue_xy) if balls is None else self._check_balls(balls)
-        self._shots = 0
-        self._done = False
-        self.playback.reset(self._balls, quaternions)
+        self._start(self._draw_start(seed, options))
         return self._observation(), {}
 
     def step(self, action):
@@ -417,10 +423,11 @@ class PoolBreakEnv(gym.Env):
         except (SimulationError, ValueError) as exc:
             return exc
 
-    def _finish(self, outcome):
+    def _finish(self, outcome, observe=True):
         """Phase (c): the step's (observation, reward, terminated, truncated, info) from the
         shot's Result, or its SimulationError or ValueError (the shot failed: the balls stay
-        put and the episode is truncated); any other exception is raised."""
+        put and the episode is truncated); any other exception is raised. With observe=False
+        the observation is None (a vector env builds all of them at once)."""
         if isinstance(outcome, Exception):
             if not isinstance(outcome, (SimulationError, ValueError)):
                 raise outcome
@@ -441,18 +448,36 @@ class PoolBreakEnv(gym.Env):
         self._balls = after
         self._done = terminated or truncated
         self.playback.shot(result)
-        return self._observation(), reward, bool(terminated), bool(truncated), info
+        return self._observation() if observe else None, reward, bool(terminated), bool(truncated), info
+
+    # --- the phases of a reset (a vector env draws the next start while the engine runs) ---------
+    def _draw_start(self, seed=None, options=None):
+        """The options checked, the seed applied and the next episode's start drawn from
+        `np_random` (the rack, or the given balls, and the balls' orientations); the episode
+        under way is untouched. What `reset` draws, in the same order."""
+        options = self._check_options(options)
+        super().reset(seed=seed)
+        rng = self.np_random
+        cue_xy = self._cue_start(rng) if self.randomize_cue else None
+        rack_seed = int(rng.integers(2**63 - 1))
+        quaternions = rng.normal(size=(N_BALLS, 4))  # random orientations, made matrices when drawn
+        balls = options.get("balls")
+        balls = rack(self.table, seed=rack_seed, cue_xy=cue_xy) if balls is None else self._check_balls(balls)
+        return balls, quaternions
+
+    def _start(self, start):
+        """Begin the episode drawn by `_draw_start` (`reset` then returns the observation and
+        an empty info)."""
+        self._balls, quaternions = start
+        self._shots = 0
+        self._done = False
+        self.playback.reset(self._balls, quaternions)
 
     # --- helpers ------------------------------------------------------------------------------
     def _observation(self):
-        balls = self._balls
         obs = np.empty(3 * N_BALLS + 1, dtype=np.float32)
-        per_ball = obs[:-1].reshape(N_BALLS, 3)
-        # Centres lie at least R inside the rails, so these are within (-1, 1).
-        per_ball[:, 0:2] = balls.xy * (2.0 / self.table.length, 2.0 / self.table.width) - 1.0
-        per_ball[:, 2] = 1.0
-        per_ball[balls.pocketed] = (0.0, 0.0, -1.0)
-        obs[-1] = 2.0 * self._shots / self.max_shots - 1.0
+        balls = self._balls
+        observations(balls.xy[None], balls.pocketed[None], self._shots, self.max_shots, self.table, obs[None])
         return obs
 
     @staticmethod

@@ -10,7 +10,7 @@ import numpy as np
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from .env import PoolBreakEnv
+from .env import PoolBreakEnv, observations
 from .physics import simulate_batch
 
 
@@ -92,10 +92,6 @@ class PoolVectorEnv(VectorEnv):
 
         n = self.num_envs
         self._obs_size = self.single_observation_space.shape[0]
-        self._rewards = np.zeros(n, dtype=np.float64)
-        self._terminations = np.zeros(n, dtype=np.bool_)
-        self._truncations = np.zeros(n, dtype=np.bool_)
-        self._observations = np.zeros((n, self._obs_size), dtype=np.float32)
         self._autoreset_envs = np.zeros(n, dtype=np.bool_)  # which sub-envs' episodes ended last step
         self._elapsed = np.zeros(n, dtype=np.int64)  # steps in the current episode (max_episode_steps)
 
@@ -127,21 +123,15 @@ class PoolVectorEnv(VectorEnv):
             if not np.any(mask):
                 raise ValueError(f"`options['reset_mask']` must contain a boolean array with at least one True "
                                  f"value, got reset_mask={mask}")
-        if mask is None:
-            reset = range(n)
-            observations = np.empty((n, self._obs_size), dtype=np.float32)
-        else:
-            reset = np.flatnonzero(mask).tolist()
-            observations = self._observations.copy()
-        infos: dict[str, Any] = {}
+        reset = range(n) if mask is None else np.flatnonzero(mask).tolist()
+        entries = []
         for k in reset:
-            observations[k], info = self.envs[k].reset(seed=seeds[k], options=options)
-            if info:
-                infos = self._add_info(infos, info, k)
-            self._terminations[k] = self._truncations[k] = self._autoreset_envs[k] = False
+            env = self.envs[k]
+            env._start(env._draw_start(seeds[k], options))
+            entries.append((k, {}))  # what PoolBreakEnv.reset returns as info
+            self._autoreset_envs[k] = False
             self._elapsed[k] = 0
-        self._observations = observations
-        return observations.copy(), infos
+        return self._observe(), self._gather_infos(entries)
 
     def step(self, actions):
         """Step every sub-env: (observations (num_envs, 49), rewards, terminations, truncations,
@@ -150,48 +140,97 @@ class PoolVectorEnv(VectorEnv):
         if len(actions) != n:
             raise ValueError(f"actions must hold one action per sub-env ({n}), got {len(actions)}")
         if self.autoreset_mode == AutoresetMode.NEXT_STEP:
-            resetting = self._autoreset_envs.tolist()
+            shots = np.flatnonzero(~self._autoreset_envs).tolist()
         else:
             if self.autoreset_mode == AutoresetMode.DISABLED and self._autoreset_envs.any():
                 raise RuntimeError(f"sub-envs {np.flatnonzero(self._autoreset_envs).tolist()} ended their "
                                    "episodes; reset them with reset(options={'reset_mask': mask}) first "
                                    "(autoreset_mode DISABLED)")
-            resetting = [False] * n
+            shots = list(range(n))
 
         # (a) every action checked and every shot struck before anything changes
-        shots = [k for k in range(n) if not resetting[k]]
         struck = [envs[k]._strike_or_error(actions[k]) for k in shots]
         # (b) all the shots of the step at once
         playable = [s for s in struck if not isinstance(s, Exception)]
         results = iter(simulate_batch(playable, self.table, self.physics, threads=self.threads))
-        outcomes = [s if isinstance(s, Exception) else next(results) for s in struck]
         # (c) each sub-env finishes its shot (or, NEXT_STEP, resets), in order
-        observations = np.empty((n, self._obs_size), dtype=np.float32)
-        rewards, terminations, truncations = self._rewards, self._terminations, self._truncations
-        same_step = self.autoreset_mode == AutoresetMode.SAME_STEP
-        outcome_of = dict(zip(shots, outcomes))
-        infos: dict[str, Any] = {}
-        for k in range(n):
-            env = envs[k]
-            if resetting[k]:
-                observations[k], info = env.reset()
-                rewards[k], terminations[k], truncations[k] = 0.0, False, False
+        rewards = np.zeros(n, dtype=np.float64)
+        terminations = np.zeros(n, dtype=np.bool_)
+        truncations = np.zeros(n, dtype=np.bool_)
+        if len(shots) < n:  # NEXT_STEP: the sub-envs whose episodes ended last step start anew
+            for k in np.flatnonzero(self._autoreset_envs).tolist():
+                envs[k]._start(envs[k]._draw_start())
                 self._elapsed[k] = 0
+        elapsed, limit = self._elapsed, self.max_episode_steps
+        same_step = self.autoreset_mode == AutoresetMode.SAME_STEP
+        entries, finals, final_balls = [], [], []
+        for k, shot in zip(shots, struck):
+            env = envs[k]
+            _, rewards[k], terminated, truncated, info = env._finish(
+                shot if isinstance(shot, Exception) else next(results), observe=False)
+            elapsed[k] += 1
+            if limit is not None and elapsed[k] >= limit:
+                truncated = True
+            terminations[k], truncations[k] = terminated, truncated
+            if same_step and (terminated or truncated):
+                final = {"final_obs": None, "final_info": info}  # final_obs filled in below, all at once
+                entries.append((k, final))  # then the info of reset: empty
+                finals.append(final)
+                final_balls.append((env._balls, env._shots, env.max_shots))
+                env._start(env._draw_start())
+                elapsed[k] = 0
             else:
-                obs, rewards[k], terminations[k], truncated, info = env._finish(outcome_of[k])
-                self._elapsed[k] += 1
-                truncations[k] = truncated or (self.max_episode_steps is not None
-                                               and self._elapsed[k] >= self.max_episode_steps)
-                if same_step and (terminations[k] or truncations[k]):
-                    infos = self._add_info(infos, {"final_obs": obs, "final_info": info}, k)
-                    obs, info = env.reset()
-                    self._elapsed[k] = 0
-                observations[k] = obs
-            if info:
-                infos = self._add_info(infos, info, k)
-        self._observations = observations
+                entries.append((k, info))
+        if finals:
+            for final, obs in zip(finals, self._observe(final_balls)):
+                final["final_obs"] = obs
         self._autoreset_envs = terminations | truncations
-        return observations.copy(), rewards.copy(), terminations.copy(), truncations.copy(), infos
+        return self._observe(), rewards, terminations, truncations, self._gather_infos(entries)
+
+    # --- helpers ------------------------------------------------------------------------------
+    def _observe(self, states=None):
+        """Observations (m, 49) of m states (balls, shots taken, max_shots), all at once; by
+        default the sub-envs' now."""
+        if states is None:
+            states = [(env._balls, env._shots, env.max_shots) for env in self.envs]
+        out = np.empty((len(states), self._obs_size), dtype=np.float32)
+        balls, shots, max_shots = zip(*states)
+        observations(np.stack([b.xy for b in balls]), np.stack([b.pocketed for b in balls]), np.array(shots),
+                     np.array(max_shots), self.table, out)
+        return out
+
+    def _gather_infos(self, entries):
+        """`VectorEnv._add_info` of the (sub-env index, info) entries in order, key by key at
+        once: the same arrays, dtypes, masks and key order."""
+        n = self.num_envs
+        columns: dict[str, tuple[list, list]] = {}
+        for k, info in entries:
+            for key, value in info.items():
+                column = columns.get(key)
+                if column is None:
+                    columns[key] = column = ([], [])
+                column[0].append(k)
+                column[1].append(value)
+        infos: dict[str, Any] = {}
+        for key, (ks, values) in columns.items():
+            first = values[0]
+            if isinstance(first, dict) and key != "final_obs":
+                array = self._gather_infos(list(zip(ks, values)))
+            elif key != "final_obs" and (type(first) in (int, float, bool) or isinstance(first, np.number)):
+                array = np.zeros(n, dtype=type(first))
+                array[ks] = values
+            elif key != "final_obs" and isinstance(first, np.ndarray):
+                array = np.zeros((n, *first.shape), dtype=first.dtype)
+                for k, value in zip(ks, values):
+                    array[k] = value
+            else:  # final_obs and any other object: an object array, None where absent
+                array = np.full(n, None, dtype=object)
+                for k, value in zip(ks, values):
+                    array[k] = value
+            mask = np.zeros(n, dtype=np.bool_)
+            mask[ks] = True
+            infos[key], infos[f"_{key}"] = array, mask
+        return infos
 
     def render(self):
         """The sub-envs' renders, a tuple: frames (H, W, 3) in "rgb_array" mode, lists of the
