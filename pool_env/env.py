@@ -271,14 +271,21 @@ class PoolBreakEnv(gym.Env):
     reads `Balls`, so a planner cannot disturb the episode.
 
     ```python
+    import gymnasium as gym
+    import numpy as np
+    import pool_env
     from pool_env.physics import simulate_batch
 
     env = gym.make("PoolBreakRun-v0").unwrapped
     env.reset(seed=0)
     candidates = [[1.0, 0.0], [1.0, 0.05], [0.9, -0.05]]
     results = simulate_batch([env.strike(a) for a in candidates], env.table, env.physics)
-    best = max(range(3), key=lambda k: int(results[k].final.pocketed[1:].sum()) - results[k].final.pocketed[0])
+    # Object balls pocketed minus a scratch (an entry is the exception of a shot that failed).
+    scores = [-2 if isinstance(r, Exception) else int(r.final.pocketed[1:].sum()) - int(r.final.pocketed[0])
+              for r in results]
+    best = int(np.argmax(scores))
     obs, reward, terminated, truncated, info = env.step(candidates[best])
+    assert np.array_equal(env.balls.xy, results[best].final.xy)  # the shot the planner saw
     ```
 
     A vector env of these stepping many shots at once (one `simulate_batch` per step) is

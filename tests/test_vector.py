@@ -336,3 +336,45 @@ def test_no_warnings_on_make_reset_step():
         envs.step(envs.action_space.sample())
         envs.close()
     assert [str(w.message) for w in caught] == []
+
+
+def _cue_force_numpy(action, spin):
+    """cue_force as it was written with numpy arrays (before the vector env made it lean)."""
+    import math
+
+    from pool_env.env import MAX_FORCE, MAX_TIP_OFFSET, MIN_MAGNITUDE
+
+    a = np.clip(np.asarray(action, dtype=np.float64), -1.0, 1.0)
+    d = a[:2]
+    magnitude = math.hypot(d[0], d[1])
+    if magnitude == 0.0:
+        d = np.array([MIN_MAGNITUDE, 0.0])
+    elif magnitude > 1.0:
+        d = d / magnitude
+    elif magnitude < MIN_MAGNITUDE:
+        d = d * (MIN_MAGNITUDE / magnitude)
+    offset = np.zeros(2)
+    if spin:
+        offset = MAX_TIP_OFFSET * a[2:4]
+        length = math.hypot(offset[0], offset[1])
+        if length > MAX_TIP_OFFSET:
+            offset *= MAX_TIP_OFFSET / length
+    return MAX_FORCE * d, offset
+
+
+@pytest.mark.parametrize("spin", [False, True])
+def test_cue_force_is_bit_identical_to_the_numpy_version(spin):
+    from pool_env.env import cue_force
+
+    rng = np.random.default_rng(0)
+    actions = np.concatenate([rng.uniform(-s, s, (500, 4)) for s in (1e-3, 0.015, 0.03, 1.0, 3.0)])
+    actions[::7, :2] = 0.0
+    actions[::11, 0] = -0.0
+    for a in actions:
+        a = a if spin else a[:2]
+        for x in (a, a.astype(np.float32), a.tolist()):
+            force, offset = cue_force(x, spin)
+            ref_force, ref_offset = _cue_force_numpy(x, spin)
+            for u, v in ((force, ref_force), (offset, ref_offset)):
+                assert u.dtype == v.dtype and u.shape == v.shape
+                assert np.array_equal(u, v) and np.array_equal(np.signbit(u), np.signbit(v)), (x, u, v)
