@@ -378,3 +378,32 @@ def test_cue_force_is_bit_identical_to_the_numpy_version(spin):
             for u, v in ((force, ref_force), (offset, ref_offset)):
                 assert u.dtype == v.dtype and u.shape == v.shape
                 assert np.array_equal(u, v) and np.array_equal(np.signbit(u), np.signbit(v)), (x, u, v)
+
+
+def test_gymnasium_vector_wrappers_run_on_it():
+    """Gymnasium's vector wrappers read the API (infos, masks, final_info) and count episodes."""
+    from gymnasium.wrappers.vector import DictInfoToList, RecordEpisodeStatistics
+
+    envs = gym.make_vec("PoolBreakRun-v0", num_envs=3, vectorization_mode="vector_entry_point",
+                        autoreset_mode=AutoresetMode.SAME_STEP, max_shots=3)
+    wrapped = DictInfoToList(RecordEpisodeStatistics(envs))
+    wrapped.reset(seed=0)
+    wrapped.action_space.seed(0)
+    episodes = []
+    for _ in range(6):
+        _, _, terminations, truncations, infos = wrapped.step(wrapped.action_space.sample())
+        assert isinstance(infos, list) and len(infos) == 3
+        episodes += [info["episode"] for info, end in zip(infos, terminations | truncations) if end]
+    assert episodes and all(1 <= int(e["l"]) <= 3 for e in episodes)
+    wrapped.close()
+
+
+def test_made_by_make_vec_pickles_with_its_spec():
+    envs = gym.make_vec("PoolBreakRun-v0", num_envs=2, vectorization_mode="vector_entry_point",
+                        autoreset_mode=AutoresetMode.SAME_STEP)
+    envs.reset(seed=0)
+    envs.step(np.array([[1.0, 0.0], [0.5, 0.5]], np.float32))
+    other = pickle.loads(pickle.dumps(envs))
+    assert other.spec == envs.spec and other.spec.kwargs["max_shots"] == 30
+    actions = np.array([[0.3, -0.2], [-0.6, 0.1]], np.float32)
+    assert_same(other.step(actions), envs.step(actions))
