@@ -4,11 +4,14 @@
     python train.py --timesteps 2000     # a smoke run: every artefact in well under a minute
     python train.py --help               # every option
 
-Single file, read top to bottom (in the spirit of CleanRL): options, run folder and logging,
-vectorised envs, the model, training with a progress bar and TensorBoard, then the final
+Single file, read top to bottom (in the spirit of CleanRL): the options, then `main`, whose
+phases follow it in the order they run: the run folder and logging, the vectorised envs and
+the model, training (learning-curve evaluations, a progress bar on a terminal and a progress
+line every few seconds in train.log and on a redirected stdout, TensorBoard), the final
 evaluation of the trained model, RandomAgent and the geometric heuristic on the same fixed
-seeds (table printed, eval.json written), the saved model, the learning-curve PNG and an
-.mp4 of the trained agent playing whole shots. The run folder's path is printed first.
+seeds (table printed and written to results.md with a verdict, eval.json written), the
+learning-curve PNG and an .mp4 of the trained agent playing whole shots. The run folder's
+path is printed first.
 """
 
 from __future__ import annotations
@@ -23,6 +26,8 @@ import time
 from dataclasses import dataclass, field
 from datetime import datetime
 from pathlib import Path
+
+log = logging.getLogger("train")  # to the console and the run folder's train.log (set up in open_run)
 
 
 def option(default, help: str, **kwargs):
@@ -62,6 +67,9 @@ class Args:
     out: str = option("runs", "parent folder of the run folder")
     run_name: str | None = option(None, "run folder name (default: timestamp, env, algo, seed)")
     progress_bar: bool = option(True, "show a progress bar while training")
+    progress_every: float = option(10.0, "seconds between progress lines in train.log, also on stdout unless the "
+                                   "progress bar draws on a terminal (0: none)")
+    min_timesteps: int = option(25_000, "a run shorter than this makes no claim against the baselines")
 
 
 def parse_args(argv=None) -> Args:
@@ -79,35 +87,59 @@ def parse_args(argv=None) -> Args:
 
 
 def main(args: Args) -> Path:
+    """The whole job. Each phase is a function below, in the order it runs. Each imports what it
+    needs (not the top of the file): subprocess envs re-import this file, and --help stays instant."""
     started = time.perf_counter()
-    # Heavy imports here, not at the top: subprocess envs re-import this file, and --help stays instant.
-    import gymnasium as gym
-    import torch
-    from stable_baselines3 import PPO, SAC
-    from stable_baselines3.common.callbacks import BaseCallback, CallbackList
-    from stable_baselines3.common.env_util import make_vec_env
-    from stable_baselines3.common.utils import LinearSchedule
-    from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv
+    run = open_run(args)                                 # run folder, logging, the env's facts, compiled physics
+    model = make_model(args, run)                        # vectorised training envs and the PPO or SAC model
+    model, curve, train_time = train(args, run, model)   # learn, keep the best checkpoint
+    summary = final_evaluation(args, run, model, curve)  # every agent on the same seeds: table, verdict, results.md
+    summary["wall_time_s"]["training"] = train_time
+    baseline_rewards = {name: a["reward"]["mean"] for name, a in summary["agents"].items() if name != "trained"}
+    plot_learning_curve(run.dir, curve.points, baseline_rewards, f"{args.algo.upper()} on {args.env_id}",
+                        curve.best if args.keep_best else None)
+    log.info("learning curve: %s", run.dir / "learning_curve.png")
+    if args.video_episodes:
+        summary["wall_time_s"]["video"] = film(args, run, model)
+    summary["wall_time_s"]["total"] = time.perf_counter() - started
+    (run.dir / "eval.json").write_text(json.dumps(summary, indent=2))
+    log.info("eval.json: %s; total wall time %.0f s", run.dir / "eval.json", summary["wall_time_s"]["total"])
+    log.info("TensorBoard: tensorboard --logdir %s", run.dir / "tb")
+    log.info("run folder: %s", run.dir.resolve())
+    return run.dir
 
+
+@dataclass
+class Run:
+    """What the phases share: the run folder and the env's fixed facts."""
+    dir: Path
+    env_kwargs: dict
+    probe: object            # one env: its spaces and table, for the baselines
+    multi_shot: bool
+    eval_seeds: list[int]    # the final evaluation's, the same for every agent
+    curve_seeds: list[int]   # the learning curve's (and the best checkpoint's), disjoint from eval_seeds
+
+
+def open_run(args: Args) -> Run:
+    """The run folder and logging (everything this run makes goes in the folder), args.json, the env."""
     import pool_env
-    from agents import BreakAgent, SB3Agent, baselines, evaluate, format_table, paired_difference
     from pool_env.physics import warm_up
 
-    # --- the run folder and logging: everything this run makes goes in `run_dir` ---
     name = args.run_name or f"{datetime.now():%Y%m%d-%H%M%S}-{args.env_id}-{args.algo}-s{args.seed}"
     run_dir = Path(args.out) / name
     run_dir.mkdir(parents=True, exist_ok=True)
-    log = logging.getLogger("train")
     log.setLevel(logging.INFO)
     log.handlers.clear()
     log.propagate = False
-    for handler in (logging.StreamHandler(sys.stdout), logging.FileHandler(run_dir / "train.log")):
+    console = logging.StreamHandler(sys.stdout)
+    if args.progress_bar and sys.stdout.isatty():  # the bar shows progress there; train.log still gets the lines
+        console.addFilter(lambda record: not getattr(record, "progress", False))
+    for handler in (console, logging.FileHandler(run_dir / "train.log")):
         handler.setFormatter(logging.Formatter("%(asctime)s %(message)s", "%H:%M:%S"))
         log.addHandler(handler)
     log.info("run folder: %s", run_dir.resolve())
     (run_dir / "args.json").write_text(json.dumps(dataclasses.asdict(args), indent=2))
 
-    torch.set_num_threads(1)  # small networks: one thread is fastest, and leaves the cores to the envs
     env_kwargs = {"spin": args.spin, "randomize_cue": args.randomize_cue}
     probe = quiet_env(args.env_id, **env_kwargs)
     multi_shot = probe.unwrapped.max_shots > 1
@@ -119,33 +151,77 @@ def main(args: Args) -> Path:
     # Compile the physics (or load it from numba's cache) once, here, with a word on a first
     # run, rather than in each worker process behind a frozen progress bar.
     log.info("physics ready in %.1f s", warm_up())
+    return Run(run_dir, env_kwargs, probe, multi_shot, eval_seeds, curve_seeds)
 
-    # --- training envs: Monitor logs every episode to monitor/*.csv (the learning curve) ---
+
+def make_model(args: Args, run: Run):
+    """Vectorised training envs (Monitor logs every episode to monitor/*.csv: the learning curve) and the model."""
+    import torch
+    from stable_baselines3 import PPO, SAC
+    from stable_baselines3.common.env_util import make_vec_env
+    from stable_baselines3.common.utils import LinearSchedule
+    from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv
+
+    torch.set_num_threads(1)  # small networks: one thread is fastest, and leaves the cores to the envs
     vec_cls = {"subproc": SubprocVecEnv, "dummy": DummyVecEnv}.get(args.vec_env)
     vec_cls = vec_cls or (SubprocVecEnv if args.n_envs > 1 else DummyVecEnv)
-    (run_dir / "monitor").mkdir(exist_ok=True)
-    envs = make_vec_env(functools.partial(quiet_env, args.env_id, **env_kwargs), n_envs=args.n_envs, seed=args.seed,
-                        vec_env_cls=vec_cls, monitor_dir=str(run_dir / "monitor"))
+    (run.dir / "monitor").mkdir(exist_ok=True)
+    envs = make_vec_env(functools.partial(quiet_env, args.env_id, **run.env_kwargs), n_envs=args.n_envs,
+                        seed=args.seed, vec_env_cls=vec_cls, monitor_dir=str(run.dir / "monitor"))
 
-    # --- the model ---
     net_arch = [int(n) for n in args.net_arch.split(",") if n]
     learning_rate = args.learning_rate
     if args.lr_schedule == "linear":
         learning_rate = LinearSchedule(args.learning_rate, 0.0, 1.0)  # SB3's own class: pickles cleanly
     common = dict(learning_rate=learning_rate, batch_size=args.batch_size, gamma=args.gamma, seed=args.seed,
-                  device="cpu", tensorboard_log=str(run_dir / "tb"), verbose=0)
+                  device="cpu", tensorboard_log=str(run.dir / "tb"), verbose=0)
     if args.algo == "ppo":
-        model = PPO("MlpPolicy", envs, n_steps=args.n_steps, n_epochs=args.n_epochs,
-                    policy_kwargs=dict(net_arch=net_arch, log_std_init=args.log_std_init), **common)
-    else:
-        model = SAC("MlpPolicy", envs, learning_starts=1000, policy_kwargs=dict(net_arch=net_arch), **common)
+        return PPO("MlpPolicy", envs, n_steps=args.n_steps, n_epochs=args.n_epochs,
+                   policy_kwargs=dict(net_arch=net_arch, log_std_init=args.log_std_init), **common)
+    return SAC("MlpPolicy", envs, learning_starts=1000, policy_kwargs=dict(net_arch=net_arch), **common)
 
-    # --- training, with deterministic evaluations on fixed seeds for the learning curve ---
+
+def train(args: Args, run: Run, model):
+    """Learn (callbacks below), save the last model, then keep the best learning-curve checkpoint as model.zip."""
+    curve, callbacks = make_callbacks(args, run)
+    train_start = time.perf_counter()
+    model.learn(total_timesteps=args.timesteps, callback=callbacks, progress_bar=args.progress_bar, tb_log_name="tb")
+    if args.curve_points and curve.points[-1]["timesteps"] != model.num_timesteps:
+        curve.measure()  # the final policy, unless the last evaluation already saw it
+    train_time = time.perf_counter() - train_start
+    model.get_env().close()
+    model.save(run.dir / "last_model.zip")
+    log.info("trained %d steps in %.0f s (%.0f steps/s)", model.num_timesteps, train_time,
+             model.num_timesteps / train_time)
+    if args.keep_best and curve.best is not None:
+        model = type(model).load(run.dir / "best_model.zip", device="cpu")
+        untrained = " (the first evaluation, before any policy update: the untrained policy)"
+        log.info("keeping the best checkpoint: %d steps, reward %+.3f on the %d learning-curve seeds%s",
+                 curve.best["timesteps"], curve.best["reward"]["mean"], len(run.curve_seeds),
+                 untrained if curve.kept_untrained else "")
+    model.save(run.dir / "model.zip")
+    log.info("model saved to %s", run.dir / "model.zip")
+    if curve.failed_shots:
+        log.info("%d training shots hit the simulator's event cap (episode truncated, reward 0)", curve.failed_shots)
+    return model, curve, train_time
+
+
+def make_callbacks(args: Args, run: Run):
+    """What runs during training: deterministic evaluations on fixed seeds (the learning curve and
+    the best checkpoint), PPO's exploration schedule, and a progress line every few seconds."""
+    from stable_baselines3.common.callbacks import BaseCallback, CallbackList
+
+    from agents import SB3Agent, evaluate
+
     class CurveCallback(BaseCallback):
         def __init__(self, every: int):
             super().__init__()
             self.every, self.next_at, self.points, self.failed_shots = every, 0, [], 0
-            self.best = None
+            self.best, self.trained_steps = None, 0
+
+        @property
+        def kept_untrained(self) -> bool:  # the first evaluation comes before any policy update
+            return bool(args.keep_best and self.points and self.best is self.points[0])
 
         def _on_step(self) -> bool:
             self.failed_shots += sum("error" in info for info in self.locals["infos"])
@@ -154,15 +230,18 @@ def main(args: Args) -> Path:
                 self.measure()
             return True
 
+        def _on_training_end(self) -> None:
+            self.trained_steps = int(self.num_timesteps)
+
         def measure(self):
-            result = evaluate(SB3Agent(self.model), args.env_id, curve_seeds, env_kwargs)
+            result = evaluate(SB3Agent(self.model), args.env_id, run.curve_seeds, run.env_kwargs)
             point = {"timesteps": int(self.num_timesteps), "reward": result["reward"],
                      "pocketed_per_shot": result["pocketed_per_shot"]["mean"],
                      "scratch_rate": result["scratch_rate"]["mean"]}
             self.points.append(point)
             if self.best is None or point["reward"]["mean"] > self.best["reward"]["mean"]:
                 self.best = point
-                self.model.save(run_dir / "best_model.zip")
+                self.model.save(run.dir / "best_model.zip")
             self.logger.record("eval/mean_reward", point["reward"]["mean"])
             self.logger.record("eval/scratch_rate", point["scratch_rate"])
             self.logger.dump(self.num_timesteps)
@@ -184,74 +263,128 @@ def main(args: Args) -> Path:
         def _on_step(self) -> bool:
             return True
 
+    class Progress(BaseCallback):
+        """A progress line every --progress-every seconds, to train.log and (unless the progress bar
+        draws on a terminal) stdout: for runs redirected to a file or under CI. Cheap: it reads the
+        clock only every 64th step."""
+
+        def _on_training_start(self) -> None:
+            self.start = self.last = time.perf_counter()
+
+        def _on_step(self) -> bool:
+            if args.progress_every > 0 and self.n_calls % 64 == 0:
+                now = time.perf_counter()
+                if now - self.last >= args.progress_every:
+                    self.last = now
+                    rewards = [episode["r"] for episode in self.model.ep_info_buffer]  # SB3 keeps the last 100
+                    log.info(progress_line(self.num_timesteps, args.timesteps, now - self.start, rewards),
+                             extra={"progress": True})
+            return True
+
     # No more often than the policy changes (PPO updates once per rollout of n_steps * n_envs).
     every = max(args.timesteps // max(args.curve_points, 1), args.n_steps * args.n_envs if args.algo == "ppo" else 1)
     curve = CurveCallback(every if args.curve_points else 0)
-    callbacks = [curve] + ([AnnealStd()] if args.algo == "ppo" and args.anneal_std else [])
-    train_start = time.perf_counter()
-    model.learn(total_timesteps=args.timesteps, callback=CallbackList(callbacks), progress_bar=args.progress_bar,
-                tb_log_name="tb")
-    if args.curve_points:
-        curve.measure()
-    train_time = time.perf_counter() - train_start
-    envs.close()
-    model.save(run_dir / "last_model.zip")
-    log.info("trained %d steps in %.0f s (%.0f steps/s)", model.num_timesteps, train_time,
-             model.num_timesteps / train_time)
-    if args.keep_best and curve.best is not None:
-        model = type(model).load(run_dir / "best_model.zip", device="cpu")
-        log.info("keeping the best checkpoint: %d steps, reward %+.3f on the %d learning-curve seeds",
-                 curve.best["timesteps"], curve.best["reward"]["mean"], len(curve_seeds))
-    model.save(run_dir / "model.zip")
-    log.info("model saved to %s", run_dir / "model.zip")
-    if curve.failed_shots:
-        log.info("%d training shots hit the simulator's event cap (episode truncated, reward 0)", curve.failed_shots)
+    callbacks = [curve, Progress()] + ([AnnealStd()] if args.algo == "ppo" and args.anneal_std else [])
+    return curve, CallbackList(callbacks)
 
-    # --- final evaluation: every agent on the same fixed seeds ---
+
+def progress_line(done: int, total: int, elapsed: float, rewards: list[float]) -> str:
+    """Shots done / total, shots/s, the recent episodes' mean reward, elapsed and estimated remaining
+    time (at the average rate so far, learning-curve evaluations included); `done` and `elapsed` > 0."""
+    from datetime import timedelta
+
+    reward = f"{sum(rewards) / len(rewards):+.3f} (last {len(rewards)} episodes)" if rewards else "-"
+    left = max(total - done, 0) * elapsed / done
+    clock = lambda seconds: str(timedelta(seconds=round(seconds)))
+    return (f"progress: {done:,}/{total:,} shots ({100 * done / total:.0f} %), {done / elapsed:,.0f} shots/s, "
+            f"mean reward {reward}, {clock(elapsed)} elapsed, {clock(left)} left")
+
+
+def final_evaluation(args: Args, run: Run, model, curve) -> dict:
+    """The trained model and the baselines on the same fixed seeds: the table and the paired reward
+    differences (logged and written to results.md), the verdict, eval_episodes.json; returns eval.json's content."""
+    from agents import BreakAgent, SB3Agent, baselines, evaluate, format_table, paired_difference
+
     eval_start = time.perf_counter()
-    agents = {"trained": SB3Agent(model), **baselines(probe, seed=args.seed)}
-    if not multi_shot:  # the naive break too: full power straight at the head ball
-        agents["head-on break"] = BreakAgent.from_env(probe, row=1, offset=0.0)
-    results = {name: evaluate(agent, args.env_id, eval_seeds, env_kwargs) for name, agent in agents.items()}
+    agents = {"trained": SB3Agent(model), **baselines(run.probe, seed=args.seed)}
+    if not run.multi_shot:  # the naive break too: full power straight at the head ball
+        agents["head-on break"] = BreakAgent.from_env(run.probe, row=1, offset=0.0)
+    results = {name: evaluate(agent, args.env_id, run.eval_seeds, run.env_kwargs) for name, agent in agents.items()}
     eval_time = time.perf_counter() - eval_start
-    log.info("evaluation on %d fixed seeds (%d..%d); mean ± 95%% CI, sd in brackets:\n%s", eval_episodes,
-             eval_seeds[0], eval_seeds[-1], format_table(results))
+    seeds = f"{len(run.eval_seeds)} fixed seeds ({run.eval_seeds[0]}..{run.eval_seeds[-1]})"
+    table = format_table(results)
+    log.info("evaluation on %s; mean ± 95%% CI, sd in brackets:\n%s", seeds, table)
     differences = {f"trained - {name}": paired_difference(results["trained"], results[name])
                    for name in results if name != "trained"}
     for key, diff in differences.items():
         log.info("reward %s: %+.3f ± %.3f (paired, same seeds)", key, diff["mean"], diff["ci95"])
-    summary = {
-        "env_id": args.env_id, "env_kwargs": env_kwargs, "algo": args.algo, "timesteps": int(model.num_timesteps),
-        "eval_seeds": {"first": eval_seeds[0], "count": eval_episodes},
+    words = verdict(differences, curve.trained_steps, args.min_timesteps, curve.best if curve.kept_untrained else None,
+                    len(run.eval_seeds))
+    log.info("verdict: %s", words)
+
+    kept = (f"the checkpoint at {curve.best['timesteps']:,} timesteps, the best of {len(curve.points)} evaluations "
+            f"on {len(run.curve_seeds)} learning-curve seeds" if args.keep_best and curve.best else "the last model")
+    (run.dir / "results.md").write_text("\n".join([
+        f"# {args.algo.upper()} on {args.env_id}, seed {args.seed}", "",
+        f"Trained {curve.trained_steps:,} timesteps; the model is {kept}.", "",
+        f"Final evaluation on {seeds}, the same for every agent; mean ± 95 % confidence interval, sd in brackets:",
+        "", table, "", "Reward difference, trained minus each baseline, paired on the same seeds (± 95 % CI):", "",
+        *(f"- {key}: {d['mean']:+.3f} ± {d['ci95']:.3f}" for key, d in differences.items()), "",
+        f"Verdict: {words}.", ""]))
+    log.info("results table: %s", run.dir / "results.md")
+    (run.dir / "eval_episodes.json").write_text(json.dumps({n: r["per_episode"] for n, r in results.items()}))
+    return {
+        "env_id": args.env_id, "env_kwargs": run.env_kwargs, "algo": args.algo,
+        "timesteps": int(model.num_timesteps), "trained_timesteps": curve.trained_steps,
+        "eval_seeds": {"first": run.eval_seeds[0], "count": len(run.eval_seeds)},
         "agents": {name: {k: v for k, v in r.items() if k != "per_episode"} for name, r in results.items()},
         "reward_differences": differences,
+        "verdict": words,
         "learning_curve": curve.points,
-        "wall_time_s": {"training": train_time, "evaluation": eval_time},
+        "wall_time_s": {"evaluation": eval_time},
         "args": dataclasses.asdict(args),
     }
-    (run_dir / "eval_episodes.json").write_text(json.dumps({n: r["per_episode"] for n, r in results.items()}))
 
-    # --- learning curve ---
-    plot_learning_curve(run_dir, curve.points, {n: r["reward"]["mean"] for n, r in results.items() if n != "trained"},
-                        f"{args.algo.upper()} on {args.env_id}", curve.best if args.keep_best else None)
-    log.info("learning curve: %s", run_dir / "learning_curve.png")
 
-    # --- a video of the trained agent: every shot, whole ---
-    if args.video_episodes:
-        video_start = time.perf_counter()
-        video_env = gym.make(args.env_id, render_mode="rgb_array_list", **env_kwargs)
-        frames = pool_env.record_video(video_env, SB3Agent(model), str(run_dir / "trained.mp4"),
-                                       episodes=args.video_episodes, seed=args.eval_seed)
-        video_env.close()
-        summary["wall_time_s"]["video"] = time.perf_counter() - video_start
-        log.info("video: %s (%d frames)", run_dir / "trained.mp4", frames)
+def verdict(differences: dict[str, dict], trained_steps: int, min_timesteps: int, untrained: dict | None,
+            episodes: int) -> str:
+    """The comparison in words: "beats X" only when the paired 95 % interval of the reward
+    difference excludes zero in the trained agent's favour, and no claim at all from a run too
+    short to mean anything, or whose kept checkpoint (`untrained`) is the untrained policy."""
+    reasons = []
+    if trained_steps < min_timesteps:
+        reasons.append(f"too short to mean anything ({trained_steps:,} timesteps, under --min-timesteps "
+                       f"{min_timesteps:,})")
+    if untrained is not None:
+        reasons.append(f"the kept checkpoint is the untrained policy (the first evaluation, at "
+                       f"{untrained['timesteps']:,} timesteps, before any policy update)")
+    if episodes < 2:
+        reasons.append("one evaluation episode gives no confidence interval")
+    if reasons:
+        return "no claim against the baselines: " + "; ".join(reasons)
+    claims = []
+    for key, d in differences.items():
+        low, high = d["mean"] - d["ci95"], d["mean"] + d["ci95"]
+        word = "beats" if low > 0 else "loses to" if high < 0 else "is not distinguishable from"
+        claims.append(f"{word} {key.removeprefix('trained - ')} ({d['mean']:+.3f} ± {d['ci95']:.3f})")
+    return ("the trained agent " + ", ".join(claims)
+            + " in reward per episode (paired on the same seeds; 95 % intervals)")
 
-    summary["wall_time_s"]["total"] = time.perf_counter() - started
-    (run_dir / "eval.json").write_text(json.dumps(summary, indent=2))
-    log.info("eval.json: %s; total wall time %.0f s", run_dir / "eval.json", summary["wall_time_s"]["total"])
-    log.info("TensorBoard: tensorboard --logdir %s", run_dir / "tb")
-    log.info("run folder: %s", run_dir.resolve())
-    return run_dir
+
+def film(args: Args, run: Run, model) -> float:
+    """A video of the trained agent, every shot whole; returns its wall time."""
+    import gymnasium as gym
+
+    import pool_env
+    from agents import SB3Agent
+
+    video_start = time.perf_counter()
+    video_env = gym.make(args.env_id, render_mode="rgb_array_list", **run.env_kwargs)
+    frames = pool_env.record_video(video_env, SB3Agent(model), str(run.dir / "trained.mp4"),
+                                   episodes=args.video_episodes, seed=args.eval_seed)
+    video_env.close()
+    log.info("video: %s (%d frames)", run.dir / "trained.mp4", frames)
+    return time.perf_counter() - video_start
 
 
 def read_monitor(folder: Path):

@@ -1,6 +1,9 @@
-"""train.py: a smoke run with tiny settings produces every artefact, and --help lists the options."""
+"""train.py: a smoke run with tiny settings produces every artefact, reports progress, makes no claim
+from a run too short to mean anything; --help lists the options; the verdict's wording."""
 
+import importlib.util
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -9,6 +12,8 @@ import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
+PROGRESS = re.compile(r"progress: [\d,]+/2,000 shots \(\d+ %\), [\d,]+ shots/s, mean reward [+-]\d+\.\d{3} "
+                      r"\(last \d+ episodes\), \d+:\d\d:\d\d elapsed, \d+:\d\d:\d\d left")
 
 
 def run_train(*args, timeout=240):
@@ -19,15 +24,48 @@ def run_train(*args, timeout=240):
 def test_help_lists_every_option():
     out = run_train("--help", timeout=60)
     assert out.returncode == 0, out.stderr
-    for flag in ("--env-id", "--algo", "--timesteps", "--n-envs", "--seed", "--spin", "--eval-episodes", "--out"):
+    for flag in ("--env-id", "--algo", "--timesteps", "--n-envs", "--seed", "--spin", "--eval-episodes", "--out",
+                 "--progress-every", "--min-timesteps"):
         assert flag in out.stdout
+
+
+def load_train():
+    """train.py as a module (cheap: its heavy imports happen inside its phases)."""
+    spec = importlib.util.spec_from_file_location("train_script", ROOT / "train.py")
+    module = sys.modules[spec.name] = importlib.util.module_from_spec(spec)  # dataclasses look the module up
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_verdict_claims_only_what_the_intervals_show():
+    verdict = load_train().verdict
+    differences = {"trained - random": {"mean": 0.31, "ci95": 0.05},      # interval above zero
+                   "trained - heuristic": {"mean": -0.03, "ci95": 0.13},  # straddles zero
+                   "trained - head-on break": {"mean": -0.8, "ci95": 0.1}}
+    words = verdict(differences, trained_steps=250_000, min_timesteps=25_000, untrained=None, episodes=1000)
+    assert words.startswith("the trained agent beats random (+0.310 ± 0.050), is not distinguishable from heuristic")
+    assert "loses to head-on break" in words
+    # A difference whose interval only touches zero is no win.
+    assert "beats" not in verdict({"trained - random": {"mean": 0.1, "ci95": 0.1}}, 250_000, 25_000, None, 1000)
+    # Too short, or the untrained policy kept: no claim, whatever the intervals say.
+    short = verdict(differences, trained_steps=2_048, min_timesteps=25_000, untrained=None, episodes=1000)
+    assert "beats" not in short and "too short to mean anything (2,048 timesteps" in short
+    kept = verdict(differences, 250_000, 25_000, untrained={"timesteps": 2}, episodes=1000)
+    assert "beats" not in kept and "untrained policy" in kept
+
+
+def test_progress_line_fields():
+    line = load_train().progress_line(10_000, 20_000, 4.0, [1.0, -1.0, 3.0])
+    assert line == ("progress: 10,000/20,000 shots (50 %), 2,500 shots/s, mean reward +1.000 (last 3 episodes), "
+                    "0:00:04 elapsed, 0:00:04 left")
 
 
 @pytest.fixture(scope="module")
 def smoke_run(tmp_path_factory):
     out_dir = tmp_path_factory.mktemp("runs")
+    # The progress bar stays on: stdout is captured (not a terminal), as in CI or a run redirected to a file.
     proc = run_train("--timesteps", "2000", "--eval-episodes", "30", "--curve-points", "2", "--curve-episodes", "10",
-                     "--video-episodes", "1", "--out", str(out_dir), "--run-name", "smoke", "--no-progress-bar")
+                     "--video-episodes", "1", "--out", str(out_dir), "--run-name", "smoke", "--progress-every", "0.1")
     assert proc.returncode == 0, proc.stdout + proc.stderr
     return out_dir / "smoke", proc.stdout
 
@@ -36,7 +74,8 @@ def smoke_run(tmp_path_factory):
 def test_smoke_run_writes_every_artefact(smoke_run):
     run_dir, stdout = smoke_run
     assert str(run_dir.resolve()) in stdout  # the run folder is printed
-    for name in ("model.zip", "eval.json", "learning_curve.png", "trained.mp4", "train.log", "args.json"):
+    for name in ("model.zip", "eval.json", "results.md", "learning_curve.png", "trained.mp4", "train.log",
+                 "args.json"):
         assert (run_dir / name).is_file() and (run_dir / name).stat().st_size > 0, name
     assert list((run_dir / "tb").rglob("events.out.tfevents.*")), "no TensorBoard log"
     assert list((run_dir / "monitor").glob("*.monitor.csv")), "no Monitor log"
@@ -59,6 +98,32 @@ def test_smoke_run_evaluates_all_agents_on_the_same_seeds(smoke_run):
     # The table is logged (console and train.log), not only written to the json.
     log = (run_dir / "train.log").read_text()
     assert "| trained" in log and "| heuristic" in log and "| trained" in stdout
+    # ... and written to results.md, a row per agent, with the paired differences and the verdict.
+    results = (run_dir / "results.md").read_text()
+    for name in result["agents"]:
+        assert re.search(rf"^\| {re.escape(name)} +\| [+-]\d", results, re.M), name
+    assert "| agent" in results and "balls / shot" in results and "scratch rate" in results
+    assert "- trained - random: " in results and f"Verdict: {result['verdict']}." in results
+
+
+@pytest.mark.slow
+def test_smoke_run_reports_progress_when_stdout_is_not_a_terminal(smoke_run):
+    run_dir, stdout = smoke_run
+    assert PROGRESS.search(stdout), stdout
+    assert PROGRESS.search((run_dir / "train.log").read_text())
+
+
+@pytest.mark.slow
+def test_smoke_run_makes_no_claim(smoke_run):
+    """A 2,000-step run can keep the untrained policy, whose weakest tap never scratches and so
+    out-scores random on reward: the run must say it is too short rather than that it beats random."""
+    run_dir, stdout = smoke_run
+    result = json.loads((run_dir / "eval.json").read_text())
+    assert result["trained_timesteps"] >= 2000
+    for text in (stdout, (run_dir / "train.log").read_text(), (run_dir / "results.md").read_text(),
+                 result["verdict"]):
+        assert "beats" not in text
+        assert "too short to mean anything (2,048 timesteps, under --min-timesteps 25,000)" in text
 
 
 @pytest.mark.slow
