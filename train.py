@@ -41,7 +41,9 @@ class Args:
     algo: str = option("ppo", "learning algorithm", choices=("ppo", "sac"))
     timesteps: int = option(250_000, "total environment steps (shots) to train for")
     n_envs: int = option(2, "parallel environments")
-    vec_env: str = option("auto", "auto: subprocesses when n_envs > 1", choices=("auto", "subproc", "dummy"))
+    vec_env: str = option("native", "native: one process, every step's shots in one simulate_batch call on all "
+                          "cores (pool_env.sb3.SB3VecEnv); auto: SB3 subprocesses when n_envs > 1",
+                          choices=("native", "auto", "subproc", "dummy"))
     seed: int = option(0, "seed of the model and the training envs")
     spin: bool = option(False, "add the cue-tip offset (side, top) to the action")
     randomize_cue: bool = option(False, "start the cue ball anywhere in the kitchen")
@@ -163,11 +165,22 @@ def make_model(args: Args, run: Run):
     from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv
 
     torch.set_num_threads(1)  # small networks: one thread is fastest, and leaves the cores to the envs
-    vec_cls = {"subproc": SubprocVecEnv, "dummy": DummyVecEnv}.get(args.vec_env)
-    vec_cls = vec_cls or (SubprocVecEnv if args.n_envs > 1 else DummyVecEnv)
     (run.dir / "monitor").mkdir(exist_ok=True)
-    envs = make_vec_env(functools.partial(quiet_env, args.env_id, **run.env_kwargs), n_envs=args.n_envs,
-                        seed=args.seed, vec_env_cls=vec_cls, monitor_dir=str(run.dir / "monitor"))
+    if args.vec_env == "native":
+        # The same shots as DummyVecEnv over gym.make envs (tests/test_sb3_vec.py), simulated together.
+        from stable_baselines3.common.vec_env import VecMonitor
+
+        from pool_env.sb3 import SB3VecEnv
+
+        quiet_env(args.env_id)  # silences gymnasium's per-shot warnings in this process, as in the workers
+        envs = SB3VecEnv(args.env_id, num_envs=args.n_envs, **run.env_kwargs)
+        envs.seed(args.seed)
+        envs = VecMonitor(envs, filename=str(run.dir / "monitor" / "native"))
+    else:
+        vec_cls = {"subproc": SubprocVecEnv, "dummy": DummyVecEnv}.get(args.vec_env)
+        vec_cls = vec_cls or (SubprocVecEnv if args.n_envs > 1 else DummyVecEnv)
+        envs = make_vec_env(functools.partial(quiet_env, args.env_id, **run.env_kwargs), n_envs=args.n_envs,
+                            seed=args.seed, vec_env_cls=vec_cls, monitor_dir=str(run.dir / "monitor"))
 
     net_arch = [int(n) for n in args.net_arch.split(",") if n]
     learning_rate = args.learning_rate
