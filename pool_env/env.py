@@ -48,9 +48,12 @@ def decode_observation(obs, table: Table):
 
 
 def observations(xy, pocketed, shots, max_shots, table: Table, out):
-    """Write the observations (see PoolBreakEnv) of n envs into `out` (n, 49) float32, from the
-    balls' positions xy (n, 16, 2), their pocketed flags (n, 16) and the shots taken (n,) of
-    `max_shots`. One env's is `PoolBreakEnv._observation`; a vector env builds all at once."""
+    """Write the observations (see PoolBreakEnv) of n envs into `out` (n, 49) float32,
+    C-contiguous, from the balls' positions xy (n, 16, 2), their pocketed flags (n, 16) and the
+    shots taken (n,) of `max_shots` (n,). One env's is `PoolBreakEnv._observation`; a vector env
+    builds all of its sub-envs' at once."""
+    if not out.flags.c_contiguous:
+        raise ValueError("out must be C-contiguous (its per-ball view must not be a copy)")
     per_ball = out[:, :-1].reshape(out.shape[0], N_BALLS, 3)
     # Centres lie at least R inside the rails, so these are within (-1, 1).
     per_ball[:, :, 0:2] = xy * (2.0 / table.length, 2.0 / table.width) - 1.0
@@ -457,7 +460,7 @@ class PoolBreakEnv(gym.Env):
         self.playback.shot(result)
         return self._observation() if observe else None, reward, bool(terminated), bool(truncated), info
 
-    # --- the phases of a reset (a vector env draws the next start while the engine runs) ---------
+    # --- the phases of a reset (a vector env builds the observations of all sub-envs at once) ---
     def _draw_start(self, seed=None, options=None):
         """The options checked, the seed applied and the next episode's start drawn from
         `np_random` (the rack, or the given balls, and the balls' orientations); the episode
