@@ -195,7 +195,7 @@ class PoolVectorEnv(VectorEnv):
             states = [(env._balls, env._shots, env.max_shots) for env in self.envs]
         out = np.empty((len(states), self._obs_size), dtype=np.float32)
         balls, shots, max_shots = zip(*states)
-        observations(np.stack([b.xy for b in balls]), np.stack([b.pocketed for b in balls]), np.array(shots),
+        observations(np.array([b.xy for b in balls]), np.array([b.pocketed for b in balls]), np.array(shots),
                      np.array(max_shots), self.table, out)
         return out
 
@@ -217,8 +217,11 @@ class PoolVectorEnv(VectorEnv):
             if isinstance(first, dict) and key != "final_obs":
                 array = self._gather_infos(list(zip(ks, values)))
             elif key != "final_obs" and (type(first) in (int, float, bool) or isinstance(first, np.number)):
-                array = np.zeros(n, dtype=type(first))
-                array[ks] = values
+                if len(ks) == n:  # every sub-env has it: ks is 0, 1, ..., n - 1
+                    array = np.array(values, dtype=type(first))
+                else:
+                    array = np.zeros(n, dtype=type(first))
+                    array[ks] = values
             elif key != "final_obs" and isinstance(first, np.ndarray):
                 array = np.zeros((n, *first.shape), dtype=first.dtype)
                 for k, value in zip(ks, values):
@@ -227,8 +230,11 @@ class PoolVectorEnv(VectorEnv):
                 array = np.full(n, None, dtype=object)
                 for k, value in zip(ks, values):
                     array[k] = value
-            mask = np.zeros(n, dtype=np.bool_)
-            mask[ks] = True
+            if len(ks) == n:
+                mask = np.ones(n, dtype=np.bool_)
+            else:
+                mask = np.zeros(n, dtype=np.bool_)
+                mask[ks] = True
             infos[key], infos[f"_{key}"] = array, mask
         return infos
 

@@ -407,3 +407,27 @@ def test_made_by_make_vec_pickles_with_its_spec():
     assert other.spec == envs.spec and other.spec.kwargs["max_shots"] == 30
     actions = np.array([[0.3, -0.2], [-0.6, 0.1]], np.float32)
     assert_same(other.step(actions), envs.step(actions))
+
+
+def test_infos_gathered_at_once_equal_gymnasiums_add_info():
+    """_gather_infos (key by key) against VectorEnv._add_info (env by env) on infos of every kind:
+    Python and numpy scalars, lists, strings, arrays, nested dicts, final_obs, keys some envs lack."""
+    envs = PoolVectorEnv(num_envs=4)
+    rng = np.random.default_rng(0)
+    for trial in range(200):
+        entries = []
+        for k in range(4):
+            info = {}
+            for key, make in (("i", lambda: int(rng.integers(9))), ("f", lambda: float(rng.random())),
+                              ("b", lambda: bool(rng.random() < 0.5)), ("n", lambda: np.float32(rng.random())),
+                              ("nb", lambda: np.bool_(rng.random() < 0.5)), ("s", lambda: "err"),
+                              ("l", lambda: list(range(int(rng.integers(3))))),
+                              ("a", lambda: rng.random(3)), ("final_obs", lambda: rng.random(2).astype(np.float32)),
+                              ("d", lambda: {"x": int(rng.integers(3)), "y": [1]})):
+                if rng.random() < (1.0 if trial % 3 == 0 else 0.6):
+                    info[key] = make()
+            entries.append((k, info))
+        expected = {}
+        for k, info in entries:
+            expected = envs._add_info(expected, info, k)
+        assert_same(envs._gather_infos(entries), expected, f"trial {trial}")
