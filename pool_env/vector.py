@@ -93,7 +93,7 @@ class PoolVectorEnv(VectorEnv):
         n = self.num_envs
         self._obs_size = self.single_observation_space.shape[0]
         self._autoreset_envs = np.zeros(n, dtype=np.bool_)  # which sub-envs' episodes ended last step
-        self._elapsed = np.zeros(n, dtype=np.int64)  # steps in the current episode (max_episode_steps)
+        self._elapsed = [0] * n  # steps in the current episode (max_episode_steps)
 
     # --- Gymnasium's vector API ---------------------------------------------------------------
     def reset(self, *, seed: int | list[int | None] | None = None, options: dict[str, Any] | None = None):
@@ -154,14 +154,12 @@ class PoolVectorEnv(VectorEnv):
         playable = [s for s in struck if not isinstance(s, Exception)]
         results = iter(simulate_batch(playable, self.table, self.physics, threads=self.threads))
         # (c) each sub-env finishes its shot (or, NEXT_STEP, resets), in order
-        rewards = np.zeros(n, dtype=np.float64)
-        terminations = np.zeros(n, dtype=np.bool_)
-        truncations = np.zeros(n, dtype=np.bool_)
+        rewards, terminations, truncations = [0.0] * n, [False] * n, [False] * n
+        elapsed, limit = self._elapsed, self.max_episode_steps
         if len(shots) < n:  # NEXT_STEP: the sub-envs whose episodes ended last step start anew
             for k in np.flatnonzero(self._autoreset_envs).tolist():
                 envs[k]._start(envs[k]._draw_start())
-                self._elapsed[k] = 0
-        elapsed, limit = self._elapsed, self.max_episode_steps
+                elapsed[k] = 0
         same_step = self.autoreset_mode == AutoresetMode.SAME_STEP
         entries, finals, final_balls = [], [], []
         for k, shot in zip(shots, struck):
@@ -184,8 +182,11 @@ class PoolVectorEnv(VectorEnv):
         if finals:
             for final, obs in zip(finals, self._observe(final_balls)):
                 final["final_obs"] = obs
+        terminations = np.array(terminations, dtype=np.bool_)
+        truncations = np.array(truncations, dtype=np.bool_)
         self._autoreset_envs = terminations | truncations
-        return self._observe(), rewards, terminations, truncations, self._gather_infos(entries)
+        return (self._observe(), np.array(rewards, dtype=np.float64), terminations, truncations,
+                self._gather_infos(entries))
 
     # --- helpers ------------------------------------------------------------------------------
     def _observe(self, states=None):
