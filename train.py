@@ -1,6 +1,6 @@
 """Train an agent on the pool env, compare it with the baselines, and save everything in one run folder.
 
-    python train.py                      # PPO on PoolBreak-v0, 6-9 minutes on 2 CPU cores (333 s idle, 516 s busy)
+    python train.py                      # PPO on PoolBreak-v0, about 5.5 minutes on 2 CPU cores (321 s)
     python train.py --timesteps 2000     # a smoke run: every artefact in well under a minute
     python train.py --help               # every option
 
