@@ -20,7 +20,8 @@ class PoolVectorEnv(VectorEnv):
     all the shots of the step in ONE `pool_env.physics.simulate_batch` call (`threads` threads,
     default: every core), then builds each sub-env's observation, reward, end flags and info.
     The results are exactly those of `gymnasium.make_vec(id, num_envs, vectorization_mode="sync")`
-    in the same autoreset mode, step for step (the tests compare them), only faster.
+    in the same autoreset mode, step for step (the tests compare them); with 64 or more
+    sub-envs on 2 cores it steps 1.3-1.4 times as many shots per second (docs/env.md).
 
     ```python
     import gymnasium as gym
