@@ -172,6 +172,17 @@ def test_vector_api():
     envs.set_attr("scratch_penalty", [1.0, 2.0, 3.0])
     assert envs.get_attr("scratch_penalty") == (1.0, 2.0, 3.0)
     assert "num_envs=3" in repr(envs)
+    # What Gymnasium 1.4 can check: its env checker takes single envs only (it refuses a vector
+    # env), and the sub-envs pass it (its render check needs a spec, which only gym.make gives;
+    # tests/test_env.py runs it on made envs).
+    from gymnasium.utils.env_checker import check_env
+
+    with pytest.raises(TypeError):
+        check_env(envs)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        check_env(envs.envs[0], skip_render_check=True)
+    assert [str(w.message) for w in caught] == []
     envs.close()
     assert envs.closed
 
