@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import threading
 from concurrent.futures import ThreadPoolExecutor
 
 from .config import Physics
@@ -10,9 +11,21 @@ from .objects import Table
 from .result import Result
 from .simulate import compiled_here, simulate
 
-# Scenes per task handed to a thread: small enough to balance a batch whose shots differ in
-# length (a break against a tap), large enough that handing out tasks costs nothing.
-CHUNK = 4
+# Tasks per thread a batch is cut into: enough to balance a batch whose shots differ in length
+# (a break against a tap), few enough that handing them out costs nothing.
+TASKS_PER_THREAD = 4
+
+# One pool per thread count, kept for the process: starting threads for every call would cost
+# about 0.3 ms, as much as a break.
+_pools: dict[int, ThreadPoolExecutor] = {}
+_pools_lock = threading.Lock()
+
+
+def _pool(threads):
+    with _pools_lock:
+        if threads not in _pools:
+            _pools[threads] = ThreadPoolExecutor(max_workers=threads, thread_name_prefix="pool_env-batch")
+        return _pools[threads]
 
 
 def simulate_batch(balls_list, table: Table, physics: Physics | None = None, max_events: int | None = None,
@@ -36,9 +49,10 @@ def simulate_batch(balls_list, table: Table, physics: Physics | None = None, max
     if threads < 1:
         raise ValueError(f"threads must be >= 1, got {threads!r}")
     out: list[Result | Exception | None] = [None] * len(scenes)
+    chunk = max(1, -(-len(scenes) // (threads * TASKS_PER_THREAD)))
 
     def run(start):
-        for k in range(start, min(start + CHUNK, len(scenes))):
+        for k in range(start, min(start + chunk, len(scenes))):
             try:
                 out[k] = simulate(scenes[k], table, physics, max_events=max_events)
             except (ValueError, TypeError, RuntimeError) as exc:  # reported per scene: SimulationError is one
@@ -47,12 +61,11 @@ def simulate_batch(balls_list, table: Table, physics: Physics | None = None, max
     first = 0
     if not compiled_here() and scenes:
         run(0)  # compile (or load) the engine once, on this thread, before the others start
-        first = CHUNK
-    starts = range(first, len(scenes), CHUNK)
-    if threads == 1:
+        first = chunk
+    starts = range(first, len(scenes), chunk)
+    if threads == 1 or len(starts) <= 1:
         for start in starts:
             run(start)
     else:
-        with ThreadPoolExecutor(max_workers=threads) as pool:
-            list(pool.map(run, starts))
+        list(_pool(threads).map(run, starts))
     return out
