@@ -353,6 +353,31 @@ def rack(table: Table, seed=None, jitter=None, radius=BALL_RADIUS, mass=BALL_MAS
             f"{table.cushion_height} m above the cloth, at or above the top of the balls ({2.0 * radius:.4g} m), "
             "so they would pass under the cushions; use balls with 2R > cushion_height, or a lower cushion_height"
         )
+    if cue_xy is None and np.ndim(mass) == 0:
+        spots, template = _rack_layout(table, radius, jitter, float(mass))
+        xy = spots.copy()
+    else:
+        xy = _rack_spots(table, radius, jitter, cue_xy)
+        _check_rack_fits(table, xy, radius, jitter, cue_xy is None)
+        template = None
+    if jitter > 0:
+        rng = np.random.default_rng(seed)
+        angle = rng.uniform(0.0, 2.0 * math.pi, 15)
+        dist = jitter * np.sqrt(rng.uniform(0.0, 1.0, 15))
+        xy[1:, 0] += dist * np.cos(angle)
+        xy[1:, 1] += dist * np.sin(angle)
+    if template is None:
+        return Balls(xy, radius=radius, mass=mass)
+    # Spots 2R + 2 jitter apart, each ball within jitter of its spot: no overlap to look for.
+    # The per-ball radii and masses are the compiled engine's inputs (writable, like every
+    # Balls' own): each rack gets its own copy, so no two racks share one.
+    balls = Balls._trusted(xy, template.v, template.w, template.pocketed, template)
+    balls._radii, balls._masses = template._radii.copy(), template._masses.copy()
+    return balls
+
+
+def _rack_spots(table, radius, jitter, cue_xy):
+    """The cue ball's spot and the 15 object balls' ideal spots (before the jitter)."""
     spacing = 2.0 * radius + 2.0 * jitter
     L, W = table.length, table.width
     apex_x, mid_y = 0.75 * L, 0.5 * W
@@ -361,14 +386,17 @@ def rack(table: Table, seed=None, jitter=None, radius=BALL_RADIUS, mass=BALL_MAS
     for row, numbers in enumerate(RACK_ORDER):
         for k, number in enumerate(numbers):
             xy[number] = (apex_x + row * spacing * math.sqrt(3.0) / 2.0, mid_y + (k - row / 2.0) * spacing)
-    _check_rack_fits(table, xy, radius, jitter, cue_xy is None)
-    if jitter > 0:
-        rng = np.random.default_rng(seed)
-        angle = rng.uniform(0.0, 2.0 * math.pi, 15)
-        dist = jitter * np.sqrt(rng.uniform(0.0, 1.0, 15))
-        xy[1:, 0] += dist * np.cos(angle)
-        xy[1:, 1] += dist * np.sin(angle)
-    return Balls(xy, radius=radius, mass=mass)
+    return xy
+
+
+@functools.lru_cache(maxsize=32)
+def _rack_layout(table, radius, jitter, mass):
+    """The default rack's spots on a table, checked once to fit, and a resting Balls on them
+    whose radius, mass and zero velocities every rack of the same layout shares (`rack` runs
+    at every env reset: this saves it the checks and the array building each time)."""
+    spots = _rack_spots(table, radius, jitter, None)
+    _check_rack_fits(table, spots, radius, jitter, True)
+    return _readonly(spots), Balls(spots, radius=radius, mass=mass)
 
 
 def _check_rack_fits(table, xy, radius, jitter, check_cue):
