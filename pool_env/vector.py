@@ -1,5 +1,7 @@
-"""`PoolVectorEnv`: many `PoolBreakEnv`s stepped together, every step's shots simulated in one
-`simulate_batch` call (on threads: the compiled engine releases the GIL)."""
+"""`PoolVectorEnv`: many `PoolBreakEnv`s stepped together, each step's shots in one `simulate_batch`.
+
+The shots run on threads: the compiled engine releases the GIL.
+"""
 
 from __future__ import annotations
 

@@ -1,5 +1,6 @@
-"""`python -m pool_env.bench stability`: random scenes through the exact engine, invariants
-checked after every event (pool_env.physics.invariants), failures counted by kind.
+"""`python -m pool_env.bench stability`: random scenes through the engine, invariants checked per event.
+
+The invariants are pool_env.physics.invariants'; failures are counted by kind.
 
 Each shot is a random break: a rack with random jitter (sometimes frozen, every ball
 touching its neighbours), a few extra balls dropped anywhere on the cloth without overlap,

@@ -1,5 +1,4 @@
-"""Resolving contact events: a ball-ball contact with the contacts simultaneous with it, and a
-ball meeting one or more cushions.
+"""Resolving contact events: a ball-ball contact with those simultaneous with it; a ball at cushions.
 
 A ball-ball event is resolved in one of these modes (`gather` chooses):
 

@@ -1,5 +1,4 @@
-"""Pressed contacts: touching balls (or a ball and a cushion) whose accelerations push them
-together, and how the engine resolves them.
+"""Pressed contacts: touching balls (or a ball and a cushion) pushed together, and how they resolve.
 
 Between events each ball moves under constant friction, so two touching balls can be
 pressed together with no approach speed at all (a ball spun into another, a faster rolling
