@@ -75,3 +75,16 @@ def test_speed_against_itself_prints_every_figure_and_a_ratio(capsys):
     for _, what, _ in speed.FIGURES:
         assert what in out
     assert "| ours / theirs |" in out and "skipped (--quick)" in out
+
+
+@pytest.mark.slow
+def test_vector_bench_prints_every_figure_beside_its_target(capsys):
+    from pool_env.bench import vector
+
+    assert vector.main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    for what in ("PoolBreak-v0 native vector env, num_envs 64", "SB3 SubprocVecEnv, 2 workers",
+                 "Gymnasium AsyncVectorEnv, 2 workers", "PoolBreakRun-v0 native vector env",
+                 "simulate_batch, 2 threads", "256 native envs, resident memory"):
+        assert what in out, what
+    assert ">= 4,000" in out and ">= 8,000" in out and "<= 200 MB" in out
