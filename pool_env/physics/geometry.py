@@ -1,10 +1,10 @@
-"""Shared geometry and energy kernels: rails, fixed points, the rolling spin, kinetic energy."""
+"""Shared geometry kernels: rails, fixed points, the rolling spin, a point meeting a circle."""
 
 import math
 
 import numpy as np
 
-from .jit import helper, kernel
+from .jit import helper
 from .kinds import VX, VY, WX, WY
 from .roots import first_entry
 from .tolerances import MIN_APPROACH, MIN_DEPTH, POLISH_GAP
@@ -47,13 +47,6 @@ def roll(row, radius):
     """Lock a ball's spin to its velocity: rolling without slipping, w = (-vy, vx) / R."""
     row[WX] = -row[VY] / radius
     row[WY] = row[VX] / radius
-
-
-@kernel
-def kinetic_energy(vx, vy, wx, wy, wz, radius, mass):
-    """Translational plus rotational kinetic energy of a solid ball (J): I = 2/5 m R^2."""
-    inertia = 0.4 * mass * radius * radius
-    return 0.5 * mass * (vx * vx + vy * vy) + 0.5 * inertia * (wx * wx + wy * wy + wz * wz)
 
 
 @helper

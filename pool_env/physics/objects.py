@@ -129,8 +129,7 @@ def kinetic_energy(v, w, radii, masses) -> np.ndarray:
 
     v (..., N, 2) velocities and w (..., N, 3) spins, any leading axes (the samples of a
     trajectory, say); radii and masses (N,). Pocketed balls count like any other: callers
-    mask them (`Balls.energy`, `invariants.check`). `geometry.kinetic_energy` is the
-    compiled one-ball kernel of the same formula."""
+    mask them (`Balls.energy`, `invariants.check`)."""
     return 0.5 * masses * np.sum(v**2, axis=-1) + 0.2 * masses * radii**2 * np.sum(w**2, axis=-1)
 
 
