@@ -111,7 +111,8 @@ def collision(v: float, roll: float, dn: float, dt: float, physics: Physics):
 # --- pockets ----------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class Pocket:
-    """A pocket's capture circle and the chord between its jaw points (the mouth)."""
+    """A pocket's opening (the circle a ball's centre drops into) and the chord between its
+    jaw points (the mouth)."""
 
     index: int
     centre: np.ndarray
@@ -121,16 +122,9 @@ class Pocket:
 
 
 def pockets_of(table: Table) -> list[Pocket]:
-    """The table's pockets with their jaw points (the two jaws on each capture circle)."""
-    out = []
-    for k, (x, y, r) in enumerate(table.pockets):
-        centre = np.array([x, y])
-        d = np.hypot(*(table.jaws - centre).T) if len(table.jaws) else np.zeros(0)
-        jaws = table.jaws[np.abs(d - r) < 1e-6]
-        if len(jaws) != 2:
-            continue
-        out.append(Pocket(k, centre, float(r), jaws[0].copy(), jaws[1].copy()))
-    return out
+    """The table's pockets: each one's opening and its jaw points (Table.mouths)."""
+    return [Pocket(k, np.array([x, y]), float(r), np.array(mouth[0:2]), np.array(mouth[2:4]))
+            for k, ((x, y, r), mouth) in enumerate(zip(table.pockets, table.mouths, strict=True))]
 
 
 def pocket_aim(obj, pocket: Pocket, table: Table, radius: float, obstacles, samples: int = 21):

@@ -5,6 +5,7 @@ pocket, an unknown ball-ball model, e_b > 1, a NaN mu_r, and the event cap); and
 pickles of tables and balls keep their arrays read-only (else numba compiles the engine again)."""
 
 import copy
+import math
 import pickle
 
 import gymnasium as gym
@@ -88,15 +89,18 @@ def test_bad_physics_is_named(kwargs, match):
         ((2.0, 1.0), dict(pockets=[(0.0, 0.0, 0.1), 0.5]), r"pocket 1 must be an \(x, y, mouth\) entry.*got 0\.5"),
         ((2.0, 1.0), dict(pockets=[(0.0, 0.0, "wide")]), r"pocket 0 must be an \(x, y, mouth\) entry"),
         ((2.0, 1.0), dict(pockets=5), r"pockets must be a sequence of \(x, y, mouth\) entries, or None"),
-        # A mouth must fit: jaw points on the rail(s) it sits on, capture circle short of the
-        # opposite rail.
+        # A mouth must fit: jaw points and their rounded tips on the rail(s) it sits on, the
+        # mouth short of the opposite rail. The tip (radius 5 mm) reaches 5 mm / tan(cut / 2)
+        # past the jaw point along the nose: 1.7217 mm at a 142 degree corner, 3.9065 mm at a
+        # 104 degree side; the widest mouth is sqrt(2) (corner) or 2 (side) times the room
+        # left.
         ((2.0, 1.0), dict(pockets=[(0.0, 0.0, 5.0)]),
          r"pocket 0 at \(0\.0, 0\.0\) has a 5\.0 m mouth, too wide for the 2\.0 x 1\.0 m table: its jaw "
-         r"points must lie on the rails it sits on .* so its mouth can be at most 1\.414 m"),
-        ((2.0, 1.0), dict(pockets=[(1.0, 0.0, 5.0)]), r"pocket 0 .* 5\.0 m mouth, too wide .* at most 2 m"),
-        ((2.0, 1.0), dict(pockets=[(0.05, 0.0, 0.2)]), r"pocket 0 .* 0\.2 m mouth, too wide .* at most 0\.1 m"),
-        ((1.0, 2.0), dict(pockets=[(0.0, 1.0, 2.5)]), r"pocket 0 .* 2\.5 m mouth, too wide .* at most 2 m"),
-        ((2.0, 0.2), dict(pockets=[(1.0, 0.2, 0.5)]), r"pocket 0 .* 0\.5 m mouth, too wide .* at most 0\.4 m"),
+         r"points must lie on the rails it sits on .* so its mouth can be at most 1\.412 m"),
+        ((2.0, 1.0), dict(pockets=[(1.0, 0.0, 5.0)]), r"pocket 0 .* 5\.0 m mouth, too wide .* at most 1\.992 m"),
+        ((2.0, 1.0), dict(pockets=[(0.05, 0.0, 0.2)]), r"pocket 0 .* 0\.2 m mouth, too wide .* at most 0\.09219 m"),
+        ((1.0, 2.0), dict(pockets=[(0.0, 1.0, 2.5)]), r"pocket 0 .* 2\.5 m mouth, too wide .* at most 1\.992 m"),
+        ((2.0, 0.2), dict(pockets=[(1.0, 0.2, 0.5)]), r"pocket 0 .* 0\.5 m mouth, too wide .* at most 0\.3922 m"),
     ],
 )
 def test_bad_table_is_named(args, kwargs, match):
@@ -106,17 +110,19 @@ def test_bad_table_is_named(args, kwargs, match):
 
 def test_pockets_none_means_no_pockets():
     table = Table(2.24, 1.12, pockets=None)
-    assert table.pockets.shape == (0, 3) and table.jaws.shape == (0, 2)
+    assert table.pockets.shape == (0, 3) and table.jaws.shape == (0, 3) and table.mouths.shape == (0, 6)
     np.testing.assert_array_equal(table.rails, Table(2.24, 1.12, pockets=()).rails)
     assert "None" in Table.__doc__
 
 
 def test_widest_mouths_that_fit_are_accepted():
-    # At the bound the jaw points sit on the rail ends (corner) or meet the next mouth.
-    Table(2.0, 1.0, pockets=[(0.0, 0.0, 2.0**0.5)])
-    Table(2.0, 1.0, pockets=[(1.0, 0.0, 2.0)])
+    # Just inside the bound the rounded jaw tips end just short of the rail ends.
+    corner_trim = 0.005 / math.tan(math.radians(71.0))
+    side_trim = 0.005 / math.tan(math.radians(52.0))
+    Table(2.0, 1.0, pockets=[(0.0, 0.0, 0.999 * (1.0 - corner_trim) * 2.0**0.5)])
+    Table(2.0, 1.0, pockets=[(1.0, 0.0, 0.999 * 2.0 * (1.0 - side_trim))])
     eight = Table.eight_foot()
-    assert eight.pockets.shape == (6, 3) and eight.jaws.shape == (12, 2)
+    assert eight.pockets.shape == (6, 3) and eight.jaws.shape == (12, 3) and eight.rails.shape == (18, 6)
 
 
 @pytest.mark.parametrize(
@@ -132,7 +138,10 @@ def test_widest_mouths_that_fit_are_accepted():
          r"too small for a rack .* \(jitter 0\.0002 m\): .* at least 0\.9126 x 0\.2878 m"),
         (Table(0.9125, 1.12), dict(seed=0), r"too small for a rack .* at least 0\.9126 x 0\.2878 m"),
         # Long and wide enough, but the rack's back corners sit in the corner pockets.
-        (Table(0.92, 0.29, pockets=[(0.92, 0.0, 0.1)]), dict(seed=0),
+        # (A 0.2 m mouth: its opening, 0.1 m in radius with its centre 41 mm behind the
+        # corner along the diagonal, reaches the spot at (0.8894, 0.0299) m; a 0.1 m mouth
+        # leaves that ball clear in front of the mouth.)
+        (Table(0.92, 0.29, pockets=[(0.92, 0.0, 0.2)]), dict(seed=0),
          r"the 0\.92 x 0\.29 m table is too small for a rack with these pockets: ball 5's spot "
          r"\(0\.8894, 0\.0299\) m is over pocket 0 or within the jitter \(0\.0002 m\) of it"),
         # Balls no taller than the cushion nose would pass under the cushions (han2005 model).

@@ -266,10 +266,17 @@ def test_ball_into_corner_and_side_pockets():
     pocketed = {e.i: e.j for e in res.events if e.kind == "ball_pocket"}
     assert pocketed == {0: 0, 1: 4}
     assert res.final.pocketed.all()
-    # The drop happens when the centre enters the capture circle (corner: radius mouth/sqrt 2).
+    # Both go straight down the pocket's axis, touching nothing, and drop when the centre
+    # crosses the opening's near edge: `shelf` behind the middle of the mouth line. Corner:
+    # the mouth's middle is mouth/2 = 57.95 mm from the corner along the diagonal, the shelf
+    # 1.625 in = 41.275 mm; side: on the nose line, shelf 3/16 in = 4.7625 mm.
+    assert not any(e.kind == "ball_cushion" for e in res.events)
     drop = next(e for e in res.events if e.kind == "ball_pocket" and e.i == 0)
-    xy = res.at(drop.time).xy[0]
-    assert math.hypot(*xy) == pytest.approx(t.pockets[0, 2], rel=1e-9)
+    x, y = res.at(drop.time).xy[0]
+    assert x == pytest.approx(y, abs=1e-12)
+    assert math.hypot(x, y) == pytest.approx(0.1159 / 2 - 1.625 * 0.0254, rel=1e-9)
+    drop = next(e for e in res.events if e.kind == "ball_pocket" and e.i == 1)
+    assert res.at(drop.time).xy[1, 1] == pytest.approx(-0.1875 * 0.0254, rel=1e-9)
 
 
 def test_no_pocket_work_on_pocketless_table():
@@ -281,12 +288,28 @@ def test_no_pocket_work_on_pocketless_table():
 
 def test_eight_foot_geometry():
     t = Table.eight_foot()
-    assert t.pockets.shape == (6, 3)
-    assert t.jaws.shape == (12, 2)
-    assert t.rails.shape == (6, 6)
-    # Jaw points of the side pocket on y = 0 are the mouth (5.0625 in) apart.
-    side = sorted(p[0] for p in t.jaws if p[1] == 0.0 and 0.5 < p[0] < 1.7)
-    assert side[1] - side[0] == pytest.approx(0.1286)
+    assert t.pockets.shape == (6, 3) and t.mouths.shape == (6, 6)
+    assert t.jaws.shape == (12, 3)  # two rounded jaw tips per pocket
+    assert t.rails.shape == (18, 6)  # six nose rails, two facings per pocket
+    # Jaw points of the side pocket on y = 0 are the mouth (5.0625 in) apart; the corner's
+    # are 4.5625 in apart, on the two rails.
+    side = t.mouths[4]
+    assert math.hypot(side[2] - side[0], side[3] - side[1]) == pytest.approx(0.1286)
+    corner = t.mouths[0]
+    assert math.hypot(corner[2] - corner[0], corner[3] - corner[1]) == pytest.approx(0.1159)
+    # Each facing leaves its jaw at the WPA cut angle to the nose: 142 degrees at a corner,
+    # 104 at a side; the nose runs away from the pocket, the facing into it.
+    for k, angle in ((0, 142.0), (4, 104.0)):
+        facings = t.rails[t.rail_pockets == k]
+        for f in facings:
+            jaw = min((t.mouths[k, 0:2], t.mouths[k, 2:4]), key=lambda p: math.hypot(*(f[0:2] - p)))
+            d_face = (f[2:4] - f[0:2]) / math.hypot(*(f[2:4] - f[0:2]))
+            to_mid = 0.5 * (t.mouths[k, 0:2] + t.mouths[k, 2:4]) - jaw
+            # The nose direction at this jaw: along its rail, away from the mouth's middle.
+            nose = -to_mid / math.hypot(*to_mid) if k == 4 else None
+            if nose is None:
+                nose = np.array([1.0, 0.0]) if abs(jaw[1]) < 1e-12 else np.array([0.0, 1.0])
+            assert math.degrees(math.acos(d_face @ nose)) == pytest.approx(angle, abs=1e-9)
 
 
 # --- the contract, determinism, stats --------------------------------------------------------
@@ -325,8 +348,14 @@ def test_energy_never_increases_and_balls_stay_on_table():
         assert all(b <= a + 1e-12 for a, b in zip(energy, energy[1:]))
         on = states != 4
         x, y = rows[..., 0], rows[..., 1]
-        assert np.all((x[on] > R - 1e-9) & (x[on] < table.length - R + 1e-9))
-        assert np.all((y[on] > R - 1e-9) & (y[on] < table.width - R + 1e-9))
+        # Inside the rails (a centre at least the cushion reach R cos theta from each nose
+        # line, sin theta = h / R - 1), or in a pocket's mouth, where no rail is.
+        reach = R * math.sqrt(1.0 - (table.cushion_height / R - 1.0) ** 2)
+        inside = (x > reach - 1e-9) & (x < table.length - reach + 1e-9)
+        inside &= (y > reach - 1e-9) & (y < table.width - reach + 1e-9)
+        for mx, my in 0.5 * (table.mouths[:, 0:2] + table.mouths[:, 2:4]):
+            inside |= np.hypot(x - mx, y - my) < 0.13
+        assert np.all(inside[on])
 
 
 def test_seed_scene_tracks_no_spin():
@@ -359,8 +388,13 @@ def test_bad_balls(kwargs, match):
 def test_ball_outside_rails_or_over_pocket():
     with pytest.raises(ValueError, match="ball 1 .* outside the rails"):
         simulate(Balls([[0.5, 0.5], [0.01, 0.5]]), Table.seed(), Physics.standard())
+    # The corner pocket's opening: radius mouth / 2 = 57.95 mm, its centre 41.3 + 57.95 mm
+    # behind the mouth's middle (57.95 mm from the corner along the diagonal), so 41.3 mm
+    # past the corner: (-29.19, -29.19) mm. A centre at (5, 5) mm is 48 mm from it.
     with pytest.raises(ValueError, match="ball 0 .* over pocket 0"):
-        simulate(Balls([[R + 0.001, R + 0.001]]), Table.eight_foot(), Physics.standard())
+        simulate(Balls([[0.005, 0.005]]), Table.eight_foot(), Physics.standard())
+    # In the mouth, 16 mm behind the mouth line but short of the opening, a ball may hang.
+    simulate(Balls([[R + 0.001, R + 0.001]]), Table.eight_foot(), Physics.standard())
 
 
 def test_bad_physics():

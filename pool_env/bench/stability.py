@@ -193,7 +193,19 @@ def main(argv=None) -> int:
                         help="re-simulate every n-th shot and require an identical result (0: never)")
     parser.add_argument("--show", type=int, default=3, help="failing shots listed per kind")
     parser.add_argument("--no-pooltool", action="store_true", help="skip the pooltool comparison")
+    parser.add_argument("--multi-shot", action="store_true",
+                        help="random shot sequences from wherever the balls stop (bench/sequences.py): --shots "
+                             "sequences of --length shots, standard physics")
+    parser.add_argument("--length", type=int, default=20, help="shots per sequence with --multi-shot (default 20)")
+    parser.add_argument("--check-every", type=int, default=100,
+                        help="with --multi-shot, check every invariant at every event of every n-th shot")
     args = parser.parse_args(argv)
+    if args.multi_shot:
+        from pool_env.bench import sequences
+
+        print(f"stability --multi-shot: {args.shots} sequences of up to {args.length} shots (seed {args.seed}); "
+              f"every final state must be a valid start, invariants on every {args.check_every}-th shot")
+        return 1 if sequences.report(sequences.run(args.shots, args.length, args.seed, None, args.check_every)) else 0
 
     print(f"stability: {args.shots} random breaks (seed {args.seed}, shots {args.first}-"
           f"{args.first + args.shots - 1}, physics {args.physics}), invariants checked at every event")

@@ -9,18 +9,25 @@ from collections import namedtuple
 
 import numpy as np
 
+from .config import cushion_reach
 from .jit import allocating, allocating_helper, helper
 from .kinds import BUFFER_FULL, DONE, EVENT_CAP, POCKETED
 
-Scene = namedtuple("Scene", ["S", "st", "R", "M", "params", "bb_model", "cu_model", "spin"])
+Scene = namedtuple("Scene", ["S", "st", "R", "Rc", "M", "params", "bb_model", "cu_model", "spin"])
 Scene.__doc__ = """The balls and the physics: S (N, 8) state rows [x, y, vx, vy, wx, wy, wz, t0] and st (N,)
-motion states, both updated in place; R, M (N,) radii and masses; params the coefficients
-(motion.P_*); bb_model, cu_model the collision-model ids; spin: z-spin tracked."""
+motion states, both updated in place; R, M (N,) radii and masses; Rc (N,) each ball's cushion
+reach (how far its centre is from a rail's nose line when it touches: config.cushion_reach);
+params the coefficients (motion.P_*); bb_model, cu_model the collision-model ids; spin: z-spin
+tracked."""
 
-Bounds = namedtuple("Bounds", ["rails", "jaws", "jaw_pockets", "pockets", "height", "length", "width"])
-Bounds.__doc__ = """The table: rails (K, 6) [x1, y1, x2, y2, nx, ny]; jaws (J, 2) jaw points and jaw_pockets (J,)
-the pocket each belongs to; pockets (P, 3) capture circles [x, y, r]; the cushion nose height,
-length and width of the playing area (m)."""
+Bounds = namedtuple("Bounds", ["rails", "rail_pockets", "jaws", "jaw_pockets", "pockets", "reach", "height",
+                               "length", "width"])
+Bounds.__doc__ = """The table: rails (K, 6) [x1, y1, x2, y2, nx, ny], the nose segments then the pockets'
+facings, and rail_pockets (K,) each one's pocket (-1 for a nose); jaws (J, 3) the rounded jaw
+tips [x, y, r] and jaw_pockets (J,) their pockets; pockets (P, 3) the openings [x, y, r] a
+ball drops through when its centre enters; reach (P, 3) a circle around each pocket's mouth,
+facings and opening (the broad phase); the cushion nose height, length and width of the
+playing area (m)."""
 
 Log = namedtuple("Log", ["t", "kind", "i", "j", "hist", "hist_ball", "counters", "size"])
 Log.__doc__ = """What a run writes: events (t, kind, i, j: (E,) each), state segments (hist (H, 9): a state
@@ -129,22 +136,26 @@ def prepare(balls, table, physics, max_events):
     cap = default_event_cap(len(balls)) if max_events is None else int(max_events)
     if cap < 0:
         raise ValueError(f"max_events must be >= 0, got {max_events!r}")
-    return scene_of(balls, physics), bounds_of(table), cap
+    return scene_of(balls, physics, table), bounds_of(table), cap
 
 
-def scene_of(balls, physics):
+def scene_of(balls, physics, table):
     """The balls and the physics as a Scene at t = 0 (fresh S and st arrays)."""
     S, st, any_z_spin = _pack(balls.xy, balls.v, balls.w, balls.pocketed)
     spin = bool(physics.spin and (any_z_spin or physics.can_create_spin()))
     bb_model, cu_model = physics.model_ids()
-    return Scene(S, st, balls.radii, balls.masses, physics.as_array(), bb_model, cu_model, spin)
+    if isinstance(balls.radius, float):  # one size: the common case, without array arithmetic
+        reach = np.full(len(balls), cushion_reach(balls.radius, table.cushion_height, physics.cushion))
+    else:
+        reach = cushion_reach(balls.radii, table.cushion_height, physics.cushion).copy()
+    return Scene(S, st, balls.radii, reach, balls.masses, physics.as_array(), bb_model, cu_model, spin)
 
 
 def bounds_of(table):
     """The table's arrays as Bounds, built once per (immutable) Table."""
     bounds = table.__dict__.get("_bounds")
     if bounds is None:
-        bounds = Bounds(table.rails, table.jaws, table.jaw_pockets, table.pockets, float(table.cushion_height),
-                        float(table.length), float(table.width))
+        bounds = Bounds(table.rails, table.rail_pockets, table.jaws, table.jaw_pockets, table.pockets,
+                        table.pocket_reach, float(table.cushion_height), float(table.length), float(table.width))
         object.__setattr__(table, "_bounds", bounds)
     return bounds

@@ -12,6 +12,11 @@ import numpy as np
 BALL_BALL_MODELS = ("seed", "elastic", "frictional")
 CUSHION_MODELS = ("seed", "restitution", "han2005")
 
+# The cushion models that touch the ball at the cushion's nose height h rather than at its
+# equator: a ball meets a rail when its centre is R cos(theta) from the nose line,
+# sin(theta) = h / R - 1 (the contact point is on the ball's surface at height h).
+NOSE_HEIGHT_MODELS = ("han2005", "mathavan2010")
+
 # The seed report's rolling-resistance angle (table 3.1): the rolling ball decelerates
 # at 5/7 g theta (report eq. 2.11), so the equivalent rolling coefficient is 5/7 theta.
 SEED_THETA = 0.01
@@ -99,3 +104,18 @@ class Physics:
     def as_array(self) -> np.ndarray:
         """The coefficients in the order the compiled engine reads them (see motion.P_*)."""
         return self._params
+
+
+def cushion_reach(radius, height, cushion):
+    """How far a ball's centre is from a rail's nose line (or a facing) when it touches it
+    (m): R cos(theta) for the models in NOSE_HEIGHT_MODELS, whose nose at height h meets the
+    ball at sin(theta) = h/R - 1, else R (the cushion is a wall at the ball's equator).
+    `radius` is a number or an array of radii. A ball no taller than the nose (h >= 2R) is
+    refused before it gets here (check_on_table)."""
+    if cushion not in NOSE_HEIGHT_MODELS:
+        return radius
+    if np.ndim(radius) == 0:
+        sin_t = min(max(height / radius - 1.0, -1.0), 1.0)
+        return radius * math.sqrt(1.0 - sin_t * sin_t)
+    sin_t = np.clip(height / radius - 1.0, -1.0, 1.0)
+    return radius * np.sqrt(1.0 - sin_t * sin_t)

@@ -19,7 +19,7 @@ import math
 import numpy as np
 
 from . import ball_ball, cushion, settle
-from .geometry import alongside, point_normal, rail_gap
+from .geometry import cushion_gap, cushion_normal
 from .jit import allocating_helper, helper
 from .kinds import BALL_BALL_SETTLE, POCKETED, VX, VY, X, Y
 from .motion import P_E_B, copy_row, state_at, trajectory
@@ -70,15 +70,11 @@ def _add_pair(work, n_c, tail, a, k):
 
 @helper
 def _touches_cushion(scene, bounds, now, b):
-    """True if ball b touches a rail or a jaw point (within TOUCH_GAP) at `now`."""
+    """True if ball b touches a rail, facing or jaw tip (within TOUCH_GAP) at `now`."""
     S, st, R = scene.S, scene.st, scene.R
     x, y, _, _, _, _ = trajectory(S[b], st[b], now, R[b], scene.params)
-    for r in range(bounds.rails.shape[0]):
-        rail = bounds.rails[r]
-        if alongside(rail, x, y) and rail_gap(rail, x, y, R[b]) <= TOUCH_GAP:
-            return True
-    for p in range(bounds.jaws.shape[0]):
-        if math.hypot(x - bounds.jaws[p, 0], y - bounds.jaws[p, 1]) - R[b] <= TOUCH_GAP:
+    for c in range(bounds.rails.shape[0] + bounds.jaws.shape[0]):
+        if cushion_gap(bounds.rails, bounds.jaws, c, x, y, scene.Rc[b]) <= TOUCH_GAP:
             return True
     return False
 
@@ -209,25 +205,20 @@ def _cluster(scene, sched, work, now, n_c, bi, bj):
 
 @helper
 def _walls(scene, bounds, work, n_c):
-    """Inward normals (into work.walls, at most 8) of the rails and jaw points touched,
+    """Inward normals (into work.walls, at most 8) of the rails, facings and jaw tips touched,
     within TOUCH_GAP, by the balls of the pairs (rows in work.G at the contact time), and the
     ball touching each (work.wall_ball); returns how many."""
-    G, R, walls = work.G, scene.R, work.walls
+    G, walls = work.G, work.walls
     n_walls = 0
     for c in range(n_c):
         for side in range(2):
             k = work.ca[c] if side == 0 else work.cb[c]
-            x, y = G[k, X], G[k, Y]
-            for r in range(bounds.rails.shape[0]):
-                rail = bounds.rails[r]
-                if alongside(rail, x, y) and rail_gap(rail, x, y, R[k]) <= TOUCH_GAP and n_walls < walls.shape[0]:
-                    walls[n_walls, 0], walls[n_walls, 1] = rail[4], rail[5]
-                    work.wall_ball[n_walls] = k
-                    n_walls += 1
-            for p in range(bounds.jaws.shape[0]):
-                jx, jy = bounds.jaws[p, 0], bounds.jaws[p, 1]
-                if math.hypot(x - jx, y - jy) - R[k] <= TOUCH_GAP and n_walls < walls.shape[0]:
-                    walls[n_walls, 0], walls[n_walls, 1], _ = point_normal(x, y, jx, jy)
+            rails, jaws = bounds.rails, bounds.jaws
+            for w in range(rails.shape[0] + jaws.shape[0]):
+                if n_walls == walls.shape[0]:
+                    return n_walls
+                if cushion_gap(rails, jaws, w, G[k, X], G[k, Y], scene.Rc[k]) <= TOUCH_GAP:
+                    walls[n_walls, 0], walls[n_walls, 1] = cushion_normal(rails, jaws, w, G[k, X], G[k, Y])
                     work.wall_ball[n_walls] = k
                     n_walls += 1
     return n_walls
@@ -316,42 +307,25 @@ def remember_meetings(sched, work, n_rec, now):
 
 
 @helper
-def _cushion_normal(row, bounds, c):
-    """Inward normal of cushion c (rails first, then jaw points) at a ball's row."""
-    rails, jaws = bounds.rails, bounds.jaws
-    if c < rails.shape[0]:
-        return rails[c, 4], rails[c, 5]
-    p = c - rails.shape[0]
-    nx, ny, _ = point_normal(row[X], row[Y], jaws[p, 0], jaws[p, 1])
-    return nx, ny
-
-
-@helper
-def cushion_contacts(row, r, params, bounds, first, work):
-    """The cushions a ball meets at once (row at the contact time): cushion `first`, then
-    every other rail or jaw point it touches within TOUCH_GAP and approaches faster than
+def cushion_contacts(row, r, rc, params, bounds, first, work):
+    """The cushions a ball meets at once (row at the contact time; r its radius, rc its
+    cushion reach): cushion `first`, then every other rail, facing or jaw tip it touches
+    within TOUCH_GAP and approaches faster than
     MIN_APPROACH (a ball driven exactly into a corner), unless the first contact is a
     pressed one (settled alone). Ids go to work.cids, inward normals to work.walls; returns
     how many (at most 3)."""
     rails, jaws, ids, normals = bounds.rails, bounds.jaws, work.cids, work.walls
     ids[0] = first
-    normals[0, 0], normals[0, 1] = _cushion_normal(row, bounds, first)
+    normals[0, 0], normals[0, 1] = cushion_normal(rails, jaws, first, row[X], row[Y])
     if settle.pressed_cushion(row, normals[0, 0], normals[0, 1], r, params):
         return 1
     n_c = 1
     for c in range(rails.shape[0] + jaws.shape[0]):
         if c == first or n_c == 3:
             continue
-        if c < rails.shape[0]:
-            if not alongside(rails[c], row[X], row[Y]):
-                continue
-            gap = rail_gap(rails[c], row[X], row[Y], r)
-        else:
-            p = c - rails.shape[0]
-            gap = math.hypot(row[X] - jaws[p, 0], row[Y] - jaws[p, 1]) - r
-        if gap > TOUCH_GAP:
+        if cushion_gap(rails, jaws, c, row[X], row[Y], rc) > TOUCH_GAP:
             continue
-        nx, ny = _cushion_normal(row, bounds, c)
+        nx, ny = cushion_normal(rails, jaws, c, row[X], row[Y])
         if row[VX] * nx + row[VY] * ny < -MIN_APPROACH:
             ids[n_c] = c
             normals[n_c, 0], normals[n_c, 1] = nx, ny

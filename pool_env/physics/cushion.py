@@ -1,8 +1,10 @@
 """Ball-cushion events: when a ball reaches a rail or a pocket jaw, and the cushion models.
 
-Rails are straight segments on the cushion nose line (a ball touches one when its centre is
-R away); jaw points are the rail ends at a pocket mouth (a ball touches one when its centre
-is R away from the point). Every model takes the ball's row at contact (updated in place)
+Rails are straight segments: the cushion noses and the pockets' facings (a ball touches one
+when its centre is its cushion reach Rc away: R, or R cos theta for the models that touch the
+ball at the nose height); jaw tips are the rounded ends of the noses at a pocket's mouth (a
+ball touches one when its centre is Rc + the tip's radius from the tip's centre). See
+pocket_shape.py. Every model takes the ball's row at contact (updated in place)
 and the unit normal n pointing from the cushion into the table.
 """
 
@@ -26,15 +28,16 @@ SEED, RESTITUTION, HAN2005 = (CUSHION_MODELS.index(name) for name in ("seed", "r
 
 
 @helper
-def rail_time(row, state, t, horizon, radius, params, rail):
-    """Earliest tau in [0, horizon] at which the ball meets `rail` moving into it (or inf).
+def rail_time(row, state, t, horizon, radius, reach, params, rail):
+    """Earliest tau in [0, horizon] at which the ball meets `rail` (a nose or a facing) moving
+    into it (or inf); `reach` is the ball's cushion reach (Scene.Rc).
 
-    The signed gap n.(p(tau) - p1) - R is a quadratic in tau; the contact counts only if the
-    ball's centre is then alongside the segment (beyond its ends the jaw points take over).
+    The signed gap n.(p(tau) - p1) - reach is a quadratic in tau; the contact counts only if
+    the ball's centre is then alongside the segment (beyond its ends the jaw tips take over).
     """
     x, y, vx, vy, ax, ay = trajectory(row, state, t, radius, params)
     nx, ny = rail[4], rail[5]
-    gap = rail_gap(rail, x, y, radius)
+    gap = rail_gap(rail, x, y, reach)
     tau = first_entry(gap, nx * vx + ny * vy, 0.5 * (nx * ax + ny * ay), 0.0, 0.0, horizon, MIN_APPROACH,
                       MIN_DEPTH)
     if tau == math.inf:
@@ -47,7 +50,8 @@ def rail_time(row, state, t, horizon, radius, params, rail):
 @helper
 def point_time(row, state, t, horizon, radius, params, px, py, reach):
     """Earliest tau at which the ball's centre comes within `reach` of the fixed point (px, py)
-    while approaching: a jaw point (reach = R) or a pocket's capture circle."""
+    while approaching: a jaw tip (reach = Rc + its radius) or a pocket's opening (reach = its
+    radius)."""
     x, y, vx, vy, ax, ay = trajectory(row, state, t, radius, params)
     return distance_entry(x - px, y - py, vx, vy, ax, ay, reach, horizon)
 

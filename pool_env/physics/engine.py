@@ -150,7 +150,7 @@ def _resolve_cushions(scene, bounds, sched, work, log, now, event):
             continue
         state_at(S[k], st[k], now, R[k], params, work.row)
         copy_row(S[k], work.row)
-        n_k = contacts.cushion_contacts(S[k], R[k], params, bounds, bj if m == 0 else sched.cu_id[k], work)
+        n_k = contacts.cushion_contacts(S[k], R[k], scene.Rc[k], params, bounds, bj if m == 0 else sched.cu_id[k], work)
         if not _room(log, event, n_rec + n_k, n_touched + 1):
             return NO_EVENT, 0, 0
         contacts.resolve_cushions(scene, bounds, work, k, n_k)

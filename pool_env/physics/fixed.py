@@ -63,7 +63,7 @@ import numpy as np
 
 from . import ball_ball, cushion, pocket, transition
 from .bundles import CODE, EVENTS, ROWS, new_log, prepare, record_event, record_row, scene_of
-from .geometry import alongside, rail_gap
+from .geometry import alongside, cushion_gap, cushion_normal, rail_gap
 from .jit import allocating, helper
 from .kinds import (
     BALL_BALL,
@@ -167,19 +167,15 @@ def _near_edge(x, y, margin, bounds):
 
 @helper
 def _cushion_depths(scene, bounds, frame):
-    """Record how deep balls stand in the rails or jaws at a frame end (priori mode)."""
+    """Record how deep balls stand in the rails, facings or jaw tips at a frame end (priori mode)."""
     R, px, py, rails, jaws = scene.R, frame.px, frame.py, bounds.rails, bounds.jaws
     for i in range(scene.S.shape[0]):
         if not moving(scene.st[i]) or not _near_edge(px[i], py[i], R[i], bounds):
             continue
-        for c in range(rails.shape[0]):
-            gap = rail_gap(rails[c], px[i], py[i], R[i])
-            if gap < 0.0 and alongside(rails[c], px[i], py[i]):
+        for c in range(rails.shape[0] + jaws.shape[0]):
+            gap = cushion_gap(rails, jaws, c, px[i], py[i], scene.Rc[i])
+            if gap < 0.0:
                 frame.depth[MAX_CUSHION] = max(frame.depth[MAX_CUSHION], -gap)
-        for p in range(jaws.shape[0]):
-            depth = R[i] - math.hypot(px[i] - jaws[p, 0], py[i] - jaws[p, 1])
-            if depth > 0.0:
-                frame.depth[MAX_CUSHION] = max(frame.depth[MAX_CUSHION], depth)
 
 
 @helper
@@ -236,27 +232,18 @@ def _posteriori_pairs(t, scene, frame, log):
 
 @helper
 def _posteriori_cushions(t, scene, bounds, frame, log):
-    """Find and fix the balls standing in a rail or a jaw at the frame end t."""
+    """Find and fix the balls standing in a rail, a facing or a jaw tip at the frame end t."""
     S, R, px, py, rails, jaws = scene.S, scene.R, frame.px, frame.py, bounds.rails, bounds.jaws
-    n_rails = rails.shape[0]
     for i in range(S.shape[0]):
         if not moving(scene.st[i]) or not _near_edge(px[i], py[i], R[i], bounds):
             continue
-        for c in range(n_rails + jaws.shape[0]):
-            if c < n_rails:
-                nx, ny = rails[c, 4], rails[c, 5]
-                depth = R[i] - (nx * (px[i] - rails[c, 0]) + ny * (py[i] - rails[c, 1]))
-                if depth <= CONTACT_TOLERANCE or not alongside(rails[c], px[i], py[i]):
-                    continue
-            else:
-                dx, dy = px[i] - jaws[c - n_rails, 0], py[i] - jaws[c - n_rails, 1]
-                if abs(dx) >= R[i] or abs(dy) >= R[i]:
-                    continue
-                d = math.hypot(dx, dy)
-                depth = R[i] - d
-                if depth <= CONTACT_TOLERANCE or d == 0.0:
-                    continue
-                nx, ny = dx / d, dy / d
+        for c in range(rails.shape[0] + jaws.shape[0]):
+            depth = -cushion_gap(rails, jaws, c, px[i], py[i], scene.Rc[i])
+            if depth <= CONTACT_TOLERANCE:
+                continue
+            if c >= rails.shape[0] and px[i] == jaws[c - rails.shape[0], 0] and py[i] == jaws[c - rails.shape[0], 1]:
+                continue  # on the tip's centre: no normal
+            nx, ny = cushion_normal(rails, jaws, c, px[i], py[i])
             log.counters[CU_CHECKS] += 1
             frame.depth[MAX_CUSHION] = max(frame.depth[MAX_CUSHION], depth)
             _rebase(scene, frame, i, t)
@@ -320,9 +307,9 @@ def _priori_pairs_of(scene, frame, log, i, best, touch, balls_too, measure):
 
 @helper
 def _priori_cushion(scene, bounds, frame, log, i, best):
-    """Ball i's earliest straight-line contact with a rail's nose line or a jaw circle before
-    `best`: (tau, cushion id), id -1 if none."""
-    R, rails, jaws = scene.R, bounds.rails, bounds.jaws
+    """Ball i's earliest straight-line contact with a rail's or facing's line or a jaw tip
+    before `best`: (tau, cushion id), id -1 if none."""
+    R, rc, rails, jaws = scene.R, scene.Rc[i], bounds.rails, bounds.jaws
     x, y, vx, vy = frame.px[i], frame.py[i], frame.vx[i], frame.vy[i]
     speed = math.hypot(vx, vy)
     which = -1
@@ -330,26 +317,28 @@ def _priori_cushion(scene, bounds, frame, log, i, best):
         return best, which
     for c in range(rails.shape[0]):
         vn = rails[c, 4] * vx + rails[c, 5] * vy
-        if vn >= -MIN_APPROACH:
+        gap = rail_gap(rails[c], x, y, rc)
+        if vn >= -MIN_APPROACH or gap < -rc:
             continue
         log.counters[CU_CHECKS] += 1
-        tau = max(rail_gap(rails[c], x, y, R[i]), 0.0) / -vn
+        tau = max(gap, 0.0) / -vn
         if tau < best and alongside(rails[c], x + vx * tau, y + vy * tau):
             best, which = tau, c
     for p in range(jaws.shape[0]):
         dx, dy = x - jaws[p, 0], y - jaws[p, 1]
+        reach = rc + jaws[p, 2]
         half_b = dx * vx + dy * vy
-        if half_b >= -R[i] * MIN_APPROACH:
+        if half_b >= -reach * MIN_APPROACH:
             continue
         d = math.hypot(dx, dy)
-        gap = d - R[i]
+        gap = d - reach
         if gap > speed * best:
             continue
         log.counters[CU_CHECKS] += 1
         if gap <= 0.0:
             tau = 0.0
         else:
-            c = gap * (d + R[i])
+            c = gap * (d + reach)
             disc = half_b * half_b - speed * speed * c
             if disc <= 0.0:
                 continue
@@ -409,22 +398,20 @@ def _priori_ball_ball(now, scene, frame, log, i, j, recheck):
 
 @helper
 def _priori_cushion_contact(now, scene, bounds, frame, log, i, j):
-    """Resolve ball i's predicted contact with cushion j (rails first, then jaw points) at
-    `now` (the ball rebased there)."""
-    S, R, rails, jaws = scene.S, scene.R, bounds.rails, bounds.jaws
+    """Resolve ball i's predicted contact with cushion j (rails and facings first, then jaw
+    tips) at `now` (the ball rebased there)."""
+    S, rails, jaws = scene.S, bounds.rails, bounds.jaws
+    nx, ny = cushion_normal(rails, jaws, j, S[i, X], S[i, Y])
     if j < rails.shape[0]:
-        nx, ny = rails[j, 4], rails[j, 5]
-        depth = R[i] - (nx * (S[i, X] - rails[j, 0]) + ny * (S[i, Y] - rails[j, 1]))
+        depth = -rail_gap(rails[j], S[i, X], S[i, Y], scene.Rc[i])
     else:
-        dx, dy = S[i, X] - jaws[j - rails.shape[0], 0], S[i, Y] - jaws[j - rails.shape[0], 1]
-        d = math.hypot(dx, dy)
-        nx, ny = dx / d, dy / d
-        depth = R[i] - d
+        p = j - rails.shape[0]
+        depth = scene.Rc[i] + jaws[p, 2] - math.hypot(S[i, X] - jaws[p, 0], S[i, Y] - jaws[p, 1])
     frame.depth[MAX_CUSHION] = max(frame.depth[MAX_CUSHION], depth)
     if S[i, VX] * nx + S[i, VY] * ny < -MIN_APPROACH:
         S[i, X] += nx * depth  # to the contact, as for a pair
         S[i, Y] += ny * depth
-        cushion.resolve(scene.cu_model, S[i], nx, ny, R[i], scene.params, bounds.height)
+        cushion.resolve(scene.cu_model, S[i], nx, ny, scene.R[i], scene.params, bounds.height)
         record_event(log, now, BALL_CUSHION, i, j)
     _new_segment(scene, frame, log, i, now)
 
@@ -454,8 +441,20 @@ def _priori_frame(t0, t1, scene, bounds, stepping, frame, log):
 
 
 @helper
+def _in_mouth(x, y, bounds):
+    """Whether a centre off the playing area's rectangle is within a pocket's reach circle
+    (in its throat, where a ball may hang between the facings)."""
+    reach = bounds.reach
+    for k in range(reach.shape[0]):
+        if math.hypot(x - reach[k, 0], y - reach[k, 1]) < reach[k, 2]:
+            return True
+    return False
+
+
+@helper
 def _pockets(t, scene, bounds, frame, log):
-    """Drop every ball whose centre is inside a capture circle (or off the table) at frame end t."""
+    """Drop every ball whose centre is inside a pocket's opening (or off the table, through a
+    cushion, which only a fixed step can do) at frame end t."""
     S, st, pockets, px, py = scene.S, scene.st, bounds.pockets, frame.px, frame.py
     if pockets.shape[0] == 0:
         return
@@ -471,7 +470,8 @@ def _pockets(t, scene, bounds, frame, log):
             d = math.hypot(px[i] - pockets[p, 0], py[i] - pockets[p, 1]) - pockets[p, 2]
             if d < nearest:
                 which, nearest = p, d
-        off = px[i] < 0.0 or py[i] < 0.0 or px[i] > bounds.length or py[i] > bounds.width
+        off = (px[i] < 0.0 or py[i] < 0.0 or px[i] > bounds.length or py[i] > bounds.width) and not _in_mouth(
+            px[i], py[i], bounds)
         if nearest >= 0.0 and not off:
             continue
         if nearest >= 0.0:
@@ -574,7 +574,7 @@ def simulate_fixed(balls, table, physics, max_events=None, dt=1.0 / 60.0, detect
             hist_size *= 4
         if log.size[EVENTS] >= log.t.shape[0]:
             size = min(cap, 4 * size)
-        scene = scene_of(balls, physics)
+        scene = scene_of(balls, physics, table)
     if code == EVENT_CAP:
         raise SimulationError(cap_message(cap, log, int(log.size[EVENTS]) - 1))
     if code == STEP_CAP:

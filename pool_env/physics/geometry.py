@@ -1,4 +1,4 @@
-"""Shared geometry kernels: rails, fixed points, the rolling spin, a point meeting a circle."""
+"""Shared geometry kernels: rails, cushion gaps, fixed points, the rolling spin, a point meeting a circle."""
 
 import math
 
@@ -23,7 +23,7 @@ def along_rail(rail, x, y):
 @helper
 def alongside(rail, x, y):
     """True if a centre at (x, y) is alongside the rail segment (beyond its ends the jaw
-    points take over)."""
+    tips take over)."""
     u = along_rail(rail, x, y)
     return 0.0 <= u <= 1.0
 
@@ -32,6 +32,31 @@ def alongside(rail, x, y):
 def rail_gap(rail, x, y, radius):
     """Signed distance (m) from a ball's surface to the rail's nose line: negative inside."""
     return rail[4] * (x - rail[0]) + rail[5] * (y - rail[1]) - radius
+
+
+@helper
+def cushion_gap(rails, jaws, c, x, y, reach):
+    """Gap (m) between a ball at (x, y) with cushion reach `reach` and cushion c (rails and
+    facings by row, then jaw tips [x, y, r]): negative if it is pressed in; inf if the ball
+    is not alongside the rail or facing, or is behind it (a facing's line runs on across the
+    table; only its front face can be touched)."""
+    if c < rails.shape[0]:
+        gap = rail_gap(rails[c], x, y, reach)
+        if not alongside(rails[c], x, y) or gap < -reach:
+            return np.inf
+        return gap
+    p = c - rails.shape[0]
+    return math.hypot(x - jaws[p, 0], y - jaws[p, 1]) - reach - jaws[p, 2]
+
+
+@helper
+def cushion_normal(rails, jaws, c, x, y):
+    """Inward normal of cushion c (rails and facings by row, then jaw tips) at a centre (x, y)."""
+    if c < rails.shape[0]:
+        return rails[c, 4], rails[c, 5]
+    p = c - rails.shape[0]
+    nx, ny, _ = point_normal(x, y, jaws[p, 0], jaws[p, 1])
+    return nx, ny
 
 
 @helper

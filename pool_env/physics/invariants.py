@@ -7,8 +7,9 @@ t the exact states just before t and just after it are sampled (`Result.sample` 
 
 - `non_finite`: every position, velocity and spin is finite;
 - `overlap`: no two balls on the table overlap by more than OVERLAP_TOL (1 nm);
-- `off_table`: no ball on the table is inside a rail or a jaw point by more than RAIL_TOL,
-  or has its centre outside the table's rectangle (a ball leaves only into a pocket);
+- `off_table`: no ball on the table is inside a rail, a facing or a jaw tip by more than RAIL_TOL,
+  or has its centre outside the table's rectangle and every pocket's throat (a ball leaves only
+  into a pocket);
 - `energy`: the kinetic energy (translation plus rotation) never increases from one sample
   to the next. The seed models are the documented exception: they set a ball rolling at
   once after a collision (as the seed report does), which recasts translational energy as
@@ -29,6 +30,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from .config import cushion_reach
 from .kinds import BALL_BALL, BALL_BALL_KINDS, BALL_CUSHION, POCKETED, VX, VY, WX, WZ, X, Y
 from .objects import kinetic_energy
 from .result import SimulationError
@@ -102,19 +104,24 @@ def check(result, balls=None, first_only=False) -> list[Violation]:
         if depth[s, p] > OVERLAP_TOL:
             add("overlap", times[s], f"balls {iu[p]} and {ju[p]} overlap by {depth[s, p]:.3g} m at t = {times[s]!r}")
 
+    reach = np.asarray(cushion_reach(radii, table.cushion_height, physics.cushion), dtype=np.float64)
     for c, (x1, y1, x2, y2, nx, ny) in enumerate(np.asarray(table.rails)):
-        gap = nx * (x - x1) + ny * (y - y1) - radii
+        gap = nx * (x - x1) + ny * (y - y1) - reach
         along = ((x - x1) * (x2 - x1) + (y - y1) * (y2 - y1)) / ((x2 - x1) ** 2 + (y2 - y1) ** 2)
-        inside = on & (along >= 0.0) & (along <= 1.0) & (gap < -RAIL_TOL)
+        # A facing's line runs on across the table: only a centre in front of it (gap above
+        # -reach) can be inside it.
+        inside = on & (along >= 0.0) & (along <= 1.0) & (gap < -RAIL_TOL) & (gap >= -reach)
         if inside.any():
             s, i = np.argwhere(inside)[0]
             add("off_table", times[s], f"ball {i} is {-gap[s, i]:.3g} m inside rail {c} at t = {times[s]!r}")
-    for p, (jx, jy) in enumerate(np.asarray(table.jaws)):
-        inside = on & (np.hypot(x - jx, y - jy) < radii - RAIL_TOL)
+    for p, (jx, jy, jr) in enumerate(np.asarray(table.jaws)):
+        inside = on & (np.hypot(x - jx, y - jy) < reach + jr - RAIL_TOL)
         if inside.any():
             s, i = np.argwhere(inside)[0]
-            add("off_table", times[s], f"ball {i} is inside jaw point {p} at t = {times[s]!r}")
+            add("off_table", times[s], f"ball {i} is inside jaw tip {p} at t = {times[s]!r}")
     outside = on & ((x < -RAIL_TOL) | (x > table.length + RAIL_TOL) | (y < -RAIL_TOL) | (y > table.width + RAIL_TOL))
+    for cx, cy, cr in np.asarray(table.pocket_reach):
+        outside &= np.hypot(x - cx, y - cy) >= cr  # in a pocket's throat is on the table
     if outside.any():
         s, i = np.argwhere(outside)[0]
         add("off_table", times[s], f"ball {i} left the table at ({x[s, i]:.6g}, {y[s, i]:.6g}) at t = {times[s]!r}")

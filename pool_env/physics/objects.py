@@ -7,6 +7,9 @@ import math
 
 import numpy as np
 
+from .bundles import bounds_of
+from .placement import first_misplaced
+from .pocket_shape import PocketShape, as_rows, build_pocket
 from .tolerances import CONTACT_TOLERANCE, PLACEMENT_SLACK
 
 # Regulation pool ball (WPA equipment specifications): 2.25 in diameter, 5.5-6 oz.
@@ -178,7 +181,7 @@ class Table:
     shallow or deep, are the table itself, and a pickled table loads with read-only arrays.
     """
 
-    def __init__(self, length, width, pockets=(), cushion_height=0.0363):
+    def __init__(self, length, width, pockets=(), cushion_height=0.0363, corner_pocket=None, side_pocket=None):
         set_ = functools.partial(object.__setattr__, self)
         set_("length", float(length))
         set_("width", float(width))
@@ -196,43 +199,18 @@ class Table:
                 f"pockets must be a sequence of (x, y, mouth) entries, or None for no pockets, got {pockets!r}"
             ) from None
         L, W = self.length, self.width
+        corner_shape = _shape(corner_pocket, PocketShape.corner, "corner_pocket")
+        side_shape = _shape(side_pocket, PocketShape.side, "side_pocket")
+        set_("corner_pocket", corner_shape)
+        set_("side_pocket", side_shape)
         # Each side: start corner, direction along it, inward normal, length, depth across
         # the table from it.
         sides = [((0.0, 0.0), (1.0, 0.0), (0.0, 1.0), L, W), ((L, W), (-1.0, 0.0), (0.0, -1.0), L, W),
                  ((0.0, W), (0.0, -1.0), (1.0, 0.0), W, L), ((L, 0.0), (0.0, 1.0), (-1.0, 0.0), W, L)]
         cuts = [[] for _ in sides]
-        circles, jaws, jaw_pockets = [], [], []
+        built = []
         for number, pocket in enumerate(pockets):
-            x, y, mouth = _pocket_entry(number, pocket)
-            touching = []
-            for s, (start, along, _, span, _) in enumerate(sides):
-                rel = (x - start[0]) * along[0] + (y - start[1]) * along[1]
-                off = (x - start[0]) * along[1] - (y - start[1]) * along[0]
-                if abs(off) < PLACEMENT_SLACK and -PLACEMENT_SLACK <= rel <= span + PLACEMENT_SLACK:
-                    touching.append((s, rel))
-            if not touching:
-                raise ValueError(f"pocket {number} at ({x}, {y}) is not on a rail or corner of the table")
-            corner = len(touching) == 2
-            half = mouth / math.sqrt(2.0) if corner else mouth / 2.0
-            # The room the mouth has: along each rail it sits on, to the far end of the rail
-            # (at a corner) or to the nearer end (on a rail); across the table, the depth.
-            room = min(min(sides[s][3] if corner else min(rel, sides[s][3] - rel), sides[s][4]) for s, rel in touching)
-            if half > room + PLACEMENT_SLACK:
-                widest = room * (math.sqrt(2.0) if corner else 2.0)
-                raise ValueError(
-                    f"pocket {number} at ({x}, {y}) has a {mouth} m mouth, too wide for the {L} x {W} m table: "
-                    f"its jaw points must lie on the rail{'s' if corner else ''} it sits on and its capture circle "
-                    f"must not reach past the opposite rail, so its mouth can be at most {widest:.4g} m"
-                )
-            circles.append((x, y, half))
-            for s, rel in touching:
-                start, along, _, span, _ = sides[s]
-                lo, hi = max(rel - half, 0.0), min(rel + half, span)
-                cuts[s].append((lo, hi, number))
-                for edge in (lo, hi):
-                    if 0.0 < edge < span:
-                        jaws.append((start[0] + edge * along[0], start[1] + edge * along[1]))
-                        jaw_pockets.append(number)
+            built.append(_place_pocket(number, pocket, sides, cuts, (corner_shape, side_shape), (L, W)))
         rails = []
         for s, (start, along, normal, span, _) in enumerate(sides):
             pos = 0.0
@@ -244,12 +222,18 @@ class Table:
                 pos = hi
             if pos < span:
                 rails.append(_rail(start, along, normal, pos, span))
-        set_("rails", _readonly(np.array(rails, dtype=np.float64).reshape(-1, 6)))
-        set_("jaws", _readonly(np.array(jaws, dtype=np.float64).reshape(-1, 2)))
-        set_("pockets", _readonly(np.array(circles, dtype=np.float64).reshape(-1, 3)))
-        # The pocket each jaw point belongs to: the engine skips a pocket's jaws along with
-        # the pocket when a ball cannot come near it.
-        set_("jaw_pockets", _readonly(np.array(jaw_pockets, dtype=np.int64)))
+        # Rails: the nose segments, then each pocket's two facings (rail_pockets: -1 for a
+        # nose, else the facing's pocket; the engine looks at a pocket's facings and jaw tips
+        # only when a ball can come near the pocket).
+        rail_pockets = [-1] * len(rails) + [k for k in range(len(built)) for _ in range(2)]
+        rails += [f for pocket in built for f in pocket["facings"]]
+        set_("rails", as_rows(rails, 6))
+        set_("rail_pockets", _readonly(np.array(rail_pockets, dtype=np.int64)))
+        set_("jaws", as_rows([t for pocket in built for t in pocket["tips"]], 3))
+        set_("jaw_pockets", _readonly(np.array([k for k in range(len(built)) for _ in range(2)], dtype=np.int64)))
+        set_("pockets", as_rows([pocket["opening"] for pocket in built], 3))
+        set_("pocket_reach", as_rows([pocket["reach"] for pocket in built], 3))
+        set_("mouths", as_rows([pocket["mouth"] for pocket in built], 6))
 
     def __setattr__(self, name, value):
         raise AttributeError(f"Table is immutable: cannot set {name!r} (make a new Table)")
@@ -289,6 +273,58 @@ class Table:
         pockets = [(0.0, 0.0, corner), (L, 0.0, corner), (0.0, W, corner), (L, W, corner),
                    (L / 2, 0.0, side), (L / 2, W, side)]
         return cls(L, W, pockets, cushion_height=0.635 * 2 * BALL_RADIUS)
+
+
+def _place_pocket(number, pocket, sides, cuts, shapes, size):
+    """Pocket `number`'s jaws, facings and opening (pocket_shape.build_pocket), checked to fit
+    the table; appends the stretch of each rail its mouth cuts to `cuts`."""
+    x, y, mouth = _pocket_entry(number, pocket)
+    (corner_shape, side_shape), (L, W) = shapes, size
+    touching = []
+    for s, (start, along, _, span, _) in enumerate(sides):
+        rel = (x - start[0]) * along[0] + (y - start[1]) * along[1]
+        off = (x - start[0]) * along[1] - (y - start[1]) * along[0]
+        if abs(off) < PLACEMENT_SLACK and -PLACEMENT_SLACK <= rel <= span + PLACEMENT_SLACK:
+            touching.append((s, rel))
+    if not touching:
+        raise ValueError(f"pocket {number} at ({x}, {y}) is not on a rail or corner of the table")
+    corner = len(touching) == 2
+    shape = corner_shape if corner else side_shape
+    half = mouth / math.sqrt(2.0) if corner else mouth / 2.0
+    # The nose rail stops on the rounded tip, this far past the jaw point.
+    trim = shape.jaw_radius / math.tan(math.radians(0.5 * shape.cut_angle))
+    # The room the mouth has: along each rail it sits on, to the far end of the rail
+    # (at a corner) or to the nearer end (on a rail); across the table, the depth.
+    room = min(min(sides[s][3] if corner else min(rel, sides[s][3] - rel), sides[s][4]) for s, rel in touching)
+    # The jaw points and their rounded tips must lie on the rail(s).
+    if half + trim >= room:
+        widest = (room - trim) * (math.sqrt(2.0) if corner else 2.0)
+        raise ValueError(
+            f"pocket {number} at ({x}, {y}) has a {mouth} m mouth, too wide for the {L} x {W} m table: "
+            f"its jaw points must lie on the rail{'s' if corner else ''} it sits on and its mouth must not "
+            f"reach past the opposite rail, so its mouth can be at most {widest:.4g} m"
+        )
+    jaw_points, noses = [], []
+    for s, rel in touching:
+        start, along, _, span, _ = sides[s]
+        for edge in (e for e in (rel - half, rel + half) if 0.0 < e < span):
+            sign = 1.0 if edge > rel else -1.0
+            jaw_points.append((start[0] + edge * along[0], start[1] + edge * along[1]))
+            noses.append((sign * along[0], sign * along[1]))
+        cuts[s].append((max(rel - half - trim, 0.0), min(rel + half + trim, span), number))
+    normals = [sides[s][2] for s, _ in touching]
+    ax, ay = -sum(n[0] for n in normals), -sum(n[1] for n in normals)
+    norm = math.hypot(ax, ay)
+    return build_pocket(number, jaw_points, noses, (ax / norm, ay / norm), shape, mouth)
+
+
+def _shape(value, default, name):
+    """A PocketShape argument: None for the default, else a PocketShape."""
+    if value is None:
+        return default()
+    if not isinstance(value, PocketShape):
+        raise ValueError(f"{name} must be a PocketShape or None, got {value!r}")
+    return value
 
 
 def _pocket_entry(number, pocket):
@@ -415,7 +451,7 @@ def _check_rack_fits(table, xy, radius, jitter, check_cue):
             f"(jitter {jitter} m): the rack needs a playing area of at least "
             f"{_up(4.0 * (2.0 * math.sqrt(3.0) * s + reach))} x {_up(2.0 * (2.0 * s + reach))} m"
         )
-    for px, py, pr in table.pockets.tolist():
+    for px, py, pr in table.pocket_reach.tolist():
         near = math.hypot(max(x_lo - px, 0.0, px - x_hi), max(y_lo - py, 0.0, py - y_hi)) < pr
         if check_cue:
             near = near or math.hypot(xy[0, 0] - px, xy[0, 1] - py) < pr + radius
@@ -424,19 +460,18 @@ def _check_rack_fits(table, xy, radius, jitter, check_cue):
     else:
         return
     first = 0 if check_cue else 1
-    spots = xy[first:]
-    margin = np.full(len(spots), jitter)
-    if check_cue:
-        margin[0] = 0.0
-    pockets = table.pockets
-    gap = np.hypot(spots[:, None, 0] - pockets[None, :, 0], spots[:, None, 1] - pockets[None, :, 1])
-    over = gap - pockets[None, :, 2] < margin[:, None]  # over the pocket or within the jitter of it
-    if np.any(over):
-        i, k = np.argwhere(over)[0]
+    spots = np.ascontiguousarray(xy[first:])
+    # Each ball anywhere within the jitter of its spot: a ball of radius R + jitter on it
+    # must keep off every cushion and opening (R: the widest cushion reach of any model).
+    n = len(spots)
+    code, i, k = first_misplaced(spots, np.full(n, radius), np.full(n, radius + jitter), jitter,
+                                 np.zeros(n, dtype=np.bool_), bounds_of(table), 0.0)
+    if code != 0:
         x, y = spots[i]
+        where = f"over pocket {k}" if code == 2 else "against a pocket's jaws"
         raise ValueError(
             f"the {L} x {W} m table is too small for a rack with these pockets: ball {i + first}'s spot "
-            f"({x:.4f}, {y:.4f}) m is over pocket {k} or within the jitter ({jitter} m) of it"
+            f"({x:.4f}, {y:.4f}) m is {where} or within the jitter ({jitter} m) of it"
         )
 
 

@@ -1,4 +1,4 @@
-"""Ball-pocket events: a ball drops when its centre enters the pocket's capture circle."""
+"""Ball-pocket events: a ball drops when its centre enters the pocket's opening (pocket_shape.py)."""
 
 
 from .geometry import distance_entry
@@ -9,7 +9,7 @@ from .motion import trajectory
 
 @helper
 def capture_time(row, state, t, horizon, radius, params, pocket):
-    """Earliest tau in [0, horizon] at which the centre enters pocket [cx, cy, r] (or inf)."""
+    """Earliest tau in [0, horizon] at which the centre enters the opening [cx, cy, r] (or inf)."""
     x, y, vx, vy, ax, ay = trajectory(row, state, t, radius, params)
     return distance_entry(x - pocket[0], y - pocket[1], vx, vy, ax, ay, pocket[2], horizon)
 

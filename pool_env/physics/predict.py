@@ -68,44 +68,64 @@ def pair_time(S, st, R, params, t_tr, i, k, now, counters):
 
 @helper
 def boundary_times(scene, bounds, sched, i, now, counters):
-    """Ball i's next rail or jaw contact (into sched.t_cu, cu_id; jaws numbered after rails)
-    and next pocket capture (sched.t_po, po_id)."""
-    S, st, R, params = scene.S, scene.st, scene.R, scene.params
-    rails, jaws, pockets = bounds.rails, bounds.jaws, bounds.pockets
+    """Ball i's next cushion contact (into sched.t_cu, cu_id: rails and facings by row, jaw
+    tips numbered after them) and next drop into a pocket (sched.t_po, po_id). A pocket's
+    facings and jaw tips are looked at only if the ball can come within its reach circle."""
+    S, st, params = scene.S, scene.st, scene.params
     t_cu, cu = np.inf, -1
     t_po, po = np.inf, -1
     if moving(st[i]):
-        r = R[i]
+        r, rc = scene.R[i], scene.Rc[i]
         horizon = max(sched.t_tr[i] - now, 0.0)
         travel = max_travel(S[i], st[i], now, horizon, r, params)
         x, y, vx, vy, ax, ay = trajectory(S[i], st[i], now, r, params)
-        for c in range(rails.shape[0]):
-            if rail_gap(rails[c], x, y, r) > travel:
-                counters[C_CU_REJ] += 1
-                continue
-            counters[C_CU] += 1
-            t = now + cushion.rail_time(S[i], st[i], now, horizon, r, params, rails[c])
-            if t < t_cu:
-                t_cu, cu = t, c
-        for k in range(pockets.shape[0]):
-            # A pocket's jaw points lie on its capture circle: a ball that cannot come within
-            # (capture radius + R) of the centre meets neither the pocket nor its jaws.
-            px, py = pockets[k, 0], pockets[k, 1]
-            if out_of_reach((x - px, y - py), (vx, vy), (ax, ay), horizon, pockets[k, 2] + r):
+        t_cu, cu = _rails_time(scene, bounds, i, (now, horizon), (x, y), -1, travel, counters)
+        reach = bounds.reach
+        for k in range(reach.shape[0]):
+            if out_of_reach((x - reach[k, 0], y - reach[k, 1]), (vx, vy), (ax, ay), horizon, reach[k, 2] + r):
                 counters[C_PO_REJ] += 1
                 continue
             counters[C_PO] += 1
-            t = now + pocket.capture_time(S[i], st[i], now, horizon, r, params, pockets[k])
+            t = now + pocket.capture_time(S[i], st[i], now, horizon, r, params, bounds.pockets[k])
             if t < t_po:
                 t_po, po = t, k
+            t, c = _rails_time(scene, bounds, i, (now, horizon), (x, y), k, travel, counters)
+            if t < t_cu:
+                t_cu, cu = t, c
+            jaws = bounds.jaws
             for p in range(jaws.shape[0]):
                 if bounds.jaw_pockets[p] != k:
                     continue
                 counters[C_CU] += 1
-                t = now + cushion.point_time(S[i], st[i], now, horizon, r, params, jaws[p, 0], jaws[p, 1], r)
+                t = now + cushion.point_time(S[i], st[i], now, horizon, r, params, jaws[p, 0], jaws[p, 1],
+                                             rc + jaws[p, 2])
                 if t < t_cu:
-                    t_cu, cu = t, rails.shape[0] + p
+                    t_cu, cu = t, bounds.rails.shape[0] + p
     sched.t_cu[i], sched.cu_id[i], sched.t_po[i], sched.po_id[i] = t_cu, cu, t_po, po
+
+
+@helper
+def _rails_time(scene, bounds, i, span, xy, owner, travel, counters):
+    """Ball i's first contact with the rails whose rail_pockets entry is `owner` (-1: the
+    noses; k: pocket k's facings) within span = (now, horizon), the ball's centre at xy now:
+    (absolute time, rail row), or (inf, -1). Noses farther than the ball can travel are
+    skipped (a pocket's facings passed the pocket's broad phase already)."""
+    S, st, r, rc = scene.S, scene.st, scene.R[i], scene.Rc[i]
+    rails = bounds.rails
+    now, horizon = span
+    x, y = xy
+    best, which = np.inf, -1
+    for c in range(rails.shape[0]):
+        if bounds.rail_pockets[c] != owner:
+            continue
+        if owner < 0 and rail_gap(rails[c], x, y, rc) > travel:
+            counters[C_CU_REJ] += 1
+            continue
+        counters[C_CU] += 1
+        t = now + cushion.rail_time(S[i], st[i], now, horizon, r, rc, scene.params, rails[c])
+        if t < best:
+            best, which = t, c
+    return best, which
 
 
 @helper

@@ -7,60 +7,62 @@ import os
 import sys
 import time
 
+import numpy as np
+
 from . import engine, fixed
-from .bundles import EVENTS, new_log, prepare, scene_of
-from .config import Physics
-from .jit import kernel
+from .bundles import EVENTS, bounds_of, new_log, prepare, scene_of
+from .config import NOSE_HEIGHT_MODELS, Physics, cushion_reach
 from .kinds import BUFFER_FULL, COUNTERS, EVENT_CAP
 from .objects import Balls, Table
+from .placement import first_misplaced
 from .result import Result, SimulationError, cap_message
-from .tolerances import CONTACT_TOLERANCE
 
 __all__ = ["simulate", "check_on_table", "SimulationError"]
 
 
-@kernel
-def _first_misplaced(xy, radii, pocketed, length, width, pockets, nose):
-    """(1, ball, -1) for a ball outside the rails, (2, ball, pocket) for one over a pocket,
-    (3, ball, -1) for one no taller than the cushion nose height `nose` (0 for no such limit),
-    (0, -1, -1) if every ball on the table is where it may be."""
-    tol = CONTACT_TOLERANCE
-    for i in range(xy.shape[0]):
-        if pocketed[i]:
-            continue
-        x, y, r = xy[i, 0], xy[i, 1], radii[i]
-        if x < r - tol or x > length - r + tol or y < r - tol or y > width - r + tol:
-            return 1, i, -1
-        for k in range(pockets.shape[0]):
-            if math.hypot(x - pockets[k, 0], y - pockets[k, 1]) < pockets[k, 2]:
-                return 2, i, k
-        if 2.0 * r <= nose:
-            return 3, i, -1
-    return 0, -1, -1
-
-
 def check_on_table(balls: Balls, table: Table, physics: Physics | None = None) -> None:
-    """Raise ValueError for a ball outside the rails or resting over a pocket, and (with a
-    physics using the han2005 cushion, which touches a ball at the nose height h) for a ball
-    no taller than h: it would pass under the nose and never be stopped."""
-    nose = table.cushion_height if physics is not None and physics.cushion == "han2005" else 0.0
-    code, i, k = _first_misplaced(balls.xy, balls.radii, balls.pocketed, table.length, table.width, table.pockets,
-                                  nose)
+    """Raise ValueError for a ball off the table (outside the rails and the pockets' throats),
+    pressed into a cushion, or over a pocket's opening; and (with a physics whose cushion
+    touches the ball at the nose height h) for a ball no taller than h: it would pass under
+    the nose and never be stopped. A ball may hang in a pocket's mouth, between the jaws.
+    Without a physics, the default Physics()'s cushion decides how close to a rail a centre
+    may be (its cushion reach)."""
+    cushion = (physics or Physics()).cushion
+    nose = table.cushion_height if cushion in NOSE_HEIGHT_MODELS else 0.0
+    reach = np.asarray(cushion_reach(balls.radii, table.cushion_height, cushion), dtype=np.float64)
+    code, i, k = first_misplaced(balls.xy, balls.radii, reach, 0.0, balls.pocketed, bounds_of(table), nose)
     if code == 0:
         return
     x, y = balls.xy[i]
-    if code == 1:
+    if code in (1, 4):
+        pressed = ""
+        if code == 4:
+            depth = -_gap(table, k, x, y, float(reach[i]))
+            what = "rail" if k < len(table.rails) else "jaw tip"
+            if what == "rail" and table.rail_pockets[k] >= 0:
+                what = f"facing of pocket {table.rail_pockets[k]}"
+            pressed = f" (it is {depth * 1000:.3g} mm into a {what})"
         raise ValueError(
             f"ball {i} at ({x:.4f}, {y:.4f}) m is outside the rails of the {table.length} x {table.width} m "
-            f"table (its centre must be at least R = {balls.radii[i]} m from every rail)"
+            f"table{pressed}: its centre must be at least {float(reach[i]):.6g} m (its cushion reach) from every "
+            f"rail, and within the rails or a pocket's mouth"
         )
     if code == 2:
         raise ValueError(f"ball {i} at ({x:.4f}, {y:.4f}) m sits over pocket {k}")
     raise ValueError(
         f"ball {i} (radius {balls.radii[i]} m) is no taller than the cushion nose at {table.cushion_height} m: "
-        f"the han2005 cushion cannot touch it; use a Table with cushion_height < {2.0 * balls.radii[i]} m, or "
+        f"the {cushion} cushion cannot touch it; use a Table with cushion_height < {2.0 * balls.radii[i]} m, or "
         f"another cushion model (Physics(cushion='restitution'))"
     )
+
+
+def _gap(table, c, x, y, reach):
+    """The gap (m) between a ball and cushion c, in Python (for the error message)."""
+    if c < len(table.rails):
+        x1, y1, _, _, nx, ny = table.rails[c]
+        return nx * (x - x1) + ny * (y - y1) - reach
+    jx, jy, jr = table.jaws[c - len(table.rails)]
+    return math.hypot(x - jx, y - jy) - reach - jr
 
 
 def simulate(balls: Balls, table: Table, physics: Physics | None = None, method: str = "events",
@@ -103,7 +105,7 @@ def _run_events(balls, table, physics, max_events):
         if code != BUFFER_FULL:
             break
         size = min(cap, 4 * size)
-        scene = scene_of(balls, physics)
+        scene = scene_of(balls, physics, table)
     if code == EVENT_CAP:
         raise SimulationError(cap_message(cap, log, int(log.size[EVENTS])))
     return Result(balls, physics, table, scene, log, time.perf_counter() - wall, None)

@@ -1,0 +1,56 @@
+"""Where a ball may be: on the rails' rectangle or in a pocket's throat, off every cushion and opening."""
+
+import math
+
+from .geometry import cushion_gap
+from .jit import helper, kernel
+from .tolerances import CONTACT_TOLERANCE
+
+
+@kernel
+def first_misplaced(xy, radii, reach, slack, pocketed, bounds, nose):
+    """The first ball that may not be where it is, as (code, ball, which): code 1 for a centre
+    off the playing area (outside the rails' rectangle and every pocket's throat), 2 for one
+    over pocket `which`'s opening, 3 for a ball no taller than the cushion nose height `nose`
+    (0 for no such limit), 4 for one pressed into cushion `which` (a rail, a facing or a jaw
+    tip, deeper than CONTACT_TOLERANCE); (0, -1, -1) if every ball on the table may be
+    there. The same cushions and reach (N,) as the engine's: a state the engine leaves
+    passes. `slack` (m) widens the openings (and the caller adds it to the reach) for balls
+    that may sit anywhere within it of their positions (a jittered rack)."""
+    tol = CONTACT_TOLERANCE
+    rails, jaws = bounds.rails, bounds.jaws
+    for i in range(xy.shape[0]):
+        if pocketed[i]:
+            continue
+        x, y = xy[i, 0], xy[i, 1]
+        for k in range(bounds.pockets.shape[0]):
+            if math.hypot(x - bounds.pockets[k, 0], y - bounds.pockets[k, 1]) < bounds.pockets[k, 2] + slack:
+                return 2, i, k
+        if not _on_playing_area(x, y, bounds):
+            return 1, i, -1
+        for c in range(rails.shape[0] + jaws.shape[0]):
+            if cushion_gap(rails, jaws, c, x, y, reach[i]) < -tol:
+                return 4, i, c
+        if 2.0 * radii[i] <= nose:
+            return 3, i, -1
+    return 0, -1, -1
+
+
+@helper
+def _on_playing_area(x, y, bounds):
+    """Whether a centre is on the rails' rectangle or in a pocket's throat: within the
+    pocket's reach circle and in front of both its facings."""
+    tol = CONTACT_TOLERANCE
+    if -tol <= x <= bounds.length + tol and -tol <= y <= bounds.width + tol:
+        return True
+    rails, reach = bounds.rails, bounds.reach
+    for k in range(reach.shape[0]):
+        if math.hypot(x - reach[k, 0], y - reach[k, 1]) >= reach[k, 2]:
+            continue
+        front = True
+        for c in range(rails.shape[0]):
+            if bounds.rail_pockets[c] == k and rails[c, 4] * (x - rails[c, 0]) + rails[c, 5] * (y - rails[c, 1]) < -tol:
+                front = False
+        if front:
+            return True
+    return False
