@@ -19,6 +19,7 @@ from .physics import (
     simulate,
     strike,
 )
+from .physics.cue import MISCUE_LIMIT
 from .physics.kinds import BALL_BALL, BALL_BALL_SETTLE, BALL_CUSHION, BALL_POCKET
 from .physics.simulate import check_on_table
 from .playback import ShotPlayback
@@ -28,7 +29,7 @@ CONTACT_TIME = 0.005  # s, the seed report's cue contact time
 MAX_SPEED = 12.0  # m/s, cue-ball speed at |a| = 1: a strong break
 MAX_FORCE = MAX_SPEED * BALL_MASS / CONTACT_TIME  # N (about 408 N)
 MIN_MAGNITUDE = 0.02  # weaker actions are raised to this (0.24 m/s)
-MAX_TIP_OFFSET = 0.5  # in ball radii
+MAX_TIP_OFFSET = MISCUE_LIMIT  # in ball radii: the tip reaches the miscue limit, 0.5 R
 SHAPING_CONTACT = 0.1  # shaping: + for hitting an object ball, - for missing them all
 SHAPING_SPREAD = 0.5  # shaping: weight of the spread gain on a table with pockets
 RESET_OPTIONS = ("balls",)  # the keys reset(options=...) accepts
@@ -175,9 +176,10 @@ class PoolBreakEnv(gym.Env):
     the report's 5 ms contact. Lengths below 0.02 are raised to 0.02 (0.24 m/s); the zero
     action strikes along +x at 0.02. The tip offset is in units of the ball radius, seen from
     behind the cue: side > 0 is right English, top > 0 follow, top < 0 draw; an offset longer
-    than 0.5 is scaled to 0.5 (no miscues). Any array, list or tuple of the action space's
-    shape, (2,) or (4,) with `spin=True`, is an action; another shape (e.g. a batch of one,
-    (1, 2)) or a non-finite entry raises `ValueError`.
+    than 0.5 is scaled to 0.5, the miscue limit (no miscues). Side English squirts the cue
+    ball away from the side of the hit (`strike`'s default cue end mass). Any array, list or
+    tuple of the action space's shape, (2,) or (4,) with `spin=True`, is an action; another
+    shape (e.g. a batch of one, (1, 2)) or a non-finite entry raises `ValueError`.
 
     ## Observation Space
 

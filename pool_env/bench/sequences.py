@@ -46,8 +46,8 @@ def _shot(rng, balls, table, physics, first):
 
 def _ball_in_hand(rng, balls, table):
     """The balls with a pocketed cue ball put back on a random free spot."""
-    from pool_env.physics import BALL_RADIUS, Balls
     from pool_env.bench.stability import _free_spot
+    from pool_env.physics import BALL_RADIUS, Balls
 
     on = ~balls.pocketed
     on[0] = False

@@ -73,6 +73,7 @@ def _free_spot(rng, xy, table, radius, tries=200):
 def random_break(rng, physics="mixed"):
     """(balls, table, physics, description) of one random shot (see the module docstring)."""
     from pool_env.physics import BALL_MASS, BALL_RADIUS, Balls, Table, rack, strike
+    from pool_env.physics.cue import MISCUE_LIMIT
 
     table = Table.eight_foot() if rng.random() < 0.8 else Table.seed()
     jitter = float(rng.choice([0.0, 1e-6, 1e-5, 2e-4, 1e-3]))
@@ -92,7 +93,7 @@ def random_break(rng, physics="mixed"):
     angle = math.atan2(aim[1], aim[0]) + rng.normal(0.0, 0.05) if rng.random() < 0.8 else rng.uniform(0, 2 * math.pi)
     speed = float(rng.uniform(0.5, 15.0))
     force = speed * BALL_MASS / 0.005
-    r, a = 0.7 * math.sqrt(rng.random()), rng.uniform(0, 2 * math.pi)
+    r, a = MISCUE_LIMIT * math.sqrt(rng.random()), rng.uniform(0, 2 * math.pi)  # any tip offset short of a miscue
     offset = (r * math.cos(a), r * math.sin(a))
     balls = strike(balls, force=(force * math.cos(angle), force * math.sin(angle)), offset=offset)
     phys = random_physics(rng, physics)

@@ -79,11 +79,17 @@ def frictional(bi, bj, nx, ny, ri, rj, mi, mj, params):
     speed-dependent coefficient: gives cut-induced throw and spin transfer.
 
     The friction impulse P = (P_t, P_z) acts on ball i in the contact plane (t = z x n, and
-    z), -P on ball j. Per unit impulse the slip changes by k_t = 7/2 (1/mi + 1/mj) along t
-    (translation plus spin) and k_z = 5/2 (1/mi + 1/mj) along z (spin only: the cloth holds
-    the balls down). If the impulse that stops the slip is within mu * J_n the surfaces
-    stick; otherwise they slide with |P| = mu * J_n against the slip. Both branches dissipate
-    energy (see docs/physics.md).
+    z), -P on ball j, at the contact point R n from i's centre (-R n from j's). A unit impulse
+    along t moves a ball's contact point by 1/m (translation) plus R^2/I = 5/(2m) (spin), so
+    the slip s_t changes by k_t = 7/2 (1/mi + 1/mj). Along z, the ball pushed down is held by
+    the cloth, whose reaction cancels its vertical translation: spin only, 5/(2m). The ball
+    pushed up is not held (the cloth cannot pull it down): 1/m + 5/(2m) = 7/(2m). P_z opposes
+    s_z, so s_z < 0 pushes ball i up, k_z = 7/(2 mi) + 5/(2 mj), and s_z > 0 ball j,
+    k_z = 5/(2 mi) + 7/(2 mj) (6/m for equal masses). The lifted ball's small vertical speed,
+    P_z / m, is not kept: the engine is planar and the ball drops back at once. If the impulse
+    that stops the slip, (s_t/k_t, s_z/k_z), is within mu * J_n the surfaces stick; otherwise
+    they slide with |P| = mu * J_n against the slip. Both branches dissipate energy (see
+    docs/physics.md).
     """
     jn = _normal_impulse(bi, bj, nx, ny, mi, mj, params[P_E_B])
     if jn == 0.0:
@@ -103,8 +109,12 @@ def _friction(bi, bj, nx, ny, ri, rj, mi, mj, jn, alpha):
     s = math.hypot(s_t, s_z)
     if s == 0.0:
         return 0.0, 0.0
-    inv = (1.0 / mi + 1.0 / mj) * alpha
-    k_t, k_z = 3.5 * inv, 2.5 * inv
+    inv_i, inv_j = alpha / mi, alpha / mj
+    k_t = 3.5 * (inv_i + inv_j)
+    if s_z < 0.0:  # P_z > 0 lifts ball i; the cloth holds j down
+        k_z = 3.5 * inv_i + 2.5 * inv_j
+    else:  # P_z <= 0 lifts ball j (or there is no vertical slip)
+        k_z = 2.5 * inv_i + 3.5 * inv_j
     mu = ALCIATORE_A + ALCIATORE_B * math.exp(-ALCIATORE_C * s)
     p_t, p_z = -s_t / k_t, -s_z / k_z
     if math.hypot(p_t, p_z) > mu * jn:
