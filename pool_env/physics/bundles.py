@@ -25,8 +25,8 @@ Bounds = namedtuple("Bounds", ["rails", "rail_pockets", "jaws", "jaw_pockets", "
 Bounds.__doc__ = """The table: rails (K, 6) [x1, y1, x2, y2, nx, ny], the nose segments then the pockets'
 facings, and rail_pockets (K,) each one's pocket (-1 for a nose); jaws (J, 3) the rounded jaw
 tips [x, y, r] and jaw_pockets (J,) their pockets; pockets (P, 3) the openings [x, y, r] a
-ball drops through when its centre enters; reach (P, 3) a circle around each pocket's mouth,
-facings and opening (the broad phase); the cushion nose height, length and width of the
+ball drops through when its centre enters; reach (P, 3) a circle around each pocket's mouth:
+its jaw tips and its facings up to the opening (the broad phase; pocket_shape.build_pocket); the cushion nose height, length and width of the
 playing area (m)."""
 
 Log = namedtuple("Log", ["t", "kind", "i", "j", "hist", "hist_ball", "counters", "size"])
@@ -144,11 +144,24 @@ def scene_of(balls, physics, table):
     S, st, any_z_spin = _pack(balls.xy, balls.v, balls.w, balls.pocketed)
     spin = bool(physics.spin and (any_z_spin or physics.can_create_spin()))
     bb_model, cu_model = physics.model_ids()
-    if isinstance(balls.radius, float):  # one size: the common case, without array arithmetic
-        reach = np.full(len(balls), cushion_reach(balls.radius, table.cushion_height, physics.cushion))
-    else:
-        reach = cushion_reach(balls.radii, table.cushion_height, physics.cushion).copy()
+    reach = reach_of(balls, table, physics.cushion)
     return Scene(S, st, balls.radii, reach, balls.masses, physics.as_array(), bb_model, cu_model, spin)
+
+
+_REACH = {}
+
+
+def reach_of(balls, table, cushion):
+    """Each ball's cushion reach (config.cushion_reach) as an (N,) array. Balls of one size
+    (the common case) share one cached array per (N, R, nose height, model): the engine only
+    reads it, and building it anew cost more than a short shot's whole Python wrapper."""
+    if not isinstance(balls.radius, float):
+        return np.array(cushion_reach(balls.radii, table.cushion_height, cushion), dtype=np.float64)
+    key = (len(balls), balls.radius, table.cushion_height, cushion)
+    reach = _REACH.get(key)
+    if reach is None:
+        reach = _REACH[key] = np.full(key[0], cushion_reach(balls.radius, table.cushion_height, cushion))
+    return reach
 
 
 def bounds_of(table):

@@ -136,11 +136,27 @@ def build_pocket(number, jaw_points, noses, axis, shape, mouth):
             raise ValueError(f"pocket {number}: its facings cross before they reach the opening")
         facings.append((px + t * fx, py + t * fy, ex, ey, mx_, my_))
     opening = (ox, oy, opening_radius)
-    points = [(x, y, 0.0) for x, y, *_ in facings] + [(f[2], f[3], 0.0) for f in facings] + list(tips)
-    points += [(x, y, 0.0) for x, y in nose_ends] + [opening]
+    # The broad phase's circle: around the jaw tips, the nose ends and each facing up to where
+    # it enters the opening. A ball meets the rest of a facing only over the opening, after it
+    # dropped, and it can enter the opening only through the mouth, inside this circle.
+    points = [(x, y, 0.0) for x, y in nose_ends] + list(tips)
+    points += [(*_entry(f, opening), 0.0) for f in facings] + [(f[0], f[1], 0.0) for f in facings]
     reach = max(math.hypot(x - mx, y - my) + r for x, y, r in points)
     return {"facings": facings, "tips": tips, "nose_ends": nose_ends, "opening": opening,
             "reach": (mx, my, reach), "mouth": (p1[0], p1[1], p2[0], p2[1], ax, ay)}
+
+
+def _entry(facing, opening):
+    """Where the facing (from its start, at the jaw tip) first enters the opening circle."""
+    x1, y1, x2, y2 = facing[:4]
+    ox, oy, r = opening
+    dx, dy = x2 - x1, y2 - y1
+    fx, fy = x1 - ox, y1 - oy
+    a, b, c = dx * dx + dy * dy, 2.0 * (fx * dx + fy * dy), fx * fx + fy * fy - r * r
+    if c <= 0.0:  # starts inside the opening already
+        return x1, y1
+    u = (-b - math.sqrt(max(b * b - 4.0 * a * c, 0.0))) / (2.0 * a)
+    return x1 + u * dx, y1 + u * dy
 
 
 def _inward(ux, uy, ax, ay):

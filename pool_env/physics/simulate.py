@@ -7,17 +7,17 @@ import os
 import sys
 import time
 
-import numpy as np
-
 from . import engine, fixed
-from .bundles import EVENTS, bounds_of, new_log, prepare, scene_of
-from .config import NOSE_HEIGHT_MODELS, Physics, cushion_reach
+from .bundles import EVENTS, bounds_of, new_log, prepare, reach_of, scene_of
+from .config import NOSE_HEIGHT_MODELS, Physics
 from .kinds import BUFFER_FULL, COUNTERS, EVENT_CAP
 from .objects import Balls, Table
 from .placement import first_misplaced
 from .result import Result, SimulationError, cap_message
 
 __all__ = ["simulate", "check_on_table", "SimulationError"]
+
+DEFAULT_CUSHION = Physics().cushion
 
 
 def check_on_table(balls: Balls, table: Table, physics: Physics | None = None) -> None:
@@ -27,9 +27,9 @@ def check_on_table(balls: Balls, table: Table, physics: Physics | None = None) -
     the nose and never be stopped. A ball may hang in a pocket's mouth, between the jaws.
     Without a physics, the default Physics()'s cushion decides how close to a rail a centre
     may be (its cushion reach)."""
-    cushion = (physics or Physics()).cushion
+    cushion = DEFAULT_CUSHION if physics is None else physics.cushion
     nose = table.cushion_height if cushion in NOSE_HEIGHT_MODELS else 0.0
-    reach = np.asarray(cushion_reach(balls.radii, table.cushion_height, cushion), dtype=np.float64)
+    reach = reach_of(balls, table, cushion)
     code, i, k = first_misplaced(balls.xy, balls.radii, reach, 0.0, balls.pocketed, bounds_of(table), nose)
     if code == 0:
         return
