@@ -1,9 +1,12 @@
-"""The benchmarks' helpers: the shared kinetic energy, the speed bench's A/B machinery."""
+"""The benchmarks' helpers: the shared kinetic energy, the speed bench's A/B machinery, the accuracy bench's output."""
+
+import os
+import pathlib
 
 import numpy as np
 import pytest
 
-from pool_env.bench import speed
+from pool_env.bench import accuracy, speed
 from pool_env.physics import Balls, Physics, simulate
 from pool_env.physics.kinds import VX, VY, WX, WZ
 from pool_env.physics.objects import kinetic_energy
@@ -93,3 +96,25 @@ def test_vector_bench_prints_every_figure_beside_its_target(capsys):
                  "simulate_batch, 2 threads", "256 native envs, resident memory"):
         assert what in out, what
     assert ">= 4,000" in out and ">= 8,000" in out and "<= 200 MB" in out
+
+
+def test_accuracy_writes_to_an_untracked_folder_unless_told_to_update_the_docs():
+    docs = pathlib.Path(__file__).resolve().parents[1] / "docs"
+    args = accuracy.parse_args([])
+    assert args.out == os.path.join("runs", "accuracy") and not args.update_docs  # runs/ is git-ignored
+    assert pathlib.Path(accuracy.parse_args(["--update-docs"]).out) == docs
+    assert accuracy.parse_args(["--out", "elsewhere"]).out == "elsewhere"
+    with pytest.raises(SystemExit):
+        accuracy.parse_args(["--update-docs", "--out", "elsewhere"])
+
+
+@pytest.mark.slow
+def test_accuracy_quick_run_writes_its_page_and_plot_and_leaves_the_docs_alone(tmp_path, capsys):
+    docs = pathlib.Path(__file__).resolve().parents[1] / "docs"
+    before = {name: (docs / name).stat().st_mtime_ns for name in ("accuracy.md", "accuracy.png")}
+    assert accuracy.main(["--quick", "--out", str(tmp_path)]) == 0
+    page = (tmp_path / "accuracy.md").read_text()
+    assert (tmp_path / "accuracy.png").stat().st_size > 0
+    assert "## The report's own loop" in page and "| report's loop | 1/60 |" in page
+    assert "The report's own loop" in capsys.readouterr().out
+    assert {name: (docs / name).stat().st_mtime_ns for name in before} == before

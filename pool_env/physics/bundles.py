@@ -25,9 +25,9 @@ Bounds = namedtuple("Bounds", ["rails", "rail_pockets", "jaws", "jaw_pockets", "
 Bounds.__doc__ = """The table: rails (K, 6) [x1, y1, x2, y2, nx, ny], the nose segments then the pockets'
 facings, and rail_pockets (K,) each one's pocket (-1 for a nose); jaws (J, 3) the rounded jaw
 tips [x, y, r] and jaw_pockets (J,) their pockets; pockets (P, 3) the openings [x, y, r] a
-ball drops through when its centre enters; reach (P, 3) a circle around each pocket's mouth:
-its jaw tips and its facings up to the opening (the broad phase; pocket_shape.build_pocket); the cushion nose height, length and width of the
-playing area (m)."""
+ball drops through when its centre enters; reach (P, 3) a circle around each pocket's mouth,
+its jaw tips and its facings up to the opening (the broad phase; pocket_shape.build_pocket);
+the cushion nose height, length and width of the playing area (m)."""
 
 Log = namedtuple("Log", ["t", "kind", "i", "j", "hist", "hist_ball", "counters", "size"])
 Log.__doc__ = """What a run writes: events (t, kind, i, j: (E,) each), state segments (hist (H, 9): a state

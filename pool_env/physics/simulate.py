@@ -7,7 +7,7 @@ import os
 import sys
 import time
 
-from . import engine, fixed
+from . import engine, fixed, seed_loop
 from .bundles import EVENTS, bounds_of, new_log, prepare, reach_of, scene_of
 from .config import NOSE_HEIGHT_MODELS, Physics
 from .kinds import BUFFER_FULL, COUNTERS, EVENT_CAP
@@ -70,22 +70,27 @@ def simulate(balls: Balls, table: Table, physics: Physics | None = None, method:
     """Simulate until every ball rests or is pocketed.
 
     `method="events"` (the default) is the exact continuous-time engine; `method="fixed"` steps
-    in frames (options dt, detection, recheck: see pool_env.physics.fixed). Raises ValueError for
+    in frames (options dt, detection, recheck: see pool_env.physics.fixed); `method="seed"` is
+    the seed report's own 60 fps loop (option dt; physics defaults to Physics.seed(); see
+    pool_env.physics.seed_loop). Raises ValueError for
     an invalid scene and SimulationError if more than `max_events` events happen (a generous
     default cap), naming the balls most involved.
     """
-    physics = Physics.standard() if physics is None else physics
+    if physics is None:
+        physics = Physics.seed() if method == "seed" else Physics.standard()
     if not isinstance(balls, Balls):
         raise TypeError(f"balls must be pool_env.physics.Balls, got {type(balls).__name__}")
     if not isinstance(table, Table):
         raise TypeError(f"table must be pool_env.physics.Table, got {type(table).__name__}")
-    if method not in ("events", "fixed"):
-        raise ValueError(f"unknown method {method!r}; available: 'events', 'fixed'")
+    if method not in ("events", "fixed", "seed"):
+        raise ValueError(f"unknown method {method!r}; available: 'events', 'fixed', 'seed'")
     if method == "events" and options:
         raise TypeError(f"method 'events' takes no options, got {sorted(options)}")
     check_on_table(balls, table, physics)
     if method == "fixed":
         return fixed.simulate_fixed(balls, table, physics, max_events, **options)
+    if method == "seed":
+        return seed_loop.simulate_seed(balls, table, physics, max_events, **options)
     return _run_events(balls, table, physics, max_events)
 
 
