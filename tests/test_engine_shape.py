@@ -63,8 +63,13 @@ def test_cushion_id_dispatches_the_named_model(name):
         assert row[2] == pytest.approx(e) and row[3] == pytest.approx(e) and row[6] == 0.0
         assert row[4] == -row[3] / R and row[5] == row[2] / R
     else:
-        # Han 2005: friction on the slip changes the velocity along the rail and the spins.
+        # Han 2005 and Mathavan 2010: friction on the slip changes the velocity along the rail
+        # and the spins; the two differ (Mathavan's cloth friction acts during the impact).
         assert row[2] != 1.0 and row[3] > 0.0 and row[6] != 10.0
+        other = np.array([1.0, R, 1.0, -1.0, 0.0, 0.0, 10.0, 0.0])
+        other_id = CUSHION_MODELS.index("mathavan2010" if name == "han2005" else "han2005")
+        cushion.resolve(other_id, other, 0.0, 1.0, R, physics.as_array(), 0.0363)
+        assert not np.allclose(row, other)
 
 
 def test_event_kind_ids_name_their_kinds():

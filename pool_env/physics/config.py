@@ -10,7 +10,7 @@ import numpy as np
 # Model names accepted by the engine, in the order of their numeric ids (the id is
 # what the compiled engine dispatches on).
 BALL_BALL_MODELS = ("seed", "elastic", "frictional")
-CUSHION_MODELS = ("seed", "restitution", "han2005")
+CUSHION_MODELS = ("seed", "restitution", "han2005", "mathavan2010")
 
 # The cushion models that touch the ball at the cushion's nose height h rather than at its
 # equator: a ball meets a rail when its centre is R cos(theta) from the nose line,
@@ -29,13 +29,13 @@ class Physics:
     | field | meaning | unit |
     | --- | --- | --- |
     | `ball_ball` | ball-ball model: `seed`, `elastic` or `frictional` | name |
-    | `cushion` | ball-cushion model: `seed`, `restitution` or `han2005` | name |
+    | `cushion` | ball-cushion model: `seed`, `restitution`, `han2005` or `mathavan2010` | name |
     | `mu_s` | sliding friction, ball on cloth | 1 |
     | `mu_r` | rolling resistance: a rolling ball decelerates at `mu_r * g` | 1 |
     | `mu_sp` | spinning friction: z-spin decays at `5 mu_sp g / (2 R)` | 1 |
     | `e_b` | ball-ball coefficient of restitution | 1 |
     | `e_c` | ball-cushion coefficient of restitution | 1 |
-    | `f_c` | ball-cushion friction (han2005) | 1 |
+    | `f_c` | ball-cushion friction (han2005, mathavan2010) | 1 |
     | `g` | gravitational acceleration | m/s^2 |
     | `spin` | track z-spin (English) and the spinning state; off means z-spin is dropped | bool |
     """
@@ -95,7 +95,7 @@ class Physics:
 
     def can_create_spin(self) -> bool:
         """True when a collision model can give a ball z-spin it did not have."""
-        return self.ball_ball == "frictional" or self.cushion == "han2005"
+        return self.ball_ball == "frictional" or self.cushion in ("han2005", "mathavan2010")
 
     def model_ids(self) -> tuple[int, int]:
         """The ball-ball and cushion model ids the compiled engine dispatches on."""

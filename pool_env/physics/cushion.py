@@ -16,13 +16,16 @@ from .config import CUSHION_MODELS
 from .geometry import alongside, distance_entry, rail_gap, roll
 from .jit import allocating, helper, kernel
 from .kinds import SLIDING, VX, VY, WX, WY, WZ
+from .mathavan import mathavan2010
 from .motion import P_E_C, P_F_C, copy_row, reroll, state_of, trajectory
 from .roots import first_entry
 from .settle import pressed_cushion, settle_cushion
 from .tolerances import MIN_APPROACH, MIN_DEPTH
 
 # The model ids `resolve` dispatches on: each model's position in config.CUSHION_MODELS.
-SEED, RESTITUTION, HAN2005 = (CUSHION_MODELS.index(name) for name in ("seed", "restitution", "han2005"))
+SEED, RESTITUTION, HAN2005, MATHAVAN2010 = (
+    CUSHION_MODELS.index(name) for name in ("seed", "restitution", "han2005", "mathavan2010")
+)
 
 # Rail rows in the table arrays: see geometry.py.
 
@@ -147,6 +150,8 @@ def resolve(model, b, nx, ny, radius, params, height):
         seed(b, nx, ny, radius, params)
     elif model == RESTITUTION:
         restitution(b, nx, ny, radius, params)
+    elif model == MATHAVAN2010:
+        mathavan2010(b, nx, ny, radius, params, height)
     else:
         han2005(b, nx, ny, radius, params, height)
     if rolled:
