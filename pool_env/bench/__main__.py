@@ -9,6 +9,7 @@ BENCHES = {
     "accuracy": "fixed-step methods against the exact engine: error vs wall time",
     "stability": "random-scene sweep checking the invariants after every event",
     "vector": "shots/s of the native vector env beside SB3's and Gymnasium's, and of simulate_batch",
+    "pockets": "our pocket model beside pooltool 0.6: pot/no-pot on a grid of straight and cut shots",
 }
 
 
