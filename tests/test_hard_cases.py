@@ -497,5 +497,5 @@ REGRESSIONS = json.loads((Path(__file__).parent / "data" / "regressions.json").r
 def test_sweep_regression(case):
     """A scene a stability sweep once failed on (case["note"] says how); now sound."""
     table = Table.eight_foot() if case["table"] == "eight_foot" else Table.seed()
-    balls = Balls(case["xy"], v=case["v"], w=case["w"])
+    balls = Balls(case["xy"], v=case["v"], w=case["w"], pocketed=case.get("pocketed"))
     sound(balls, table, Physics(**case["physics"]), max_events=case.get("max_events", 3500))

@@ -23,6 +23,7 @@ import time
 import numpy as np
 
 MAX_OFFSET = 0.5  # tip offset, in R: the miscue limit
+last_failure = []  # the struck balls of the last failing shot (to save it as a regression)
 
 
 def _shot(rng, balls, table, physics, first):
@@ -57,7 +58,7 @@ def _ball_in_hand(rng, balls, table):
     return Balls(xy, pocketed=pocketed)
 
 
-def run(sequences, length, seed=0, physics=None, check_every=100):
+def run(sequences, length, seed=0, physics=None, check_every=100, first=0):
     """Run the sweep; returns a summary dict: shots, failures [(sequence, shot, message)],
     events per shot, balls hanging in a mouth at the end of a shot, wall time."""
     from pool_env.physics import Physics, SimulationError, Table, rack, simulate
@@ -66,8 +67,9 @@ def run(sequences, length, seed=0, physics=None, check_every=100):
 
     table, physics = Table.eight_foot(), physics or Physics.standard()
     failures, events, hanging, shots = [], [], 0, 0
+    last_failure.clear()
     wall = time.perf_counter()
-    for s in range(sequences):
+    for s in range(first, first + sequences):
         balls = rack(table, seed=int(np.random.default_rng([seed, s]).integers(2**31)))
         for k in range(length):
             rng = np.random.default_rng([seed, s, k])
@@ -85,6 +87,7 @@ def run(sequences, length, seed=0, physics=None, check_every=100):
                 check_on_table(result.final, table, physics)
             except (SimulationError, ValueError) as exc:
                 failures.append((s, k, f"{type(exc).__name__}: {exc}"))
+                last_failure[:] = [struck]
                 break
             balls = result.final
             events.append(len(result.event_times))

@@ -260,21 +260,42 @@ def roll_group(S, R, M, ca, cb, n_c, walls, wall_ball, n_walls):
                 mass += M[k]
         if mass == 0.0:
             continue
-        vx, vy = px / mass, py / mass
-        for _ in range(16):
-            moved = False
-            for w in range(n_walls):
-                vn = vx * walls[w, 0] + vy * walls[w, 1]
-                if label[wall_ball[w]] == pack and vn < 0.0:
-                    vx -= vn * walls[w, 0]
-                    vy -= vn * walls[w, 1]
-                    moved = True
-            if not moved:
-                break
+        vx, vy = _leave_walls(px / mass, py / mass, walls, wall_ball, n_walls, label, pack)
         for k in range(n):
             if label[k] == pack:
                 S[k, VX], S[k, VY] = vx, vy
                 roll(S[k], R[k])
+
+
+@helper
+def _leaves(vx, vy, walls, wall_ball, n_walls, label, pack):
+    """True if the velocity moves into none of the pack's cushions (to rounding)."""
+    for w in range(n_walls):
+        if label[wall_ball[w]] == pack and vx * walls[w, 0] + vy * walls[w, 1] < -1e-12 * math.hypot(vx, vy):
+            return False
+    return True
+
+
+@helper
+def _leave_walls(vx, vy, walls, wall_ball, n_walls, label, pack):
+    """The pack's velocity projected onto the cone of velocities that move into none of its
+    cushions (inward normals walls[w] touched by a pack ball). In the plane that cone is
+    bounded by lines through 0, so the nearest point of it is the velocity itself, its
+    projection onto one cushion's line, or 0 (a pack wedged into a corner or between two
+    pocket facings stops); taken exactly, not by repeated projections, which creep along a
+    narrow wedge (the 14 degrees between a corner pocket's facings) without reaching it."""
+    if _leaves(vx, vy, walls, wall_ball, n_walls, label, pack):
+        return vx, vy
+    best_x, best_y, best = 0.0, 0.0, 0.0
+    for w in range(n_walls):
+        vn = vx * walls[w, 0] + vy * walls[w, 1]
+        if label[wall_ball[w]] != pack or vn >= 0.0:
+            continue
+        cx, cy = vx - vn * walls[w, 0], vy - vn * walls[w, 1]
+        speed = math.hypot(cx, cy)
+        if speed > best and _leaves(cx, cy, walls, wall_ball, n_walls, label, pack):
+            best_x, best_y, best = cx, cy, speed
+    return best_x, best_y
 
 
 @helper
