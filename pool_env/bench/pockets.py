@@ -190,7 +190,8 @@ def summarise(shots, ours, theirs, meta):
         lines.append("| --- | ---: | ---: | ---: | ---: |")
         for v in values:
             sub = [r for r in rows if r[key] == v]
-            lines.append(f"| {v} | {len(sub)} | {100 * _rate(sub):.1f} % | {sum(r['ours'] == r['target'] for r in sub)} | "
+            ours = sum(r['ours'] == r['target'] for r in sub)
+            lines.append(f"| {v} | {len(sub)} | {100 * _rate(sub):.1f} % | {ours} | "
                          f"{sum(r['pooltool'] == r['target'] for r in sub)} |")
         lines.append("")
     lines.append("| kind | angle (deg) | shots | agreement |")
@@ -212,7 +213,8 @@ def summarise(shots, ours, theirs, meta):
         lines.append(f"| {cause} | {len(sub)} | {sum(r['ours'] == r['target'] for r in sub)} | "
                      f"{sum(r['pooltool'] == r['target'] for r in sub)} |")
     lines.append("")
-    lines.append("Every disagreement (kind, distance m, angle deg, offset mm, speed m/s, spin: contacts ours | pooltool):")
+    lines.append("Every disagreement (kind, distance m, angle deg, offset mm, speed m/s, spin: "
+                 "contacts ours | pooltool):")
     lines.append("")
     lines.append("```")
     for cause, sub in sorted(groups.items(), key=lambda kv: -len(kv[1])):

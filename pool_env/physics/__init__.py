@@ -4,12 +4,13 @@ from .batch import simulate_batch
 from .config import Physics
 from .cue import strike
 from .kinds import EVENT_KINDS, STATE_NAMES
-from .pocket_shape import PocketShape
 from .objects import BALL_MASS, BALL_RADIUS, SEED_MASS, SEED_RADIUS, Balls, Table, rack
+from .pocket_shape import PocketShape
 from .result import Event, Result, SimulationError
 from .simulate import simulate, warm_up
 
 __all__ = [
-    "Balls", "Table", "PocketShape", "Physics", "simulate", "simulate_batch", "strike", "rack", "Event", "Result", "SimulationError",
+    "Balls", "Table", "PocketShape", "Physics", "simulate", "simulate_batch", "strike", "rack", "Event", "Result",
+    "SimulationError",
     "EVENT_KINDS", "STATE_NAMES", "warm_up", "BALL_RADIUS", "BALL_MASS", "SEED_RADIUS", "SEED_MASS",
 ]
