@@ -1,0 +1,187 @@
+"""`EightBall`: 8-ball by the WPA World Standardized Rules (section 3, with the general rules 1.x and fouls 6.x)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .state import (
+    GameState,
+    Ruling,
+    advance,
+    break_requirement,
+    check_shot,
+    ordered,
+    standard_fouls,
+    turn_messages,
+    with_messages,
+)
+
+EIGHT = 8
+SOLIDS = frozenset(range(1, 8))
+STRIPES = frozenset(range(9, 16))
+GROUP_BALLS = {"solids": SOLIDS, "stripes": STRIPES}
+ILLEGAL_BREAK_OPTIONS = ("ball_in_hand", "table_in_position")
+
+
+def group_of(ball: int) -> str | None:
+    """"solids" (1-7), "stripes" (9-15) or None (the 8)."""
+    return "solids" if ball in SOLIDS else "stripes" if ball in STRIPES else None
+
+
+@dataclass(frozen=True)
+class EightBall:
+    """8-ball (WPA rules, section 3): solids 1-7 against stripes 9-15, then the 8 in a called pocket.
+
+    `n_pockets` (default 6): how many pockets a called pocket may name (0 to n_pockets - 1,
+    `Table.pockets` order). `illegal_break`: what the incoming player takes after an illegal
+    break (WPA 3.3(d) lets him accept the table or have it re-racked; an env cannot re-rack
+    mid-episode): "ball_in_hand" (default: the table as it lies with the cue ball in hand
+    anywhere, so a soft break never pays) or "table_in_position" (WPA 3.3(d)(1) to the
+    letter: the cue ball where it stopped). Only the 8 is called (`called_pocket`); every other
+    ball counts wherever it drops, and on an open table the first ball to drop on a legal
+    shot decides the groups. See docs/rules.md for every deviation."""
+
+    n_pockets: int = 6
+    illegal_break: str = "ball_in_hand"
+    name = "eight_ball"
+    object_balls = frozenset(range(1, 16))
+    money_ball = EIGHT
+
+    def __post_init__(self):
+        if isinstance(self.n_pockets, bool) or not isinstance(self.n_pockets, int) or self.n_pockets < 1:
+            raise ValueError(f"n_pockets must be an integer >= 1, got {self.n_pockets!r}")
+        if self.illegal_break not in ILLEGAL_BREAK_OPTIONS:
+            raise ValueError(f"illegal_break must be one of {ILLEGAL_BREAK_OPTIONS}, got {self.illegal_break!r}")
+
+    def new_game(self, breaker: int = 0) -> GameState:
+        """A racked game: `breaker` (0 or 1) breaks with the cue ball in hand behind the head
+        string (WPA 3.3(a)); the table is open."""
+        return GameState(self, self.object_balls, shooter=breaker, ball_in_hand="behind_head_string")
+
+    def legal_targets(self, state: GameState) -> frozenset:
+        """The balls the shooter may hit first: any on the break (WPA 3.3(b)); any but the 8 on
+        an open table (3.4); his own group, or the 8 once his group is off the table."""
+        if state.is_break:
+            return state.on_table
+        group = state.groups[state.shooter]
+        balls = state.on_table - {EIGHT} if group is None else state.on_table & GROUP_BALLS[group]
+        return balls or state.on_table & {EIGHT}
+
+    def judge(self, state: GameState, outcome, called_pocket=None):
+        """(next GameState, Ruling) after `outcome` played from `state`. `called_pocket` is the
+        pocket the shooter names for the 8 (WPA 1.6, 3.8): an index below `n_pockets`, or None;
+        it matters only when the 8 drops on a shot at the 8."""
+        check_shot(state, outcome)
+        if called_pocket is not None and (isinstance(called_pocket, bool) or not isinstance(called_pocket, int)
+                                          or not 0 <= called_pocket < self.n_pockets):
+            raise ValueError(f"called_pocket must be None or a pocket index 0..{self.n_pockets - 1}, "
+                             f"got {called_pocket!r}")
+        if state.is_break:
+            return self._judge_break(state, outcome)
+        return self._judge_shot(state, outcome, called_pocket)
+
+    def _judge_break(self, state, outcome):
+        """The break (WPA 3.3): an object ball pocketed or four to a rail; no ball need be hit
+        first; the 8 that drops (or leaves the table) is spotted; a scratch gives the incoming
+        player the cue ball in hand behind the head string; the table stays open."""
+        fouls = standard_fouls(outcome, frozenset(), None, True)
+        illegal = break_requirement(outcome)
+        fouls = ordered(fouls + ([illegal] if illegal else []))
+        names = tuple(n for n, _ in fouls)
+        player = state.shooter
+        messages = [m for _, m in fouls]
+        on_table = state.on_table - set(outcome.pocketed) - set(outcome.off_table)
+        spot = ()
+        if EIGHT in outcome.pocketed or EIGHT in outcome.off_table:  # 3.3(e)-(f), 3.6: spotted (our choice)
+            spot, on_table = (EIGHT,), on_table | {EIGHT}
+            messages.append("the 8 is spotted")
+        counts = list(state.fouls)
+        counts[player] = counts[player] + 1 if fouls else 0
+        hand = None
+        if outcome.scratch or "ball_off_table" in names:  # 3.3(f)-(g)
+            hand = "behind_head_string"
+        elif illegal and self.illegal_break == "ball_in_hand":
+            hand = "anywhere"
+        turn_passed = bool(fouls) or not outcome.pocketed  # 3.3(c): a legal break that pockets continues
+        ruling = Ruling(names[0] if names else None, names, turn_passed, hand, spot, None, None, ())
+        new = advance(state, ruling, on_table, counts)
+        return new, with_messages(ruling, messages + turn_messages(new, turn_passed, False))
+
+    def _judge_shot(self, state, outcome, called_pocket):
+        """Any shot after the break: WPA 3.4 (open table, groups), 3.5 (continuing play), 3.7
+        (standard fouls: ball in hand anywhere), 3.8 (losing the rack with the 8)."""
+        player, other = state.shooter, 1 - state.shooter
+        targets = self.legal_targets(state)
+        group = state.groups[player]
+        fouls = ordered(standard_fouls(outcome, targets, lambda b: _wrong_ball(b, player, group, targets), False))
+        names = tuple(n for n, _ in fouls)
+        messages = [m for _, m in fouls]
+        on_table = state.on_table - set(outcome.pocketed) - set(outcome.off_table)
+        winner = end = None
+        if EIGHT in outcome.pocketed or EIGHT in outcome.off_table:
+            end, line = _eight_down(outcome, called_pocket, EIGHT in targets, bool(fouls))
+            winner = player if end == "eight_pocketed" else other
+            messages.append(f"player {player} {'wins' if winner == player else 'loses'}: {line}")
+        counts, groups = list(state.fouls), state.groups
+        counts[player] = counts[player] + 1 if fouls else 0
+        if winner is None and not fouls and group is None:
+            groups, line = _assign_groups(player, outcome.pocketed)
+            messages += [line] if line else []
+        own = GROUP_BALLS[groups[player]] if groups[player] else frozenset()
+        turn_passed = winner is None and (bool(fouls) or not any(b in own for b in outcome.pocketed))
+        hand = "anywhere" if fouls and winner is None else None
+        ruling = Ruling(names[0] if names else None, names, turn_passed, hand, (), winner, end, ())
+        new = advance(state, ruling, on_table, counts, groups)
+        if winner is None:
+            messages += turn_messages(new, turn_passed, False)
+        return new, with_messages(ruling, messages)
+
+    def describe(self, state: GameState) -> str:
+        """One line: whose shot, the group, ball in hand."""
+        if state.winner is not None:
+            return f"player {state.winner} won"
+        group = state.groups[state.shooter]
+        on = "the break" if state.is_break else "open table" if group is None else (
+            "on the 8" if self.legal_targets(state) == {EIGHT} else f"on {group}")
+        return f"player {state.shooter} to shoot, {on}{', ball in hand' if state.ball_in_hand else ''}"
+
+
+def _eight_down(outcome, called_pocket, on_eight, fouled):
+    """(end reason, words) when the 8 drops or leaves the table after the break (WPA 3.8)."""
+    if EIGHT in outcome.off_table:
+        return "eight_off_table", "the 8 left the table"
+    if not on_eight:
+        return "eight_early", "the 8 pocketed before his group was cleared"
+    if fouled:
+        return "eight_with_foul", "the 8 pocketed on a foul"
+    if called_pocket is None:
+        return "eight_wrong_pocket", "the 8 pocketed with no pocket called"
+    if EIGHT not in outcome.pocket_of:
+        raise ValueError("the 8 dropped but outcome.pocket_of does not say in which pocket; it is needed "
+                         "to check the called pocket")
+    pocket = outcome.pocket_of[EIGHT]
+    if pocket != called_pocket:
+        return "eight_wrong_pocket", f"the 8 pocketed in pocket {pocket}, pocket {called_pocket} was called"
+    return "eight_pocketed", f"the 8 pocketed in the called pocket {pocket}"
+
+
+def _assign_groups(player, pocketed):
+    """Groups after a legal shot on an open table: the group of the first object ball (not
+    the 8) to drop goes to the shooter (WPA 3.4, with "the first to drop" for "the called
+    ball"); ((None, None), None) if none dropped."""
+    first = next((b for b in pocketed if b != EIGHT), None)
+    if first is None:
+        return (None, None), None
+    mine = group_of(first)
+    theirs = "stripes" if mine == "solids" else "solids"
+    groups = (mine, theirs) if player == 0 else (theirs, mine)
+    return groups, f"player {player} takes {mine} (the {first} dropped first), player {1 - player} {theirs}"
+
+
+def _wrong_ball(ball, player, group, targets):
+    """The wrong-ball-first message's tail."""
+    if group is None:
+        return f"hit the {ball} on an open table: any ball but the 8 first"
+    if targets == {EIGHT}:
+        return f"hit the {ball}, player {player} is on the 8"
+    return f"hit the {ball}, player {player} is on {group}"

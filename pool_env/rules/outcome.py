@@ -1,0 +1,115 @@
+"""`ShotOutcome`: what the rules read of a shot (first contact, drops, rails), built from a physics `Result`."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+CUE = 0  # the cue ball's number
+
+
+@dataclass(frozen=True)
+class ShotOutcome:
+    """The facts of one shot that the rules judge (ball numbers: 0 is the cue ball).
+
+    | field | meaning |
+    | --- | --- |
+    | `first_contact` | the object ball the cue ball touched first, or None (it touched none) |
+    | `pocketed` | the object balls that dropped, in the order they dropped (never the cue ball) |
+    | `pocket_of` | ball -> pocket index (`Table.pockets` order) for every ball that dropped, the cue ball included |
+    | `cue_pocketed` | the cue ball dropped (a scratch) |
+    | `rail_after_contact` | some ball (cue or object) touched a cushion after the first cue-object contact |
+    | `object_balls_to_rail` | object balls that touched a cushion at any time in the shot (the break's four) |
+    | `off_table` | balls that left the table without dropping (the engine only pockets, so normally empty) |
+
+    A cushion is any cushion body the engine has: the rail noses, the pockets' facings and
+    their jaw tips (all "ball_cushion" events); a ball that touches a facing or a jaw tip in a
+    pocket's mouth has touched a cushion (the WPA's "rail" is the cushion, definitions 8.x).
+    """
+
+    first_contact: int | None = None
+    pocketed: tuple[int, ...] = ()
+    pocket_of: dict = field(default_factory=dict)
+    cue_pocketed: bool = False
+    rail_after_contact: bool = False
+    object_balls_to_rail: frozenset = frozenset()
+    off_table: tuple[int, ...] = ()
+
+    def __post_init__(self):
+        _check_outcome(self)
+
+    def __hash__(self):  # pocket_of is a dict: hash the rest
+        return hash((self.first_contact, self.pocketed, tuple(sorted(self.pocket_of.items())), self.cue_pocketed,
+                     self.rail_after_contact, self.object_balls_to_rail, self.off_table))
+
+    @property
+    def scratch(self) -> bool:
+        """The cue ball dropped or left the table."""
+        return self.cue_pocketed or CUE in self.off_table
+
+
+def _check_outcome(o: ShotOutcome) -> None:
+    """ValueError for an outcome no shot can have (bad numbers, a ball dropped twice...)."""
+    def number(b, what):
+        if isinstance(b, bool) or not isinstance(b, int) or b < 0:
+            raise ValueError(f"ShotOutcome: {what} must be a ball number (int >= 0), got {b!r}")
+
+    if o.first_contact is not None:
+        number(o.first_contact, "first_contact")
+        if o.first_contact == CUE:
+            raise ValueError("ShotOutcome: first_contact is an object ball, never the cue ball (0)")
+    for b in o.pocketed:
+        number(b, "each pocketed ball")
+    if CUE in o.pocketed:
+        raise ValueError("ShotOutcome: pocketed holds object balls only; the cue ball dropping is cue_pocketed=True")
+    if len(set(o.pocketed)) != len(o.pocketed):
+        raise ValueError(f"ShotOutcome: a ball dropped twice in pocketed={o.pocketed}")
+    for b in o.off_table:
+        number(b, "each off_table ball")
+    both = set(o.pocketed) & set(o.off_table)
+    if both or len(set(o.off_table)) != len(o.off_table):
+        raise ValueError(f"ShotOutcome: ball {sorted(both or o.off_table)[0]} both dropped and left the table, "
+                         "or left it twice")
+    if o.cue_pocketed and CUE in o.off_table:
+        raise ValueError("ShotOutcome: the cue ball cannot both drop and leave the table")
+    for b, p in o.pocket_of.items():
+        number(b, "each pocket_of key")
+        number(p, "each pocket index in pocket_of")
+    dropped = set(o.pocketed) | ({CUE} if o.cue_pocketed else set())
+    if o.pocket_of and set(o.pocket_of) != dropped:
+        raise ValueError(f"ShotOutcome: pocket_of names balls {sorted(o.pocket_of)} but the balls that dropped "
+                         f"are {sorted(dropped)}")
+    for b in o.object_balls_to_rail:
+        number(b, "each object_balls_to_rail ball")
+    if CUE in o.object_balls_to_rail:
+        raise ValueError("ShotOutcome: object_balls_to_rail holds object balls only")
+    if o.rail_after_contact and o.first_contact is None:
+        raise ValueError("ShotOutcome: rail_after_contact needs a first contact")
+
+
+def outcome_from_result(result) -> ShotOutcome:
+    """The `ShotOutcome` of a simulated shot: read from `result.events` (a physics `Result`, or
+    any object with an `events` list of `Event(time, kind, i, j)` in time order).
+
+    Ball index = ball number (the racks in `pool_env.rules.racks` put ball k at index k).
+    Contacts are the "ball_ball" kinds (a pressed "ball_ball_settle" contact included); a
+    cushion contact is a "ball_cushion" event (rails, facings and jaw tips alike); a drop is a
+    "ball_pocket" event (j the pocket index). Motion transitions are ignored."""
+    first = None
+    contact_seen = rail_after = cue_pocketed = False
+    pocketed, pocket_of, to_rail = [], {}, set()
+    for event in result.events:
+        kind, i, j = event.kind, int(event.i), int(event.j)
+        if kind.startswith("ball_ball"):
+            if not contact_seen and CUE in (i, j):
+                first, contact_seen = (j if i == CUE else i), True
+        elif kind == "ball_cushion":
+            rail_after = rail_after or contact_seen
+            if i != CUE:
+                to_rail.add(i)
+        elif kind == "ball_pocket":
+            pocket_of[i] = j
+            if i == CUE:
+                cue_pocketed = True
+            else:
+                pocketed.append(i)
+    return ShotOutcome(first, tuple(pocketed), pocket_of, cue_pocketed, rail_after, frozenset(to_rail))
