@@ -56,8 +56,11 @@ def observations(xy, pocketed, shots, max_shots, table: Table, out):
     if not out.flags.c_contiguous:
         raise ValueError("out must be C-contiguous (its per-ball view must not be a copy)")
     per_ball = out[:, :-1].reshape(out.shape[0], N_BALLS, 3)
-    # Centres lie at least R inside the rails, so these are within (-1, 1).
+    # Centres on the cloth map into (-1, 1); a ball hanging in a pocket's mouth has its centre
+    # up to a few cm past the nose line, clipped to the edge (decode_observation puts it on
+    # the nose line).
     per_ball[:, :, 0:2] = xy * (2.0 / table.length, 2.0 / table.width) - 1.0
+    np.clip(per_ball[:, :, 0:2], -1.0, 1.0, out=per_ball[:, :, 0:2])
     per_ball[:, :, 2] = 1.0
     per_ball[pocketed] = (0.0, 0.0, -1.0)
     out[:, -1] = 2.0 * shots / max_shots - 1.0

@@ -119,7 +119,8 @@ def test_ball_hanging_in_the_mouth_is_a_valid_start():
     balls = Balls(state["xy"], pocketed=state["pocketed"])
     check_on_table(balls, TABLE, STANDARD)
     env = gym.make("PoolBreakRun-v0")
-    env.reset(seed=0, options={"balls": balls})
+    obs, _ = env.reset(seed=0, options={"balls": balls})
+    assert env.observation_space.contains(obs)  # positions past the nose line clip to its edge
     action = np.asarray(state["next_action"], dtype=np.float32)
     _, _, _, truncated, info = env.step(action)
     assert not truncated or "error" not in info
@@ -140,3 +141,16 @@ def test_ball_hanging_in_the_mouth_is_a_valid_start():
 def test_table_check_names_where_a_ball_may_not_be(xy, match):
     with pytest.raises(ValueError, match=match):
         check_on_table(Balls([xy]), TABLE, STANDARD)
+
+
+def test_observation_stays_in_its_space_with_a_ball_past_the_nose_line():
+    # A ball hanging in the side pocket's mouth, its centre 2 mm past the nose line (the
+    # opening's edge is 4.76 mm past it): a legal start, observed at the table's edge.
+    xy = np.zeros((16, 2))
+    xy[0], xy[1] = (0.56, 0.56), (1.12, -0.002)
+    balls = Balls(xy, pocketed=[False, False] + [True] * 14)
+    check_on_table(balls, TABLE, STANDARD)
+    env = gym.make("PoolBreakRun-v0")
+    obs, _ = env.reset(seed=0, options={"balls": balls})
+    assert env.observation_space.contains(obs)
+    assert obs[3 * 1 + 1] == -1.0  # ball 1's y, clipped to the near rail's edge
