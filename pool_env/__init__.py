@@ -3,7 +3,7 @@
 import gymnasium
 
 __version__ = "0.1.0"
-__all__ = ["PoolBreakEnv", "PoolVectorEnv", "record_video", "__version__"]
+__all__ = ["PoolBreakEnv", "PoolGameEnv", "PoolVectorEnv", "record_video", "__version__"]
 
 # Registered by entry-point strings so that `import pool_env` stays light (no numba, no physics).
 # `gymnasium.make_vec(id, num_envs=N, vectorization_mode="vector_entry_point")` makes a
@@ -12,6 +12,11 @@ for _id, _kwargs in (("PoolBreak-v0", {"max_shots": 1}), ("PoolBreakRun-v0", {"m
     if _id not in gymnasium.registry:
         gymnasium.register(id=_id, entry_point="pool_env.env:PoolBreakEnv",
                            vector_entry_point="pool_env.vector:PoolVectorEnv", kwargs=_kwargs)
+# The games (pool_env/games.py): 9-ball and 8-ball by the WPA rules against an opponent.
+for _id, _game in (("PoolNineBall-v0", "nine_ball"), ("PoolEightBall-v0", "eight_ball")):
+    if _id not in gymnasium.registry:
+        gymnasium.register(id=_id, entry_point="pool_env.games:PoolGameEnv",
+                           vector_entry_point="pool_env.vector:PoolGameVectorEnv", kwargs={"game": _game})
 
 
 def __getattr__(name):
@@ -19,6 +24,10 @@ def __getattr__(name):
         from .env import PoolBreakEnv
 
         return PoolBreakEnv
+    if name == "PoolGameEnv":
+        from .games import PoolGameEnv
+
+        return PoolGameEnv
     if name == "PoolVectorEnv":
         from .vector import PoolVectorEnv
 

@@ -438,6 +438,15 @@ class PoolBreakEnv(gym.Env):
         except (SimulationError, ValueError) as exc:
             return exc
 
+    def _advance(self, outcome):
+        """After phase (b): a break env's step is one shot, so nothing follows it (a game env
+        returns its opponent's next struck balls here). See PoolVectorEnv._play."""
+        return None
+
+    def _obs_state(self):
+        """What `observations` builds this env's observation from (a vector env, all at once)."""
+        return self._balls, self._shots, self.max_shots
+
     def _finish(self, outcome, observe=True):
         """Phase (c): the step's (observation, reward, terminated, truncated, info) from the
         shot's Result, or its SimulationError or ValueError (the shot failed: the balls stay

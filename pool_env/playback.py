@@ -114,6 +114,11 @@ class ShotPlayback:
             return
         self._balls, self._shot, self._rotated = result.final, (result, start), False
 
+    def place(self, balls):
+        """The balls were moved between shots (a ball spotted, the cue ball placed with ball in
+        hand): the table now shows them."""
+        self._balls = balls
+
     def frame(self) -> np.ndarray:
         """The table now: (H, W, 3) uint8."""
         if self._shot is not None and not self._rotated:

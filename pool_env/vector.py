@@ -67,6 +67,7 @@ class PoolVectorEnv(VectorEnv):
     """
 
     metadata = {**PoolBreakEnv.metadata, "autoreset_mode": AutoresetMode.NEXT_STEP}
+    env_class = PoolBreakEnv
 
     def __init__(self, num_envs: int = 1, autoreset_mode: AutoresetMode | str = AutoresetMode.NEXT_STEP,
                  threads: int | None = None, max_episode_steps: int | None = None, **env_kwargs: Any):
@@ -82,7 +83,7 @@ class PoolVectorEnv(VectorEnv):
         self.threads = None if threads is None else int(threads)
         self.max_episode_steps = None if max_episode_steps is None else int(max_episode_steps)
         self.env_kwargs = dict(env_kwargs)
-        self.envs = [PoolBreakEnv(**env_kwargs) for _ in range(self.num_envs)]
+        self.envs = [self.env_class(**env_kwargs) for _ in range(self.num_envs)]
         first = self.envs[0]
         self.table, self.physics = first.table, first.physics
         self.render_mode = first.render_mode
@@ -153,10 +154,9 @@ class PoolVectorEnv(VectorEnv):
 
         # (a) every action checked and every shot struck before anything changes
         struck = [envs[k]._strike_or_error(actions[k]) for k in shots]
-        # (b) all the shots of the step at once
-        playable = [s for s in struck if not isinstance(s, Exception)]
-        results = iter(simulate_batch(playable, self.table, self.physics, threads=self.threads))
-        # (c) each sub-env finishes its shot (or, NEXT_STEP, resets), in order
+        # (b) all the shots of the step at once (a game's step takes more rounds: the opponent's)
+        outcomes = self._play(shots, struck)
+        # (c) each sub-env finishes its step (or, NEXT_STEP, resets), in order
         rewards, terminations, truncations = [0.0] * n, [False] * n, [False] * n
         elapsed, limit = self._elapsed, self.max_episode_steps
         if len(shots) < n:  # NEXT_STEP: the sub-envs whose episodes ended last step start anew
@@ -165,10 +165,9 @@ class PoolVectorEnv(VectorEnv):
                 elapsed[k] = 0
         same_step = self.autoreset_mode == AutoresetMode.SAME_STEP
         entries, finals, final_balls = [], [], []
-        for k, shot in zip(shots, struck):
+        for k in shots:
             env = envs[k]
-            _, rewards[k], terminated, truncated, info = env._finish(
-                shot if isinstance(shot, Exception) else next(results), observe=False)
+            _, rewards[k], terminated, truncated, info = env._finish(outcomes[k], observe=False)
             elapsed[k] += 1
             if limit is not None and elapsed[k] >= limit:
                 truncated = True
@@ -177,7 +176,7 @@ class PoolVectorEnv(VectorEnv):
                 final = {"final_obs": None, "final_info": info}  # final_obs filled in below, all at once
                 entries.append((k, final))  # then the info of reset: empty
                 finals.append(final)
-                final_balls.append((env._balls, env._shots, env.max_shots))
+                final_balls.append(env._obs_state())
                 env._start(env._draw_start())
                 elapsed[k] = 0
             else:
@@ -192,11 +191,31 @@ class PoolVectorEnv(VectorEnv):
                 self._gather_infos(entries))
 
     # --- helpers ------------------------------------------------------------------------------
+    def _play(self, shots, struck):
+        """Simulate the struck balls of sub-envs `shots` in one simulate_batch call per round:
+        each outcome goes to its sub-env's `_advance`, which returns the next shot of the same
+        step (a game's opponent) or None; {sub-env: the outcome of its step's last shot}."""
+        outcomes, pending = {}, dict(zip(shots, struck))
+        while pending:
+            playable = [k for k, s in pending.items() if not isinstance(s, Exception)]
+            results = dict(zip(playable, simulate_batch([pending[k] for k in playable], self.table, self.physics,
+                                                        threads=self.threads)))
+            following = {}
+            for k, shot in pending.items():
+                outcome = shot if isinstance(shot, Exception) else results[k]
+                more = self.envs[k]._advance(outcome)
+                if more is None:
+                    outcomes[k] = outcome
+                else:
+                    following[k] = more
+            pending = following
+        return outcomes
+
     def _observe(self, states=None):
         """Observations (m, 49) of m states (balls, shots taken, max_shots), all at once; by
         default the sub-envs' now."""
         if states is None:
-            states = [(env._balls, env._shots, env.max_shots) for env in self.envs]
+            states = [env._obs_state() for env in self.envs]
         out = np.empty((len(states), self._obs_size), dtype=np.float32)
         balls, shots, max_shots = zip(*states)
         observations(np.array([b.xy for b in balls]), np.array([b.pocketed for b in balls]), np.array(shots),
@@ -285,3 +304,24 @@ class PoolVectorEnv(VectorEnv):
                              f"Got `{len(values)}` values for {self.num_envs} environments.")
         for env, value in zip(self.envs, values):
             setattr(env, name, value)
+
+
+class PoolGameVectorEnv(PoolVectorEnv):
+    """`num_envs` `PoolGameEnv`s (PoolNineBall-v0, PoolEightBall-v0) as one vector env, as
+    `PoolVectorEnv` runs `PoolBreakEnv`s: each step simulates every sub-env's agent shot in one
+    `simulate_batch` call, then the opponents' shots round by round (all the sub-envs whose
+    opponent is to shoot, in one call per round). The same arguments, autoreset modes and
+    results as `gymnasium.make_vec(id, num_envs, vectorization_mode="sync")`; the observations
+    are the sub-envs' own (`PoolGameEnv` documents them)."""
+
+    @property
+    def env_class(self):
+        from .games import PoolGameEnv
+
+        return PoolGameEnv
+
+    def _observe(self, states=None):
+        """Observations (m, size) of m sub-env states (each its own observation), stacked."""
+        if states is None:
+            states = [env._obs_state() for env in self.envs]
+        return np.stack(states).astype(np.float32, copy=False)

@@ -29,12 +29,12 @@ class _Clock:
         return time.process_time() - self._cpu
 
 
-def _steps_per_second(env_id, seconds, seed):
+def _steps_per_second(env_id, seconds, seed, **kwargs):
     """Random actions, resetting whenever an episode ends (resets are counted in the time)."""
-    env = gym.make(env_id)
+    env = gym.make(env_id, **kwargs)
     env.action_space.seed(seed)
     env.reset(seed=seed)
-    env.step(np.array([1.0, 0.0], dtype=np.float32))  # load the compiled engine before timing
+    env.step(env.action_space.sample())  # load the compiled engine before timing
     env.reset(seed=seed)
     steps = episodes = failures = 0
     with warnings.catch_warnings():
@@ -100,6 +100,12 @@ def main(argv=None) -> int:
         target = STEP_TARGET if env_id == "PoolBreak-v0" else None
         note = f"{steps} steps, {episodes} episodes" + (f", {failures} failed shots" if failures else "")
         rows.append((f"{env_id} steps/s, no rendering", cpu, wall, target, note))
+    for env_id in ("PoolNineBall-v0", "PoolEightBall-v0"):
+        for opponent in ("random", "ghost_ball"):
+            cpu, wall, steps, episodes, failures = _steps_per_second(env_id, args.seconds, args.seed, opponent=opponent)
+            note = f"{steps} agent shots (and the opponent's), {episodes} games" + (
+                f", {failures} failed shots" if failures else "")
+            rows.append((f"{env_id} vs {opponent} steps/s", cpu, wall, None, note))
     for mode, what in (("rgb_array", "render() of the table"), ("rgb_array_list", "whole shots, per frame")):
         cpu, wall, frames = _frames_per_second(mode, args.seconds, args.seed, size)
         rows.append((f"{mode} frames/s at {size[0]}x{size[1]}", cpu, wall, FRAME_TARGET, f"{what}, {frames} frames"))

@@ -1,0 +1,196 @@
+"""The game envs (PoolNineBall-v0, PoolEightBall-v0): the spaces as documented, the rules in play, checkers, fuzz."""
+
+import math
+import warnings
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env
+
+import pool_env
+from pool_env import rules
+from pool_env.games import PoolGameEnv, place_cue_ball, placement_area
+from pool_env.physics import BALL_RADIUS, Balls, Physics, Table
+from pool_env.physics.simulate import check_on_table
+
+R = BALL_RADIUS
+TABLE = Table.eight_foot()
+IDS = ("PoolNineBall-v0", "PoolEightBall-v0")
+
+
+def layout(n, on):
+    """n balls by number: those in `on` (number -> (x, y)) on the table, the rest pocketed."""
+    xy = np.zeros((n, 2))
+    pocketed = np.ones(n, dtype=bool)
+    for k, p in on.items():
+        xy[k], pocketed[k] = p, False
+    return Balls(xy, pocketed=pocketed)
+
+
+def action(vx=0.0, vy=0.0, top=0.0, place=(0.0, 0.0), n=6):
+    """An action sending the cue ball at (vx, vy) m/s (the force entries are v / 12 m/s)."""
+    a = [vx / 12.0, vy / 12.0, 0.0, top / 0.5, *place]
+    return np.array(a + [0.0] * (n - 6), dtype=np.float32)
+
+
+@pytest.mark.parametrize("env_id", IDS)
+def test_checkers_are_silent(env_id):
+    from stable_baselines3.common.env_checker import check_env as sb3_check_env
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        check_env(gym.make(env_id).unwrapped)
+        check_env(gym.make(env_id, render_mode="rgb_array").unwrapped)
+        sb3_check_env(gym.make(env_id))
+    assert [str(w.message) for w in caught] == []
+
+
+def test_spaces_and_first_observation_are_as_documented():
+    # 9-ball: 10 balls x 3 + 9 legal flags + 2 ball in hand + 2 fouls + 1 counter = 44;
+    # 8-ball: 16 x 3 + 15 + 2 + 2 + 3 groups + 1 = 71. Actions: 6 and 7 entries.
+    nine, eight = gym.make("PoolNineBall-v0"), gym.make("PoolEightBall-v0")
+    assert nine.observation_space.shape == (44,) and nine.action_space.shape == (6,)
+    assert eight.observation_space.shape == (71,) and eight.action_space.shape == (7,)
+    obs, _ = nine.reset(seed=0)
+    # On the break only the 1 is a legal first contact (WPA 2.3), and the breaker has the
+    # cue ball in hand behind the head string.
+    assert obs[30:39].tolist() == [1.0] + [-1.0] * 8
+    assert obs[39:41].tolist() == [-1.0, 1.0]
+    assert obs[41:43].tolist() == [-1.0, -1.0] and obs[43] == -1.0
+    obs, _ = eight.reset(seed=0)
+    assert obs[48:63].tolist() == [1.0] * 15  # no ball required first on the break (WPA 3.3)
+    assert obs[67:70].tolist() == [1.0, -1.0, -1.0]  # open table
+
+
+def test_nine_pocketed_on_a_legal_shot_wins():
+    # WPA 2.x: the 9 legally pocketed wins. Only the cue ball and the 9 are left; the cue ball
+    # sent straight down the table's middle line at 1.5 m/s, stun, drives the 9 straight into
+    # the side pocket and stops near the contact point.
+    env = gym.make("PoolNineBall-v0")
+    env.reset(seed=0, options={"balls": layout(10, {0: (1.12, 0.55), 9: (1.12, 0.4)})})
+    obs, reward, terminated, truncated, info = env.step(action(vy=-1.5))
+    assert (reward, terminated, truncated) == (1.0, True, False)
+    assert info["winner"] == "agent" and info["end_reason"] == "nine_pocketed" and info["pocketed"] == [9]
+    assert info["foul"] is None and info["opponent_shots"] == []
+
+
+def test_no_contact_is_a_foul_and_the_opponent_plays_with_ball_in_hand():
+    # WPA 6.2/6.3: the cue ball touching no object ball is a foul; the turn passes and the
+    # opponent has the cue ball in hand anywhere (1.5). The opponent's shots are played
+    # inside the step and reported.
+    env = gym.make("PoolNineBall-v0")
+    env.reset(seed=0, options={"balls": layout(10, {0: (0.3, 0.3), 1: (1.8, 0.8), 9: (1.9, 0.3)})})
+    _, _, _, _, info = env.step(action(vx=-0.24))
+    assert info["foul"] == "no_contact" and info["turn_passed"] and info["ball_in_hand"] == "anywhere"
+    assert len(info["opponent_shots"]) >= 1
+    assert set(info["opponent_shots"][0]) == {"foul", "pocketed", "ball_in_hand", "turn_passed", "messages"}
+
+
+def test_practice_ends_when_the_turn_passes_and_pays_per_ball():
+    # opponent=None: +1 per ball pocketed legally; the episode ends as soon as the turn would
+    # pass. The 3 straight into the side pocket (the lowest on the table), then a miss.
+    env = gym.make("PoolNineBall-v0", opponent=None)
+    env.reset(seed=0, options={"balls": layout(10, {0: (1.12, 0.55), 3: (1.12, 0.4), 9: (0.4, 0.9)})})
+    _, reward, terminated, _, info = env.step(action(vy=-1.5))
+    assert (reward, terminated, info["pocketed"]) == (1.0, False, [3])
+    _, reward, terminated, _, info = env.step(action(vx=-0.24))  # away from the 9: no contact
+    assert (reward, terminated, info["foul"]) == (0.0, True, "no_contact")
+
+
+def test_ball_in_hand_placement_maps_onto_the_area_and_avoids_balls():
+    # Behind the head string the centre may go from R + 0.1 mm to x = L/4 and across the
+    # cloth; action (1, 0) is the head string's middle. A spot on a ball moves to the nearest
+    # free one, 2R + 0.1 mm from it.
+    x_lo, x_hi, y_lo, y_hi = placement_area(TABLE, "behind_head_string")
+    assert (x_lo, x_hi) == pytest.approx((R + 1e-4, TABLE.length / 4))
+    assert (y_lo, y_hi) == pytest.approx((R + 1e-4, TABLE.width - R - 1e-4))
+    balls = layout(10, {0: (1.0, 0.5), 1: (0.4, 0.56), 9: (1.8, 0.5)})
+    placed = place_cue_ball(balls, TABLE, Physics.standard(), "anywhere", (0.4, 0.56))
+    gap = math.hypot(*(placed.xy[0] - placed.xy[1]))
+    assert 2 * R + 1e-4 <= gap <= 2 * R + 1e-4 + 2e-3  # within one search ring of the nearest
+    env = gym.make("PoolNineBall-v0", opponent=None)
+    env.reset(seed=0)
+    env.step(action(vx=9.0, place=(1.0, 0.0)))  # the break, placed on the head string's middle
+    first = env.unwrapped._step_shots[0]
+    assert first.sample([0.0])[0][0, 0, 0:2] == pytest.approx((TABLE.length / 4, TABLE.width / 2))
+
+
+def test_noise_is_deterministic_given_the_seed():
+    runs = []
+    for seed in (3, 3, 4):
+        env = gym.make("PoolEightBall-v0", noise="olympiad", opponent="random")
+        env.reset(seed=seed)
+        out = [env.step(action(vx=8.0, place=(1.0, 0.0), n=7))[0]]
+        out.append(env.unwrapped.balls.xy.copy())
+        runs.append(out)
+    assert all(np.array_equal(a, b) for a, b in zip(runs[0], runs[1]))
+    assert not np.array_equal(runs[0][1], runs[2][1])
+
+
+@pytest.mark.parametrize("env_id, noise", [(IDS[0], None), (IDS[1], None), (IDS[0], "olympiad"), (IDS[1], "olympiad")])
+def test_random_games_end_and_keep_the_balls(env_id, noise):
+    # Random actions against the random player: every game ends (won or lost, or truncated
+    # at max_shots), every ball is either on the table or pocketed (the rules' set and the
+    # balls agree), spotted balls never overlap (the table check passes), the winner is set
+    # exactly when the game is over.
+    env = gym.make(env_id, opponent="random", noise=noise, max_shots=60)
+    rng = np.random.default_rng(0)
+    for game in range(6):
+        env.reset(seed=game)
+        base = env.unwrapped
+        for _ in range(60):
+            obs, reward, terminated, truncated, info = env.step(rng.uniform(-1, 1, env.action_space.shape))
+            assert env.observation_space.contains(obs)
+            state, balls = base.state, base.balls
+            assert state.on_table == frozenset(np.flatnonzero(~balls.pocketed[1:]) + 1)
+            check_on_table(balls, TABLE, Physics.standard())
+            assert (state.winner is not None) == (info["winner"] is not None)
+            if info["winner"] is not None:
+                assert terminated and reward == (1.0 if info["winner"] == "agent" else -1.0)
+            if terminated or truncated:
+                break
+        assert terminated or truncated
+
+
+@pytest.mark.parametrize("env_id", IDS)
+def test_native_vector_env_equals_the_sync_one(env_id):
+    native = gym.make_vec(env_id, num_envs=2, vectorization_mode="vector_entry_point", opponent="random")
+    sync = gym.make_vec(env_id, num_envs=2, vectorization_mode="sync", opponent="random")
+    assert type(native).__name__ == "PoolGameVectorEnv"
+    a, _ = native.reset(seed=1)
+    b, _ = sync.reset(seed=1)
+    assert np.array_equal(a, b)
+    rng = np.random.default_rng(1)
+    for _ in range(6):
+        act = rng.uniform(-1, 1, native.action_space.shape).astype(np.float32)
+        for x, y in zip(native.step(act)[:4], sync.step(act)[:4]):
+            assert np.array_equal(x, y)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(game="snooker"), "unknown game 'snooker'"),
+    (dict(opponent="shark"), "unknown opponent 'shark'"),
+    (dict(noise="loud"), "unknown noise preset 'loud'"),
+    (dict(noise={"angle": -1.0}), "finite and >= 0"),
+    (dict(max_shots=0), "max_shots"),
+])
+def test_bad_arguments_are_named(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        PoolGameEnv(**kwargs)
+
+
+def test_bad_start_layouts_are_named():
+    env = gym.make("PoolNineBall-v0")
+    with pytest.raises(ValueError, match="10 balls"):
+        env.reset(options={"balls": layout(16, {0: (0.5, 0.5), 9: (1.0, 0.5)})})
+    with pytest.raises(ValueError, match="the 9 must be on the table"):
+        env.reset(options={"balls": layout(10, {0: (0.5, 0.5), 1: (1.0, 0.5)})})
+    with pytest.raises(ValueError, match="unknown reset option 'rack'"):
+        env.reset(options={"rack": True})
+
+
+def test_registered_and_exported():
+    assert pool_env.PoolGameEnv is PoolGameEnv
+    assert gym.spec("PoolEightBall-v0").kwargs == {"game": "eight_ball"}
+    assert rules.legal_targets(rules.new_game("nine_ball")) == frozenset({1})
