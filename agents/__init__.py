@@ -8,6 +8,7 @@ them alike:
 | `RandomAgent(action_space, seed)` | uniformly random actions |
 | `BreakAgent(table, spin)` | full-power break a tenth of a radius off the head ball's centre |
 | `GhostBallAgent(table, physics, spin)` | breaks, then pots by the ghost-ball method (multi-shot env) |
+| `GameGhostBallAgent(game, table, physics)` | the game envs' rule-aware ghost-ball player (their default opponent) |
 | `SB3Agent(model)` / `SB3Agent.load(path)` | a Stable-Baselines3 model; `load_model` reads the algorithm from the zip |
 
 ```python
@@ -23,10 +24,12 @@ print(evaluate(agent, "PoolBreakRun-v0", seeds=range(20))["pocketed_per_episode"
 
 from .base import Agent, RandomAgent
 from .evaluate import baselines, evaluate, format_table, heuristic_for, paired_difference, play_episode, summarize
+from .game_player import GameGhostBallAgent
 from .heuristic import BreakAgent, GhostBallAgent, Shot
 from .sb3 import SB3Agent, algorithm_of, load_model
 
 __all__ = [
-    "Agent", "RandomAgent", "BreakAgent", "GhostBallAgent", "Shot", "SB3Agent", "load_model", "algorithm_of",
+    "Agent", "RandomAgent", "BreakAgent", "GhostBallAgent", "GameGhostBallAgent", "Shot", "SB3Agent", "load_model",
+    "algorithm_of",
     "evaluate", "play_episode", "summarize", "paired_difference", "format_table", "baselines", "heuristic_for",
 ]

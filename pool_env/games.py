@@ -126,6 +126,22 @@ def game_observation(balls: Balls, state, viewer: int, shots: int, max_shots: in
     return np.concatenate([per_ball.ravel(), legal, np.array(hand + fouls + extra + counter, dtype=np.float32)])
 
 
+def overlay(frame: np.ndarray, lines) -> np.ndarray:
+    """The frame with `lines` of text in its top-left corner, on a dark band (PIL's default font)."""
+    from PIL import Image, ImageDraw
+
+    if not lines:
+        return frame
+    image = Image.fromarray(frame)
+    draw = ImageDraw.Draw(image)
+    height = 12 * len(lines) + 4
+    width = min(frame.shape[1], 8 + 6 * max(len(line) for line in lines))
+    draw.rectangle((0, 0, width, height), fill=(0, 0, 0))
+    for k, line in enumerate(lines):
+        draw.text((4, 2 + 12 * k), line, fill=(255, 255, 255))
+    return np.asarray(image)
+
+
 def observation_size(game: str) -> int:
     n = GAMES[game]
     return 3 * n + (n - 1) + 4 + (3 if game == "eight_ball" else 0) + 1
@@ -181,6 +197,8 @@ class PoolGameEnv(gym.Env):
     | `max_shots` | 100 | truncate after this many agent shots (a game of misses would never end) |
     | `rule_options` | None | the rule set's options (`NineBall(three_foul_rule=...)`, `EightBall(illegal_break=...)`) |
     | `table`, `physics`, `render_mode`, `render_size` | as `PoolBreakEnv` | |
+    | `overlay` | True | frames carry text: the game, whose shot, ball in hand, the called pocket; at the end
+      of each shot the rules' messages (fouls, the winner) |
 
     ## Action Space
 
@@ -249,7 +267,7 @@ class PoolGameEnv(gym.Env):
 
     def __init__(self, game="nine_ball", opponent="ghost_ball", render_mode=None, table=None, physics=None,
                  noise=None, agent_breaks=True, shaping=False, max_shots=100, rule_options=None,
-                 render_size=(640, 360)):
+                 render_size=(640, 360), overlay=True):
         if game not in GAMES:
             raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAMES)}")
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
@@ -271,11 +289,13 @@ class PoolGameEnv(gym.Env):
         self.opponent = opponent
         self._opponent = resolve_opponent(opponent, self)
         self.render_size = (int(render_size[0]), int(render_size[1]))
+        self.overlay = bool(overlay)
         self.playback = ShotPlayback(self.table, self.render_size, self.metadata["render_fps"],
                                      deferred=render_mode is not None)
         self._balls, self.state, self._done, self._shots = None, None, True, 0
         self._step_shots = []  # the Results of the last step's shots, for frames
         self._called, self._shooter, self._end_reason = None, 0, None
+        self._hand_before, self._shoots_eight = None, False
         self._begin_step()
 
     # --- Gymnasium API ----------------------------------------------------------------------
@@ -295,7 +315,7 @@ class PoolGameEnv(gym.Env):
             return None
         if self._balls is None:
             raise RuntimeError("call reset() before render()")
-        return self.playback.frame() if self.render_mode == "rgb_array" else self.shot_frames()
+        return self._annotate(self.playback.frame()) if self.render_mode == "rgb_array" else self.shot_frames()
 
     def close(self):
         self.playback.close()
@@ -305,17 +325,38 @@ class PoolGameEnv(gym.Env):
         `reset` the starting frame."""
         if self._balls is None:
             raise RuntimeError("call reset() before shot_frames()")
-        if len(self._step_shots) <= 1:
-            return self.playback.shot_frames(fps)
-        # Several shots: replayed on a playback of their own, from the step's start (the balls'
-        # markers turn through the step's shots, from the orientations drawn at reset).
-        replay = ShotPlayback(self.table, self.render_size, self.metadata["render_fps"], deferred=False)
-        replay.reset(self._step_start, self._quaternions)
+        if not self._step_shots:
+            return [self._annotate(frame) for frame in self.playback.shot_frames(fps)]
+        if len(self._step_shots) == 1:
+            shots = [self.playback.shot_frames(fps)]
+        else:
+            # Several shots: replayed on a playback of their own, from the step's start (the
+            # balls' markers turn through the step's shots, from the orientations drawn at reset).
+            replay = ShotPlayback(self.table, self.render_size, self.metadata["render_fps"], deferred=False)
+            replay.reset(self._step_start, self._quaternions)
+            shots = []
+            for result in self._step_shots:
+                replay.shot(result)
+                shots.append(replay.shot_frames(fps))
         frames = []
-        for result in self._step_shots:
-            replay.shot(result)
-            frames += replay.shot_frames(fps)
+        for shot, (caption, messages) in zip(shots, self._captions):
+            if not self.overlay:
+                frames += shot
+                continue
+            frames += [overlay(frame, [caption]) for frame in shot[:-1]]
+            frames.append(overlay(shot[-1], [caption, *messages]))
         return frames
+
+    def _annotate(self, frame):
+        """The table now with the game's state on it (when `overlay`)."""
+        if not self.overlay:
+            return frame
+        state, name = self.state, {"nine_ball": "9-ball", "eight_ball": "8-ball"}[self.game]
+        if state.winner is not None:
+            return overlay(frame, [f"{name}: {'agent' if state.winner == 0 else 'opponent'} wins"])
+        who = "agent" if state.shooter == 0 else "opponent"
+        hand = f", ball in hand ({state.ball_in_hand.replace('_', ' ')})" if state.ball_in_hand else ""
+        return overlay(frame, [f"{name}: {who} to shoot{hand}"])
 
     @property
     def balls(self) -> Balls | None:
@@ -392,7 +433,16 @@ class PoolGameEnv(gym.Env):
         return options
 
     # --- the phases of a step (a vector env runs the simulations of many envs at once) --------
+    def _caption(self, shooter):
+        """The overlay's first line for a shot of `shooter` (0: the agent)."""
+        name = {"nine_ball": "9-ball", "eight_ball": "8-ball"}[self.game]
+        who = "agent" if shooter == 0 else ("opponent" if self._opponent is not None else "player 1")
+        hand = f", ball in hand ({self._hand_before.replace('_', ' ')})" if self._hand_before else ""
+        called = f", 8 called in pocket {self._called}" if self._called is not None and self._shoots_eight else ""
+        return f"{name}  shot {self.state.shot}: {who} shoots{hand}{called}"
+
     def _begin_step(self):
+        self._captions = []
         self._step_shots, self._step_start = [], self._balls
         self._reward, self._error, self._agent_info, self._opponent_infos = 0.0, None, None, []
 
@@ -416,6 +466,8 @@ class PoolGameEnv(gym.Env):
         a = np.clip(a, -1.0, 1.0)
         force, offset = cue_force(a[0:4], spin=True)
         balls, state = self._balls, self.state
+        self._hand_before = state.ball_in_hand
+        self._shoots_eight = self.game == "eight_ball" and 8 in rules.legal_targets(state)
         if state.ball_in_hand is not None:
             x_lo, x_hi, y_lo, y_hi = placement_area(self.table, state.ball_in_hand, float(balls.radii[0]))
             wanted = (x_lo + 0.5 * (a[4] + 1.0) * (x_hi - x_lo), y_lo + 0.5 * (a[5] + 1.0) * (y_hi - y_lo))
@@ -458,6 +510,7 @@ class PoolGameEnv(gym.Env):
         self.playback.shot(outcome)
         self.playback.place(balls)
         self._step_shots.append(outcome)
+        self._captions.append((self._caption(self._shooter), list(ruling.messages)))
         self._end_reason = ruling.end_reason
         info = {"foul": ruling.foul, "pocketed": list(shot.pocketed), "ball_in_hand": ruling.ball_in_hand,
                 "turn_passed": bool(ruling.turn_passed), "messages": list(ruling.messages)}

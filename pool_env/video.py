@@ -15,10 +15,11 @@ VIDEO_EXTENSIONS = (".mp4", ".mov", ".mkv", ".avi")
 
 def _base(env):
     from .env import PoolBreakEnv
+    from .games import PoolGameEnv
 
     base = env.unwrapped
-    if not isinstance(base, PoolBreakEnv):
-        raise TypeError(f"expected a PoolBreakEnv (possibly wrapped), got {type(base).__name__}")
+    if not isinstance(base, (PoolBreakEnv, PoolGameEnv)):
+        raise TypeError(f"expected a PoolBreakEnv or PoolGameEnv (possibly wrapped), got {type(base).__name__}")
     return base
 
 
@@ -77,8 +78,9 @@ class _Writer:
 def record_video(env, policy, path, episodes=1, fps=None, *, seed=None) -> int:
     """Play `episodes` episodes with `policy` and write every shot, whole, to the .mp4 at `path`.
 
-    `env` is a PoolBreakEnv (possibly wrapped, any render mode) or an id such as
-    "PoolBreak-v0". `policy` maps an observation to an action: a callable, an object with
+    `env` is a PoolBreakEnv or a PoolGameEnv (possibly wrapped, any render mode; a game's
+    step films the opponent's shots too, with the game's overlay) or an id such as
+    "PoolBreak-v0" or "PoolNineBall-v0". `policy` maps an observation to an action: a callable, an object with
     `.act(obs)`, a Stable-Baselines3 model (`.predict(obs, deterministic=True)`), or None for
     random actions. Frames are sampled from the exact trajectories at `fps` (default
     `metadata["render_fps"]`) and the video plays at that rate, so in real time; the last
