@@ -128,15 +128,28 @@ def test_noise_is_deterministic_given_the_seed():
     assert not np.array_equal(runs[0][1], runs[2][1])
 
 
-@pytest.mark.parametrize("env_id, noise", [(IDS[0], None), (IDS[1], None), (IDS[0], "olympiad"), (IDS[1], "olympiad")])
+CONFIGS = [(IDS[0], None), (IDS[1], None), (IDS[0], "olympiad"), (IDS[1], "olympiad")]
+
+
+@pytest.mark.parametrize("env_id, noise", CONFIGS)
 def test_random_games_end_and_keep_the_balls(env_id, noise):
+    random_games(env_id, noise, games=6)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("env_id, noise", CONFIGS)
+def test_a_thousand_random_games_each(env_id, noise):
+    random_games(env_id, noise, games=1000)
+
+
+def random_games(env_id, noise, games):
     # Random actions against the random player: every game ends (won or lost, or truncated
     # at max_shots), every ball is either on the table or pocketed (the rules' set and the
     # balls agree), spotted balls never overlap (the table check passes), the winner is set
     # exactly when the game is over.
     env = gym.make(env_id, opponent="random", noise=noise, max_shots=60)
     rng = np.random.default_rng(0)
-    for game in range(6):
+    for game in range(games):
         env.reset(seed=game)
         base = env.unwrapped
         for _ in range(60):
