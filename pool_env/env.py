@@ -36,6 +36,19 @@ RESET_OPTIONS = ("balls",)  # the keys reset(options=...) accepts
 NO_EVENTS = np.zeros(0, dtype=np.int64)  # the event arrays of a shot that could not be simulated
 
 
+def check_reset_options(options, accepted) -> dict:
+    """`reset`'s options checked: None (no options) or a dict whose keys are all `accepted`."""
+    if options is None:
+        return {}
+    if not isinstance(options, dict):
+        raise TypeError(f"options must be a dict or None, got {type(options).__name__}")
+    unknown = [key for key in options if key not in accepted]
+    if unknown:
+        raise ValueError(f"unknown reset option {unknown[0]!r}; the accepted options are "
+                         f"{', '.join(repr(key) for key in accepted)}")
+    return options
+
+
 def decode_observation(obs, table: Table):
     """Invert the observation: (xy (16, 2) in metres, on_table (16,) bool). Pocketed balls get xy = NaN."""
     obs = np.asarray(obs, dtype=np.float64)
@@ -506,15 +519,7 @@ class PoolBreakEnv(gym.Env):
 
     @staticmethod
     def _check_options(options) -> dict:
-        if options is None:
-            return {}
-        if not isinstance(options, dict):
-            raise TypeError(f"options must be a dict or None, got {type(options).__name__}")
-        unknown = [key for key in options if key not in RESET_OPTIONS]
-        if unknown:
-            raise ValueError(f"unknown reset option {unknown[0]!r}; the accepted options are "
-                             f"{', '.join(repr(key) for key in RESET_OPTIONS)}")
-        return options
+        return check_reset_options(options, RESET_OPTIONS)
 
     def _check_balls(self, balls):
         if not isinstance(balls, Balls) or len(balls) != N_BALLS:

@@ -10,7 +10,7 @@ import numpy as np
 from gymnasium import logger, spaces
 
 from . import rules
-from .env import CONTACT_TIME, MAX_TIP_OFFSET, cue_force, shot_info
+from .env import CONTACT_TIME, MAX_TIP_OFFSET, check_reset_options, cue_force, shot_info
 from .physics import BALL_MASS, BALL_RADIUS, Balls, Physics, SimulationError, Table, simulate, strike
 from .physics.simulate import check_on_table
 from .playback import ShotPlayback
@@ -422,15 +422,7 @@ class PoolGameEnv(gym.Env):
 
     @staticmethod
     def _check_options(options) -> dict:
-        if options is None:
-            return {}
-        if not isinstance(options, dict):
-            raise TypeError(f"options must be a dict or None, got {type(options).__name__}")
-        unknown = [key for key in options if key not in RESET_OPTIONS]
-        if unknown:
-            raise ValueError(f"unknown reset option {unknown[0]!r}; the accepted options are "
-                             f"{', '.join(repr(key) for key in RESET_OPTIONS)}")
-        return options
+        return check_reset_options(options, RESET_OPTIONS)
 
     # --- the phases of a step (a vector env runs the simulations of many envs at once) --------
     def _caption(self, shooter):
