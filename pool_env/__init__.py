@@ -3,7 +3,8 @@
 import gymnasium
 
 __version__ = "0.1.0"
-__all__ = ["PoolBreakEnv", "PoolGameEnv", "PoolVectorEnv", "record_video", "__version__"]
+__all__ = ["PoolBreakEnv", "PoolGameEnv", "PoolVectorEnv", "record_video", "record_game", "save_game", "load_game",
+           "__version__"]
 
 # Registered by entry-point strings so that `import pool_env` stays light (no numba, no physics).
 # `gymnasium.make_vec(id, num_envs=N, vectorization_mode="vector_entry_point")` makes a
@@ -32,6 +33,10 @@ def __getattr__(name):
         from .vector import PoolVectorEnv
 
         return PoolVectorEnv
+    if name in ("record_game", "save_game", "load_game"):
+        from . import saved
+
+        return getattr(saved, name)
     if name == "record_video":
         from .video import record_video
 

@@ -211,6 +211,8 @@ class Table:
         built = []
         for number, pocket in enumerate(pockets):
             built.append(_place_pocket(number, pocket, sides, cuts, (corner_shape, side_shape), (L, W)))
+        # The pockets as given, (x, y, mouth) each: what Table(...) needs to build this table again.
+        set_("pocket_entries", as_rows([_pocket_entry(k, p) for k, p in enumerate(pockets)], 3))
         rails = []
         for s, (start, along, normal, span, _) in enumerate(sides):
             pos = 0.0

@@ -1,0 +1,60 @@
+"""Saved games: save then load then replay gives identical states; a tampered file is refused."""
+
+import json
+
+import pytest
+
+import pool_env
+from agents import GameGhostBallAgent, RandomAgent
+from pool_env.replay import main as replay_main
+from pool_env.saved import ReplayMismatch, load_game, record_game, replay, save_game
+
+
+@pytest.fixture(scope="module")
+def nine_ball_game(tmp_path_factory):
+    import gymnasium as gym
+
+    env = gym.make("PoolNineBall-v0")
+    record = record_game(env, GameGhostBallAgent.from_env(env), seed=3)
+    return save_game(tmp_path_factory.mktemp("games") / "nine.json", record), record
+
+
+def test_save_load_replay_gives_identical_states(nine_ball_game):
+    path, record = nine_ball_game
+    loaded = load_game(path)
+    assert loaded == json.loads(json.dumps(record))  # floats written exactly
+    env = replay(loaded)  # raises at the first step that differs
+    final = loaded["outcomes"][-1]
+    assert env.unwrapped.balls.xy.tolist() == final["xy"]
+    assert final["terminated"] or final["truncated"]
+
+
+def test_a_tampered_file_is_refused(nine_ball_game, tmp_path):
+    path, record = nine_ball_game
+    tampered = json.loads(path.read_text())
+    tampered["actions"][0][0] *= 0.9  # a softer break: the outcomes no longer follow
+    bad = save_game(tmp_path / "bad.json", tampered)
+    with pytest.raises(ReplayMismatch, match="step 0 of the saved game replays differently"):
+        replay(load_game(bad))
+    assert replay_main([str(bad)]) == 1
+    (tmp_path / "junk.json").write_text('{"format": "something else"}')
+    with pytest.raises(ValueError, match="not a pool_env saved game"):
+        load_game(tmp_path / "junk.json")
+    (tmp_path / "old.json").write_text(json.dumps({**record, "version": 99}))
+    with pytest.raises(ValueError, match="version 99"):
+        load_game(tmp_path / "old.json")
+
+
+def test_replay_cli_and_a_break_env(tmp_path):
+    record = record_game("PoolBreakRun-v0", RandomAgent(pool_env.PoolBreakEnv(max_shots=3).action_space, seed=0),
+                         seed=1)
+    path = save_game(tmp_path / "run.json", record)
+    assert replay_main([str(path), "--shot", "1"]) == 0
+
+
+def test_unsavable_opponents_are_named():
+    import gymnasium as gym
+
+    env = gym.make("PoolNineBall-v0", opponent=lambda obs: obs[:6])
+    with pytest.raises(ValueError, match="cannot be saved"):
+        record_game(env, lambda obs: obs[:6], seed=0)
