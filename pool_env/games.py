@@ -28,7 +28,7 @@ NOISE_KEYS = ("angle", "speed", "side", "top")
 SHAPING_BALL, SHAPING_FOUL = 0.1, 0.1  # shaping: + per ball the agent pockets legally, - per foul
 PLACE_MARGIN = 1e-4  # m: a placed cue ball clears rails and balls by this much
 PLACE_STEP, PLACE_RINGS, PLACE_ANGLES = 2e-3, 600, 32  # the search for the nearest legal spot
-RESET_OPTIONS = ("balls", "ball_in_hand")
+RESET_OPTIONS = ("balls", "ball_in_hand", "agent_breaks")
 
 
 def noise_of(noise) -> dict | None:
@@ -247,7 +247,8 @@ class PoolGameEnv(gym.Env):
     it), unless `agent_breaks=False`. `reset(options={"balls": balls})` starts from a given
     layout (16 or 10 balls by number, at rest, the cue ball on the table, pocketed balls allowed;
     bad layouts raise ValueError): the agent to shoot on an open table, with ball in hand
-    anywhere if `options={"ball_in_hand": True}`.
+    anywhere if `options={"ball_in_hand": True}`; `options={"agent_breaks": False}` lets the
+    opponent break this game.
 
     ## Info
 
@@ -378,7 +379,8 @@ class PoolGameEnv(gym.Env):
         else:
             rack = rules.nine_ball_rack if self.game == "nine_ball" else rules.eight_ball_rack
             balls = rack(self.table, seed=rack_seed)
-            state = rules.new_game(self.game, breaker=0 if self.agent_breaks else 1, **self.rule_options)
+            agent_breaks = bool(options.get("agent_breaks", self.agent_breaks))
+            state = rules.new_game(self.game, breaker=0 if agent_breaks else 1, **self.rule_options)
         return balls, state, quaternions, opponent_seed
 
     def _start(self, start):

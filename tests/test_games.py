@@ -207,3 +207,13 @@ def test_registered_and_exported():
     assert pool_env.PoolGameEnv is PoolGameEnv
     assert gym.spec("PoolEightBall-v0").kwargs == {"game": "eight_ball"}
     assert rules.legal_targets(rules.new_game("nine_ball")) == frozenset({1})
+
+
+def test_the_opponent_can_break():
+    # reset(options={"agent_breaks": False}): the opponent's break is played inside reset;
+    # the agent then shoots (the game goes on), never on the break's rack.
+    env = gym.make("PoolNineBall-v0", opponent="random")
+    obs, _ = env.reset(seed=0, options={"agent_breaks": False})
+    state = env.unwrapped.state
+    assert state.shooter == 0 and not state.is_break and state.winner is None
+    assert state.shot >= 1
