@@ -289,6 +289,8 @@ class PoolGameEnv(gym.Env):
         self._opponent_rng = np.random.default_rng(0)
         self.opponent = opponent
         self._opponent = resolve_opponent(opponent, self)
+        if self._opponent is None and not self.agent_breaks:
+            raise ValueError("practice (opponent=None) has no one to break: keep agent_breaks=True")
         self.render_size = (int(render_size[0]), int(render_size[1]))
         self.overlay = bool(overlay)
         self.playback = ShotPlayback(self.table, self.render_size, self.metadata["render_fps"],
@@ -380,6 +382,8 @@ class PoolGameEnv(gym.Env):
             rack = rules.nine_ball_rack if self.game == "nine_ball" else rules.eight_ball_rack
             balls = rack(self.table, seed=rack_seed)
             agent_breaks = bool(options.get("agent_breaks", self.agent_breaks))
+            if not agent_breaks and self._opponent is None:
+                raise ValueError("practice (opponent=None) has no one to break: reset with agent_breaks True")
             state = rules.new_game(self.game, breaker=0 if agent_breaks else 1, **self.rule_options)
         return balls, state, quaternions, opponent_seed
 

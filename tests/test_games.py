@@ -187,6 +187,7 @@ def test_native_vector_env_equals_the_sync_one(env_id):
     (dict(noise="loud"), "unknown noise preset 'loud'"),
     (dict(noise={"angle": -1.0}), "finite and >= 0"),
     (dict(max_shots=0), "max_shots"),
+    (dict(opponent=None, agent_breaks=False), "no one to break"),
 ])
 def test_bad_arguments_are_named(kwargs, match):
     with pytest.raises(ValueError, match=match):
