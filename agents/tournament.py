@@ -1,0 +1,330 @@
+"""`python -m agents.tournament`: a round-robin of named players at 9-ball or 8-ball: win rates, Elo, statistics."""
+
+from __future__ import annotations
+
+import argparse
+import itertools
+import json
+import math
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+Z95 = 1.959964  # two-sided 95 % normal quantile
+ELO_BASE, ELO_SCALE = 1500.0, 400.0  # ratings average ELO_BASE; a gap of ELO_SCALE is 10:1 odds
+ELO_METHOD = ("Bradley-Terry maximum likelihood on the Elo scale (P(i beats j) = 1 / (1 + 10^((R_j - R_i) / 400))), "
+              "fitted by the minorize-maximize iteration over every game of the noise setting (a draw counts half a "
+              "win each), with one virtual draw added between every two players that met so that a perfect record "
+              "stays finite; ratings shifted to average 1500")
+NOISES = {"none": None, "olympiad": "olympiad"}
+BUILTIN = ("random", "ghost_ball", "search")
+TIMING_KEYS = ("seconds", "seconds_per_decision", "wall_seconds")  # the only entries that differ between runs
+
+
+class Timed:
+    """A player's act() with its decisions counted and timed (perf_counter)."""
+
+    def __init__(self, agent):
+        self.agent, self.decisions, self.seconds = agent, 0, 0.0
+
+    def __call__(self, observation):
+        start = time.perf_counter()
+        action = self.agent.act(observation)
+        self.seconds += time.perf_counter() - start
+        self.decisions += 1
+        return action
+
+
+# --- statistics -----------------------------------------------------------------------------
+def wilson(successes: float, n: int, z: float = Z95) -> tuple[float, float]:
+    """The Wilson score interval of a proportion successes / n ((0, 1) when n is 0)."""
+    if n <= 0:
+        return 0.0, 1.0
+    p = successes / n
+    denominator = 1.0 + z * z / n
+    centre = (p + z * z / (2 * n)) / denominator
+    half = z / denominator * math.sqrt(max(p * (1.0 - p) / n + z * z / (4.0 * n * n), 0.0))
+    return max(centre - half, 0.0), min(centre + half, 1.0)
+
+
+def elo(records: list[dict], players: list[str], iterations: int = 10_000, tol: float = 1e-10) -> dict[str, float]:
+    """Elo ratings of `players` from game records (ELO_METHOD): {name: rating}."""
+    index = {name: k for k, name in enumerate(players)}
+    n = len(players)
+    wins, met = np.zeros((n, n)), np.zeros((n, n), dtype=bool)
+    for record in records:
+        i, j = index[record["players"][0]], index[record["players"][1]]
+        met[i, j] = met[j, i] = True
+        if record["winner"] is None:
+            wins[i, j] += 0.5
+            wins[j, i] += 0.5
+        else:
+            w = index[record["winner"]]
+            wins[w, j if w == i else i] += 1.0
+    wins += 0.5 * met  # the virtual draw
+    games = wins + wins.T
+    strength = np.ones(n)
+    for _ in range(iterations):
+        pair = games / np.maximum(strength[:, None] + strength[None, :], 1e-300)
+        new = np.where(games.sum(1) > 0, wins.sum(1) / np.maximum(pair.sum(1), 1e-300), 1.0)
+        new /= math.exp(np.mean(np.log(new)))
+        done = np.max(np.abs(np.log(new) - np.log(strength))) < tol
+        strength = new
+        if done:
+            break
+    ratings = ELO_SCALE * np.log10(strength)
+    ratings += ELO_BASE - ratings.mean()
+    return {name: float(ratings[index[name]]) for name in players}
+
+
+def is_break_and_run(record: dict) -> bool:
+    """The breaker won without the opponent ever coming to the table (won in the first turn)."""
+    return record["winner"] == record["breaker"] and all(shot["by"] == record["breaker"] for shot in record["shots"])
+
+
+def player_stats(records: list[dict], name: str, timer: Timed | None = None) -> dict:
+    """One player's totals over the records of the games it played."""
+    mine = [r for r in records if name in r["players"]]
+    breaks = [r for r in mine if r["breaker"] == name]
+    shots = [shot for r in mine for shot in r["shots"] if shot["by"] == name]
+    turns = sum(1 for r in mine for k, shot in enumerate(r["shots"])
+                if shot["by"] == name and (k == 0 or r["shots"][k - 1]["by"] != name))
+    balls = sum(len([b for b in shot["pocketed"] if b != 0]) for shot in shots if shot["foul"] is None)
+    fouls = sum(1 for shot in shots if shot["foul"] is not None)
+    wins = sum(1 for r in mine if r["winner"] == name)
+    draws = sum(1 for r in mine if r["winner"] is None)
+    runs = sum(1 for r in breaks if is_break_and_run(r))
+    out = {"games": len(mine), "wins": wins, "draws": draws, "score": (wins + 0.5 * draws) / max(len(mine), 1),
+           "breaks": len(breaks), "break_and_runs": runs, "break_and_run_rate": runs / max(len(breaks), 1),
+           "break_and_run_ci95": list(wilson(runs, len(breaks))), "shots": len(shots), "turns": turns,
+           "balls": balls, "balls_per_turn": balls / max(turns, 1), "fouls": fouls,
+           "fouls_per_game": fouls / max(len(mine), 1)}
+    if timer is not None:
+        out.update(decisions=timer.decisions, seconds=timer.seconds,
+                   seconds_per_decision=timer.seconds / max(timer.decisions, 1))
+    return out
+
+
+def pairing_stats(records: list[dict], a: str, b: str) -> dict:
+    """A against B over their games: wins, draws, A's score ((wins + draws / 2) / games) with its Wilson interval."""
+    mine = [r for r in records if set(r["players"]) == {a, b}]
+    wins_a = sum(1 for r in mine if r["winner"] == a)
+    wins_b = sum(1 for r in mine if r["winner"] == b)
+    draws = len(mine) - wins_a - wins_b
+    score = wins_a + 0.5 * draws
+    return {"a": a, "b": b, "games": len(mine), "wins_a": wins_a, "wins_b": wins_b, "draws": draws,
+            "win_rate_a": score / max(len(mine), 1), "ci95": list(wilson(score, len(mine)))}
+
+
+# --- players ------------------------------------------------------------------------------------
+def display_name(spec: str) -> str:
+    """A player's name in the tables: the built-in name, or runs/<name>/model.zip -> <name>."""
+    if spec in BUILTIN:
+        return spec
+    path = Path(spec)
+    return path.parent.name if path.stem in ("model", "best_model", "last_model") and path.parent.name else path.stem
+
+
+def make_player(spec: str, env):
+    """The agent named `spec` for `env` (a PoolGameEnv), or raises ImportError/ValueError saying why not."""
+    if spec == "random":
+        from .base import RandomAgent
+
+        return RandomAgent(env.action_space, seed=0)
+    if spec == "ghost_ball":
+        from .game_player import GameGhostBallAgent
+
+        return GameGhostBallAgent.from_env(env)
+    if spec == "search":
+        import importlib
+
+        return importlib.import_module("agents.search").SearchAgent.from_env(env)
+    path = Path(spec)
+    if not path.exists():
+        raise ValueError(f"unknown player {spec!r}: not one of {', '.join(BUILTIN)} and no file {path}")
+    from .sb3 import SB3Agent
+
+    agent = SB3Agent.load(path)
+    shape = getattr(agent.model.observation_space, "shape", None)
+    if shape != env.observation_space.shape:
+        raise ValueError(f"{spec}: the model observes shape {shape}, the {env.game} env gives "
+                         f"{env.observation_space.shape} (trained on another env?)")
+    return agent
+
+
+def make_players(specs: list[str], game: str, noise) -> tuple[dict, dict]:
+    """({name: agent}, {name: why it was skipped}) for one game and noise setting."""
+    from pool_env.games import PoolGameEnv
+
+    env = PoolGameEnv(game, opponent=None, noise=noise)
+    players, skipped = {}, {}
+    for spec in specs:
+        name = display_name(spec)
+        try:
+            players[name] = make_player(spec, env)
+        except Exception as exc:  # noqa: BLE001 (a player that cannot be built is skipped, saying why)
+            skipped[name] = f"{type(exc).__name__}: {exc}"
+            print(f"tournament: skipping player {name!r} ({skipped[name]})", file=sys.stderr)
+    env.close()
+    return players, skipped
+
+
+# --- playing -------------------------------------------------------------------------------------
+def player_seed(seed: int, slot: int) -> int:
+    """The seed a player's randomness gets for the game on `seed` (slot 0: the breaker, 1: the other)."""
+    return int(np.random.SeedSequence([int(seed), slot]).generate_state(1)[0])
+
+
+def play_game(game: str, breaker: str, other: str, players: dict, timers: dict, seed: int, noise,
+              max_shots: int = 100) -> dict:
+    """One game on `seed`: the breaker is the env's agent (it breaks), the other its opponent, so each
+    sees the observation from its own side. (The env re-racks a game the opponent wins before the
+    agent's first shot, so the breaker is never the opponent: its break-and-runs all count.)"""
+    from pool_env.games import PoolGameEnv
+
+    for slot, name in enumerate((breaker, other)):
+        if hasattr(players[name], "reset"):
+            players[name].reset(seed=player_seed(seed, slot))
+    env = PoolGameEnv(game, opponent=timers[other], noise=noise, agent_breaks=True, max_shots=max_shots)
+    obs, _ = env.reset(seed=seed)
+    shots, done, info = [], False, {}
+    while not done:
+        obs, _, terminated, truncated, info = env.step(timers[breaker](obs))
+        done = terminated or truncated
+        shots.append({"by": breaker, "foul": info["foul"], "pocketed": [int(b) for b in info["pocketed"]]})
+        shots += [{"by": other, "foul": s["foul"], "pocketed": [int(b) for b in s["pocketed"]]}
+                  for s in info["opponent_shots"]]
+    env.close()
+    winner = {"agent": breaker, "opponent": other, None: None}[info.get("winner")]
+    reason = info.get("end_reason") if winner is not None else ("error" if "error" in info else "max_shots")
+    return {"seed": int(seed), "players": [breaker, other], "breaker": breaker, "winner": winner,
+            "end_reason": reason, "shots": shots}
+
+
+def play_pairing(game: str, a: str, b: str, players: dict, timers: dict, games: int, seed: int, noise) -> list[dict]:
+    """Games k = 0 .. games - 1 of A against B on seeds seed + k; A breaks the even ones."""
+    records = []
+    for k in range(games):
+        breaker, other = (a, b) if k % 2 == 0 else (b, a)
+        records.append(play_game(game, breaker, other, players, timers, seed + k, noise))
+    return records
+
+
+def run_setting(game: str, specs: list[str], games: int, seed: int, noise_name: str, log=None) -> dict:
+    """The round-robin for one noise setting: pairings, Elo, per-player statistics, game records."""
+    players, skipped = make_players(specs, game, NOISES[noise_name])
+    names = list(players)
+    if len(names) < 2:
+        raise ValueError(f"need at least two players, got {names} (skipped: {skipped})")
+    timers = {name: Timed(agent) for name, agent in players.items()}
+    records, pairings = [], []
+    for a, b in itertools.combinations(names, 2):
+        start = time.perf_counter()
+        mine = play_pairing(game, a, b, players, timers, games, seed, NOISES[noise_name])
+        records += mine
+        pairings.append(pairing_stats(mine, a, b))
+        if log is not None:
+            p = pairings[-1]
+            log(f"[{noise_name}] {a} vs {b}: {p['wins_a']}-{p['wins_b']} (draws {p['draws']}) "
+                f"in {time.perf_counter() - start:.1f} s")
+    ratings = elo(records, names)
+    stats = {name: {"elo": ratings[name], **player_stats(records, name, timers[name])} for name in names}
+    return {"players": names, "skipped": skipped, "pairings": pairings, "elo": ratings, "stats": stats,
+            "records": records}
+
+
+def tournament(game: str = "nine_ball", players=("random", "ghost_ball"), games: int = 20, noise: str = "none",
+               seed: int = 0, log=None) -> dict:
+    """The whole tournament (the content of tournament.json): one round-robin per noise setting
+    (`noise`: "none", "olympiad" or "both"), every pairing on seeds seed .. seed + games - 1."""
+    from pool_env.games import GAMES
+
+    if game not in GAMES:
+        raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAMES)}")
+    settings = list(NOISES) if noise == "both" else [noise]
+    if any(s not in NOISES for s in settings):
+        raise ValueError(f"noise must be 'none', 'olympiad' or 'both', got {noise!r}")
+    if int(games) != games or games < 1:
+        raise ValueError(f"games must be an integer >= 1, got {games!r}")
+    start = time.perf_counter()
+    results = {s: run_setting(game, list(players), int(games), int(seed), s, log) for s in settings}
+    return {"game": game, "games_per_pairing": int(games), "seed": int(seed),
+            "seeds": [int(seed), int(seed) + games - 1], "noise": settings, "player_specs": list(players),
+            "elo_method": ELO_METHOD,
+            "win_rate": "(wins + draws / 2) / games, 95 % Wilson score interval",
+            "break_and_run": "games the breaker won without the opponent ever shooting, over the games it broke",
+            "balls_per_turn": "object balls pocketed on shots without a foul, over the player's turns at the table",
+            "results": results, "wall_seconds": time.perf_counter() - start}
+
+
+def strip_timings(data):
+    """`data` without the TIMING_KEYS (what two runs on the same seeds share exactly)."""
+    if isinstance(data, dict):
+        return {k: strip_timings(v) for k, v in data.items() if k not in TIMING_KEYS}
+    if isinstance(data, list):
+        return [strip_timings(v) for v in data]
+    return data
+
+
+def _pct(p: float, ci=None) -> str:
+    return f"{100 * p:.0f} %" + (f" [{100 * ci[0]:.0f}, {100 * ci[1]:.0f}]" if ci is not None else "")
+
+
+def markdown(result: dict) -> str:
+    """The tournament as markdown: per noise setting, the pairings and the players' table."""
+    game = {"nine_ball": "9-ball", "eight_ball": "8-ball"}.get(result["game"], result["game"])
+    lines = [f"# Tournament: {game}, {result['games_per_pairing']} games per pairing, "
+             f"seeds {result['seeds'][0]}-{result['seeds'][1]}, breaks alternating", ""]
+    for setting, r in result["results"].items():
+        lines += [f"## Noise: {setting}", "", "| A | B | games | A wins | B wins | draws | A's win rate [95 % CI] |",
+                  "| --- | --- | ---: | ---: | ---: | ---: | --- |"]
+        lines += [f"| {p['a']} | {p['b']} | {p['games']} | {p['wins_a']} | {p['wins_b']} | {p['draws']} | "
+                  f"{_pct(p['win_rate_a'], p['ci95'])} |" for p in r["pairings"]]
+        lines += ["", "| player | Elo | games | score | break-and-run [95 % CI] | fouls / game | balls / turn "
+                  "| s / decision |", "| --- | ---: | ---: | ---: | --- | ---: | ---: | ---: |"]
+        for name in sorted(r["players"], key=lambda n: -r["elo"][n]):
+            s = r["stats"][name]
+            runs = _pct(s["break_and_run_rate"], s["break_and_run_ci95"])
+            lines.append(f"| {name} | {s['elo']:.0f} | {s['games']} | {_pct(s['score'])} | "
+                         f"{s['break_and_runs']}/{s['breaks']} = {runs} | {s['fouls_per_game']:.2f} | "
+                         f"{s['balls_per_turn']:.2f} | "
+                         f"{s.get('seconds_per_decision', float('nan')):.4f} |")
+        if r["skipped"]:
+            lines += [""] + [f"Skipped {name}: {why}" for name, why in r["skipped"].items()]
+        lines.append("")
+    lines += [f"Elo: {result['elo_method']}.", ""]
+    return "\n".join(lines)
+
+
+def write(result: dict, out) -> tuple[Path, Path]:
+    """tournament.json and tournament.md in the folder `out` (created)."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "tournament.json").write_text(json.dumps(result, indent=1) + "\n")
+    (out / "tournament.md").write_text(markdown(result))
+    return out / "tournament.json", out / "tournament.md"
+
+
+def main(argv=None) -> dict:
+    parser = argparse.ArgumentParser(prog="python -m agents.tournament", description=__doc__)
+    parser.add_argument("--game", default="nine_ball", choices=("nine_ball", "eight_ball"))
+    parser.add_argument("--players", default="random,ghost_ball,search",
+                        help="comma list: random, ghost_ball, search, or an SB3 model's path (runs/<name>/model.zip)")
+    parser.add_argument("--games", type=int, default=20, help="games per pairing (breaks alternate)")
+    parser.add_argument("--noise", default="both", choices=("none", "olympiad", "both"))
+    parser.add_argument("--seed", type=int, default=0, help="game k of every pairing is played on seed + k")
+    parser.add_argument("--out", default="runs/tournament", help="folder for tournament.json and tournament.md")
+    args = parser.parse_args(argv)
+    players = [p.strip() for p in args.players.split(",") if p.strip()]
+    log = lambda message: print(message, file=sys.stderr, flush=True)
+    result = tournament(args.game, players, args.games, args.noise, args.seed, log)
+    paths = write(result, args.out)
+    print(markdown(result))
+    log(f"wrote {paths[0]} and {paths[1]} in {result['wall_seconds']:.1f} s")
+    return result
+
+
+if __name__ == "__main__":
+    main()
