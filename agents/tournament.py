@@ -163,7 +163,9 @@ def make_players(specs: list[str], game: str, noise) -> tuple[dict, dict]:
     for spec in specs:
         name = display_name(spec)
         try:
-            players[name] = make_player(spec, env)
+            agent = make_player(spec, env)
+            agent.act(env.reset(seed=0)[0])  # warm-up, untimed (compiles, caches); reset before each game
+            players[name] = agent
         except Exception as exc:  # noqa: BLE001 (a player that cannot be built is skipped, saying why)
             skipped[name] = f"{type(exc).__name__}: {exc}"
             print(f"tournament: skipping player {name!r} ({skipped[name]})", file=sys.stderr)
