@@ -23,17 +23,30 @@ BUILTIN = ("random", "ghost_ball", "search")
 TIMING_KEYS = ("seconds", "seconds_per_decision", "wall_seconds")  # the only entries that differ between runs
 
 
-class Timed:
-    """A player's act() with its decisions counted and timed (perf_counter)."""
+class PlayerError(Exception):
+    """A player's act() raised: it forfeits the game (`play_game`)."""
 
-    def __init__(self, agent):
-        self.agent, self.decisions, self.seconds = agent, 0, 0.0
+    def __init__(self, name: str, error: Exception):
+        super().__init__(f"{name}: {type(error).__name__}: {error}")
+        self.name = name
+
+
+class Timed:
+    """A player's act() with its decisions counted and timed (perf_counter); an exception in it
+    becomes a PlayerError naming the player."""
+
+    def __init__(self, agent, name: str = "player"):
+        self.agent, self.name, self.decisions, self.seconds = agent, name, 0, 0.0
 
     def __call__(self, observation):
         start = time.perf_counter()
-        action = self.agent.act(observation)
-        self.seconds += time.perf_counter() - start
-        self.decisions += 1
+        try:
+            action = self.agent.act(observation)
+        except Exception as exc:
+            raise PlayerError(self.name, exc) from exc
+        finally:
+            self.seconds += time.perf_counter() - start
+            self.decisions += 1
         return action
 
 
@@ -100,7 +113,7 @@ def player_stats(records: list[dict], name: str, timer: Timed | None = None) -> 
            "breaks": len(breaks), "break_and_runs": runs, "break_and_run_rate": runs / max(len(breaks), 1),
            "break_and_run_ci95": list(wilson(runs, len(breaks))), "shots": len(shots), "turns": turns,
            "balls": balls, "balls_per_turn": balls / max(turns, 1), "fouls": fouls,
-           "fouls_per_game": fouls / max(len(mine), 1)}
+           "fouls_per_game": fouls / max(len(mine), 1), "forfeits": sum(1 for r in mine if r.get("forfeit") == name)}
     if timer is not None:
         out.update(decisions=timer.decisions, seconds=timer.seconds,
                    seconds_per_decision=timer.seconds / max(timer.decisions, 1))
@@ -191,14 +204,22 @@ def play_game(game: str, breaker: str, other: str, players: dict, timers: dict, 
             players[name].reset(seed=player_seed(seed, slot))
     env = PoolGameEnv(game, opponent=timers[other], noise=noise, agent_breaks=True, max_shots=max_shots)
     obs, _ = env.reset(seed=seed)
-    shots, done, info = [], False, {}
+    shots, done, info, forfeit = [], False, {}, None
     while not done:
-        obs, _, terminated, truncated, info = env.step(timers[breaker](obs))
+        try:
+            obs, _, terminated, truncated, info = env.step(timers[breaker](obs))
+        except PlayerError as exc:  # the player that raised forfeits (this step's shots are lost)
+            forfeit = exc
+            break
         done = terminated or truncated
         shots.append({"by": breaker, "foul": info["foul"], "pocketed": [int(b) for b in info["pocketed"]]})
         shots += [{"by": other, "foul": s["foul"], "pocketed": [int(b) for b in s["pocketed"]]}
                   for s in info["opponent_shots"]]
     env.close()
+    if forfeit is not None:
+        winner, reason = (other if forfeit.name == breaker else breaker), f"forfeit ({forfeit})"
+        return {"seed": int(seed), "players": [breaker, other], "breaker": breaker, "winner": winner,
+                "end_reason": reason, "forfeit": forfeit.name, "shots": shots}
     winner = {"agent": breaker, "opponent": other, None: None}[info.get("winner")]
     reason = info.get("end_reason") if winner is not None else ("error" if "error" in info else "max_shots")
     return {"seed": int(seed), "players": [breaker, other], "breaker": breaker, "winner": winner,
@@ -220,7 +241,7 @@ def run_setting(game: str, specs: list[str], games: int, seed: int, noise_name: 
     names = list(players)
     if len(names) < 2:
         raise ValueError(f"need at least two players, got {names} (skipped: {skipped})")
-    timers = {name: Timed(agent) for name, agent in players.items()}
+    timers = {name: Timed(agent, name) for name, agent in players.items()}
     records, pairings = [], []
     for a, b in itertools.combinations(names, 2):
         start = time.perf_counter()
@@ -293,6 +314,10 @@ def markdown(result: dict) -> str:
                          f"{s['break_and_runs']}/{s['breaks']} = {runs} | {s['fouls_per_game']:.2f} | "
                          f"{s['balls_per_turn']:.2f} | "
                          f"{s.get('seconds_per_decision', float('nan')):.4f} |")
+        forfeits = {name: r["stats"][name]["forfeits"] for name in r["players"] if r["stats"][name]["forfeits"]}
+        if forfeits:
+            lines += ["", "Forfeits (games lost because the player's act() raised): "
+                      + ", ".join(f"{name} {n}" for name, n in forfeits.items())]
         if r["skipped"]:
             lines += [""] + [f"Skipped {name}: {why}" for name, why in r["skipped"].items()]
         lines.append("")

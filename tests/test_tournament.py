@@ -112,3 +112,20 @@ def test_unavailable_players_are_skipped():
     assert "such" in skipped and "unknown player" in skipped["such"]
     with pytest.raises(ValueError, match="at least two players"):
         tour.tournament("nine_ball", ["random", "no/such/model.zip"], games=1, noise="none")
+
+
+def test_a_player_that_raises_forfeits():
+    from agents.base import RandomAgent
+    from pool_env.games import PoolGameEnv
+
+    class Broken(RandomAgent):
+        def act(self, observation):
+            raise ValueError("bug")
+
+    env = PoolGameEnv("nine_ball", opponent=None)
+    players = {"random": RandomAgent(env.action_space), "broken": Broken(env.action_space)}
+    timers = {name: tour.Timed(agent, name) for name, agent in players.items()}
+    record = tour.play_game("nine_ball", "random", "broken", players, timers, seed=0, noise=None)
+    assert record["winner"] == "random" and record["forfeit"] == "broken"
+    assert "ValueError: bug" in record["end_reason"]
+    assert tour.player_stats([record], "broken")["forfeits"] == 1
