@@ -268,7 +268,7 @@ class PoolBreakEnv(gym.Env):
 
     | argument | default | meaning |
     | --- | --- | --- |
-    | `render_mode` | None | `"rgb_array"` (the table now) or `"rgb_array_list"` (every frame of the last shot) |
+    | `render_mode` | None | `"human"` (a window), `"rgb_array"` (the table now), `"rgb_array_list"` (the last shot) |
     | `table` | `Table.eight_foot()` | the table; `Table.seed()` is the report's pocketless one |
     | `physics` | `Physics.standard()` | the physics; `Physics.seed()` is the report's model |
     | `max_shots` | 1 | shots per episode |
@@ -338,9 +338,17 @@ class PoolBreakEnv(gym.Env):
     frames are asked for (it costs time), so they may jump between shots. The frames come from
     `env.playback` (a `pool_env.playback.ShotPlayback`); `env.playback.renderer.world_to_pixel`
     maps metres to pixels.
+
+    `render_mode="human"` opens a pygame window (`pip install 'pool-env[play]'`) at the first
+    `reset`: every `step` animates its shot there from the exact trajectory at
+    `metadata["render_fps"]` (the frames of `shot_frames()`), and `render()` shows the table
+    now (returning None). Closing the window stops the drawing (the env plays on); `close()`
+    closes it. Without pygame, or on a machine without a display, the first frame raises an
+    error naming the fix (`SDL_VIDEODRIVER=dummy` runs it headless, as the tests do).
+    `python -m pool_env.play` plays with the mouse (README.md, "Play").
     """
 
-    metadata = {"render_modes": ["rgb_array", "rgb_array_list"], "render_fps": 30}
+    metadata = {"render_modes": ["human", "rgb_array", "rgb_array_list"], "render_fps": 30}
 
     def __init__(self, render_mode=None, table=None, physics=None, max_shots=1, spin=False, randomize_cue=False,
                  shaping=False, render_size=(640, 360), scratch_penalty=1.0):
@@ -373,6 +381,7 @@ class PoolBreakEnv(gym.Env):
         self._balls = None
         self._shots = 0
         self._done = True
+        self._window = None  # render_mode="human": a pool_env.window.Window, opened at the first frame
         # With a render mode the balls' rotation is carried through every shot (lazily); without
         # one only through the shots whose frames are asked for.
         self.playback = ShotPlayback(self.table, self.render_size, self.metadata["render_fps"],
@@ -381,12 +390,17 @@ class PoolBreakEnv(gym.Env):
     # --- Gymnasium API ----------------------------------------------------------------------
     def reset(self, *, seed=None, options=None):
         self._start(self._draw_start(seed, options))
+        if self.render_mode == "human":
+            self._show([self.playback.frame()])
         return self._observation(), {}
 
     def step(self, action):
         struck = self._strike_or_error(action)  # (a) the action checked, the struck balls
         outcome = self._simulate(struck)  # (b) the shot's Result, or the error it raised
-        return self._finish(outcome)  # (c) observation, reward, terminated, truncated, info
+        out = self._finish(outcome)  # (c) observation, reward, terminated, truncated, info
+        if self.render_mode == "human":
+            self._show(self.shot_frames())
+        return out
 
     def render(self):
         if self.render_mode is None:
@@ -394,12 +408,25 @@ class PoolBreakEnv(gym.Env):
             return None
         if self._balls is None:
             raise RuntimeError("call reset() before render()")
+        if self.render_mode == "human":
+            return self._show([self.playback.frame()])
         if self.render_mode == "rgb_array":
             return self.playback.frame()
         return self.playback.shot_frames()
 
     def close(self):
         self.playback.close()
+        if self._window is not None:
+            self._window.close()
+            self._window = None
+
+    def _show(self, frames):
+        """render_mode="human": show `frames` in the window at `metadata["render_fps"]` (None)."""
+        if self._window is None:
+            from .window import Window
+
+            self._window = Window(f"pool_env: {type(self).__name__}")
+        self._window.play(frames, self.metadata["render_fps"])
 
     def shot_frames(self, fps=None) -> list[np.ndarray]:
         """The frames of the last shot sampled from the exact trajectory at `fps` (default

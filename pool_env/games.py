@@ -261,10 +261,14 @@ class PoolGameEnv(gym.Env):
 
     The game is in `env.unwrapped.state` (`rules.GameState`, the agent is player 0) and the
     balls in `env.unwrapped.balls`. Rendering as `PoolBreakEnv`: "rgb_array" the table now,
-    "rgb_array_list" (and `shot_frames(fps)`) every shot of the last step, both players'.
+    "rgb_array_list" (and `shot_frames(fps)`) every shot of the last step, both players';
+    "human" a pygame window (`pip install 'pool-env[play]'`) animating every shot of each step
+    (and of `reset`, when the opponent breaks) at `metadata["render_fps"]`, `render()` showing
+    the table now, `close()` closing it (no display: set `SDL_VIDEODRIVER=dummy`).
+    `python -m pool_env.play --game nine_ball --opponent ghost_ball` plays a game with the mouse.
     """
 
-    metadata = {"render_modes": ["rgb_array", "rgb_array_list"], "render_fps": 30}
+    metadata = {"render_modes": ["human", "rgb_array", "rgb_array_list"], "render_fps": 30}
 
     def __init__(self, game="nine_ball", opponent="ghost_ball", render_mode=None, table=None, physics=None,
                  noise=None, agent_breaks=True, shaping=False, max_shots=100, rule_options=None,
@@ -299,18 +303,24 @@ class PoolGameEnv(gym.Env):
         self._step_shots = []  # the Results of the last step's shots, for frames
         self._called, self._shooter, self._end_reason = None, 0, None
         self._hand_before, self._shoots_eight = None, False
+        self._window = None  # render_mode="human": a pool_env.window.Window
         self._begin_step()
 
     # --- Gymnasium API ----------------------------------------------------------------------
     def reset(self, *, seed=None, options=None):
         self._start(self._draw_start(seed, options))
+        if self.render_mode == "human":
+            self._show(self.shot_frames())  # the opponent's break too, when it breaks
         return self._observation(), {}
 
     def step(self, action):
         struck = self._strike_or_error(action)
         while struck is not None:
             struck = self._advance(self._simulate(struck))
-        return self._finish(None)
+        out = self._finish(None)
+        if self.render_mode == "human":
+            self._show(self.shot_frames())
+        return out
 
     def render(self):
         if self.render_mode is None:
@@ -318,10 +328,23 @@ class PoolGameEnv(gym.Env):
             return None
         if self._balls is None:
             raise RuntimeError("call reset() before render()")
+        if self.render_mode == "human":
+            return self._show([self._annotate(self.playback.frame())])
         return self._annotate(self.playback.frame()) if self.render_mode == "rgb_array" else self.shot_frames()
 
     def close(self):
         self.playback.close()
+        if self._window is not None:
+            self._window.close()
+            self._window = None
+
+    def _show(self, frames):
+        """render_mode="human": show `frames` in the window at `metadata["render_fps"]` (None)."""
+        if self._window is None:
+            from .window import Window
+
+            self._window = Window(f"pool_env: {self.game}")
+        self._window.play(frames, self.metadata["render_fps"])
 
     def shot_frames(self, fps=None) -> list[np.ndarray]:
         """Every shot of the last step (the agent's, then the opponent's) sampled at `fps`; after

@@ -10,3 +10,10 @@ def restore_gymnasium_log_level():
     level = gym.logger.min_level
     yield
     gym.logger.min_level = level
+
+
+@pytest.fixture(autouse=True)
+def headless_windows(monkeypatch):
+    """No test opens a real window: render_mode="human" and pool_env.play draw on SDL's dummy driver."""
+    monkeypatch.setenv("SDL_VIDEODRIVER", "dummy")
+    monkeypatch.setenv("SDL_AUDIODRIVER", "dummy")

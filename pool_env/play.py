@@ -1,0 +1,84 @@
+"""`python -m pool_env.play`: play pool with the mouse in a pygame window (against a player, a model or a friend)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from .play_session import BUILT_IN_PLAYERS, GAMES, TABLE_SIZE, PlaySession
+
+EPILOG = """mouse: press on the table and drag back from the cue ball, release to shoot (a drag of 0.6 m on
+the table is full power, 12 m/s); with ball in hand drag the cue ball to place it; click the tip diagram to
+set draw, follow and English; shooting at the 8 in 8-ball, click a pocket to call it.
+keys: R restart, U undo the last shot, S slow motion, W save the game (python -m pool_env.replay plays it), Esc quit."""
+
+
+def parse(argv=None):
+    parser = argparse.ArgumentParser(prog="python -m pool_env.play", description=__doc__.split("\n")[0], epilog=EPILOG,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--game", choices=list(GAMES), default="nine_ball")
+    parser.add_argument("--opponent", default="ghost_ball",
+                        help=f"a built-in player ({', '.join(BUILT_IN_PLAYERS)}) or a model (runs/<name>/model.zip)")
+    parser.add_argument("--two-players", action="store_true", help="two humans take turns on one screen")
+    parser.add_argument("--seed", type=int, default=0, help="the first rack's seed (R racks the next seed)")
+    parser.add_argument("--size", type=int, nargs=2, default=list(TABLE_SIZE), metavar=("W", "H"),
+                        help="the table's size in pixels")
+    parser.add_argument("--save-dir", default=".", help="where W writes games")
+    parser.add_argument("--screenshot", metavar="PNG", help="draw a scripted opening (headless: "
+                        "SDL_VIDEODRIVER=dummy), save the window to PNG and quit")
+    return parser.parse_args(argv)
+
+
+def run(session, surface, pygame):
+    """The event loop: events to the session, pending shots played, the window drawn at 60 Hz."""
+    clock = pygame.time.Clock()
+    while session.running:
+        for event in pygame.event.get():
+            session.handle(event)
+        session.update()
+        session.tick(clock.get_time() / 1000.0)
+        session.draw(surface)
+        pygame.display.flip()
+        clock.tick(60)
+
+
+def screenshot(session, surface, pygame, path):
+    """A break shot aimed (the ball in hand placed, a drag under way), drawn and saved to `path`."""
+    pg = pygame
+    cue = session.to_pixel(session.cue_xy)
+    target = session.to_pixel(session.base.balls.xy[1])
+    back = cue - 0.35 * (target - cue)
+    for event in (pg.event.Event(pg.MOUSEBUTTONDOWN, pos=session.tip_centre(), button=1),
+                  pg.event.Event(pg.MOUSEBUTTONUP, pos=(session.tip_centre()[0] + 8, session.tip_centre()[1] + 20),
+                                 button=1),
+                  pg.event.Event(pg.MOUSEBUTTONDOWN, pos=tuple(back), button=1),
+                  pg.event.Event(pg.MOUSEMOTION, pos=tuple(back), rel=(0, 0), buttons=(1, 0, 0))):
+        session.handle(event)
+    session.draw(surface)
+    pygame.image.save(surface, path)
+    print(f"wrote {path}")
+
+
+def main(argv=None) -> int:
+    args = parse(argv)
+    from .window import open_display
+
+    try:
+        session = PlaySession(args.game, args.opponent, args.two_players, seed=args.seed, size=args.size,
+                              save_dir=args.save_dir)
+        pygame, surface = open_display(session.window_size, f"pool_env: {args.game}")
+    except (ImportError, RuntimeError, ValueError) as exc:
+        print(f"python -m pool_env.play: {exc}", file=sys.stderr)
+        return 2
+    try:
+        if args.screenshot:
+            screenshot(session, surface, pygame, args.screenshot)
+        else:
+            run(session, surface, pygame)
+    finally:
+        pygame.display.quit()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

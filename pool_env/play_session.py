@@ -1,0 +1,454 @@
+"""`PlaySession`: `python -m pool_env.play`'s logic (events to shots, undo, save), testable without a display."""
+
+from __future__ import annotations
+
+import math
+import time
+from pathlib import Path
+
+import gymnasium as gym
+import numpy as np
+
+from . import rules
+from .env import MAX_SPEED, MAX_TIP_OFFSET
+from .games import overlay, place_cue_ball, placement_area
+from .physics import BALL_RADIUS
+from .saved import record_game, save_game
+from .window import import_pygame
+
+GAMES = {"break": ("PoolBreak-v0", {"spin": True}), "run": ("PoolBreakRun-v0", {"spin": True}),
+         "nine_ball": ("PoolNineBall-v0", {}), "eight_ball": ("PoolEightBall-v0", {})}
+NAMES = {"break": "break", "run": "break and run", "nine_ball": "9-ball", "eight_ball": "8-ball"}
+BUILT_IN_PLAYERS = ("ghost_ball", "random", "search")
+DRAG_FULL = 0.6  # m: a drag this long (or longer) from the cue ball is full power (|a[0:2]| = 1, 12 m/s)
+MIN_DRAG = BALL_RADIUS  # m: a shorter drag is no shot (a click)
+TABLE_SIZE = (1120, 630)  # px: the table's frames
+PANEL = 250  # px: the panel right of the table (tip diagram, messages, keys)
+TIP_RADIUS = 70  # px: the cue ball of the tip diagram
+SLOW = 4  # slow motion: this many times slower
+KEYS = "R restart  U undo  S slow motion  W save  Esc quit"
+
+
+def shot_action(cue_xy, mouse_xy, tip=(0.0, 0.0)):
+    """The force and tip entries a[0:4] of a drag from the cue ball at `cue_xy` to `mouse_xy` (m):
+    the shot goes opposite the drag (pull back to shoot forward), with |a[0:2]| = min(drag /
+    DRAG_FULL, 1) (so the cue ball leaves at 12 m/s * that); a[2:4] = tip / MAX_TIP_OFFSET, the tip
+    (side, top) in ball radii. None for a drag shorter than MIN_DRAG."""
+    d = np.asarray(cue_xy, dtype=np.float64) - np.asarray(mouse_xy, dtype=np.float64)
+    length = math.hypot(d[0], d[1])
+    if length < MIN_DRAG:
+        return None
+    power = min(length / DRAG_FULL, 1.0)
+    return np.array([power * d[0] / length, power * d[1] / length, tip[0] / MAX_TIP_OFFSET, tip[1] / MAX_TIP_OFFSET])
+
+
+def clamp_tip(side, top):
+    """(side, top) in ball radii, scaled back onto the miscue limit (0.5 R) if beyond it."""
+    length = math.hypot(side, top)
+    if length > MAX_TIP_OFFSET:
+        side, top = side * MAX_TIP_OFFSET / length, top * MAX_TIP_OFFSET / length
+    return float(side), float(top)
+
+
+def first_hit(balls, cue_xy, direction, table):
+    """(ghost ball centre, ball hit or None) of a cue ball rolling straight from `cue_xy` along
+    the unit `direction`: where it first touches an object ball, else where it meets a cushion."""
+    c, u = np.asarray(cue_xy, dtype=np.float64), np.asarray(direction, dtype=np.float64)
+    r = float(balls.radii[0])
+    best, hit = math.inf, None
+    for k in range(1, len(balls)):
+        if balls.pocketed[k]:
+            continue
+        p = balls.xy[k] - c
+        along = float(p @ u)
+        gap2 = float(p @ p) - along * along
+        reach = r + float(balls.radii[k])
+        if along > 0 and gap2 < reach * reach:
+            t = along - math.sqrt(reach * reach - gap2)
+            if 0 <= t < best:
+                best, hit = t, k
+    for axis, size in ((0, table.length), (1, table.width)):
+        if u[axis] > 1e-12:
+            best = min(best, (size - r - c[axis]) / u[axis])
+        elif u[axis] < -1e-12:
+            best = min(best, (r - c[axis]) / u[axis])
+    return c + max(best, 0.0) * u, hit
+
+
+def make_env(game, opponent="ghost_ball", two_players=False, size=TABLE_SIZE, render_mode="rgb_array"):
+    """The env of a played game: a break env (with spin), or a game env against `opponent` (a
+    built-in player's name or a saved SB3 model's path), or two humans taking turns (`Hotseat`)."""
+    if game not in GAMES:
+        raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAMES)}")
+    env_id, kwargs = GAMES[game]
+    if render_mode is not None:  # (a saved game's env has neither: only names and numbers are saved)
+        kwargs = {**kwargs, "render_mode": render_mode, "render_size": tuple(size)}
+    if game in ("break", "run"):
+        return gym.make(env_id, **kwargs)
+    if two_players:
+        return Hotseat(gym.make(env_id, opponent=None, **kwargs))
+    try:
+        return gym.make(env_id, opponent=opponent, **kwargs)
+    except ValueError:
+        if not isinstance(opponent, str):
+            raise
+    return gym.make(env_id, opponent=resolve_player(opponent, gym.make(env_id, opponent=None)), **kwargs)
+
+
+def resolve_player(name, env):
+    """An agent for `--opponent`: `search` (agents.SearchAgent) or a saved SB3 model's path."""
+    if name == "search":
+        import agents
+
+        if not hasattr(agents, "SearchAgent"):
+            raise ValueError("--opponent search needs agents.SearchAgent, which this checkout lacks")
+        return agents.SearchAgent.from_env(env)
+    path = Path(name)
+    if path.suffix == ".zip" or path.with_suffix(".zip").exists():
+        if not path.exists() and not path.with_suffix(".zip").exists():
+            raise ValueError(f"--opponent {name}: no such model file")
+        from agents import SB3Agent
+
+        return SB3Agent.load(path)
+    raise ValueError(f"unknown opponent {name!r}; choose one of {', '.join(BUILT_IN_PLAYERS)} or a saved "
+                     "model's path (runs/<name>/model.zip)")
+
+
+class Hotseat(gym.Wrapper):
+    """Two humans on one game env: a practice env (opponent=None) whose episode goes on when the
+    turn passes (the other player shoots) and ends only when the game does. Saved hotseat games
+    replay with `pool_env.saved.replay(record, env=Hotseat(gym.make(...)))`."""
+
+    def step(self, action):
+        obs, reward, terminated, truncated, info = self.env.step(action)
+        base = self.env.unwrapped
+        if terminated and base.state.winner is None:
+            base._done, terminated = False, False
+        return obs, reward, terminated, truncated, info
+
+
+class PlaySession:
+    """A game played with the mouse: feed it pygame events (`handle`), let it play pending shots
+    (`update`), draw it on a surface (`draw`). Mouse: press on the table and drag back from the
+    cue ball, release to shoot (`shot_action`'s mapping; a drag shorter than a ball radius
+    cancels); with ball in hand drag the cue ball itself to place it; click or drag on the tip
+    diagram (right panel) to set the tip offset (clamped to the 0.5 R miscue limit); when shooting
+    at the 8, click a pocket to call it first. Keys: R restart (a new rack), U undo the last
+    shot (the game replayed without it), S slow motion, W write the game to a JSON file
+    (`pool_env.save_game`; `python -m pool_env.replay` plays it again), Esc quit."""
+
+    def __init__(self, game="nine_ball", opponent="ghost_ball", two_players=False, seed=0, size=TABLE_SIZE,
+                 save_dir=".", animate=True):
+        self.pygame = import_pygame()
+        self.game, self.opponent, self.two_players = game, opponent, bool(two_players)
+        self.seed, self.size, self.save_dir, self.animate = int(seed), tuple(size), Path(save_dir), animate
+        self.env = make_env(game, opponent, two_players, size)
+        self.base = self.env.unwrapped
+        self.running, self.slow, self.saved_path = True, False, None
+        self.tip = (0.0, 0.0)
+        self.restart(self.seed)
+
+    # --- state ------------------------------------------------------------------------------
+    @property
+    def window_size(self):
+        return self.size[0] + PANEL, self.size[1]
+
+    @property
+    def state(self):
+        """The game's `rules.GameState` (None in the break envs)."""
+        return getattr(self.base, "state", None)
+
+    @property
+    def in_hand(self):
+        return None if self.state is None or self.done else self.state.ball_in_hand
+
+    @property
+    def needs_call(self) -> bool:
+        """The shooter must call a pocket: 8-ball, shooting at the 8 (not on the break)."""
+        state = self.state
+        return (self.game == "eight_ball" and not self.done and not state.is_break
+                and rules.legal_targets(state) == frozenset({8}))
+
+    def restart(self, seed=None):
+        """A new game (seed `seed`, default the next one)."""
+        self.seed = self.seed + 1 if seed is None else int(seed)
+        self.actions, self.done, self.lines, self.note = [], False, [], ""
+        self.env.reset(seed=self.seed)
+        self._begin_turn()
+
+    def _begin_turn(self):
+        self.drag = self.pending = None
+        self.placing = self.tipping = False
+        self.called = None
+        self.frames, self.frame_pos, self._still = [], 0.0, None
+        balls = self.base.balls
+        self.cue_xy = balls.xy[0].copy()
+        if self.in_hand is not None:
+            x_lo, x_hi, y_lo, y_hi = placement_area(self.base.table, self.in_hand, float(balls.radii[0]))
+            wanted = self.cue_xy if not balls.pocketed[0] else ((x_lo + x_hi) / 2, (y_lo + y_hi) / 2)
+            self.cue_xy = self._placed(wanted)
+
+    def _placed(self, wanted):
+        """The free spot nearest `wanted` where the cue ball may go (ball in hand)."""
+        placed = place_cue_ball(self.base.balls, self.base.table, self.base.physics, self.in_hand, wanted)
+        return placed.xy[0].copy()
+
+    # --- events -------------------------------------------------------------------------------
+    def handle(self, event):
+        """Apply one pygame event (mouse, keys, window close)."""
+        pg = self.pygame
+        if event.type == pg.QUIT:
+            self.running = False
+        elif event.type == pg.KEYDOWN:
+            self._key(event.key)
+        elif event.type == pg.MOUSEBUTTONDOWN and event.button == 1:
+            self._press(event.pos)
+        elif event.type == pg.MOUSEMOTION:
+            self._move(event.pos)
+        elif event.type == pg.MOUSEBUTTONUP and event.button == 1:
+            self._release(event.pos)
+
+    def _key(self, key):
+        pg = self.pygame
+        if key == pg.K_ESCAPE:
+            self.running = False
+        elif key == pg.K_r:
+            self.restart()
+            self.note = f"new game (seed {self.seed})"
+        elif key == pg.K_u:
+            self.undo()
+        elif key == pg.K_s:
+            self.slow = not self.slow
+            self.note = f"slow motion {'on' if self.slow else 'off'}"
+        elif key == pg.K_w:
+            self.write()
+
+    def _press(self, pos):
+        if self.frames:  # a click skips the animation
+            self.frames = []
+            return
+        if self.done:
+            return
+        if self._tip_at(pos) is not None:
+            self.tipping = True
+            self.tip = self._tip_at(pos)
+            return
+        if pos[0] >= self.size[0]:
+            return
+        xy = self.to_world(pos)
+        pocket = self._pocket_at(xy)
+        if self.needs_call and pocket is not None:
+            self.called, self.note = pocket, f"8 called in pocket {pocket}"
+        elif self.in_hand is not None and math.dist(xy, self.cue_xy) <= 2 * BALL_RADIUS:
+            self.placing = True
+        else:
+            self.drag = xy
+
+    def _move(self, pos):
+        if self.tipping:
+            self.tip = self._tip_at(pos, clamp=True)
+        elif self.placing:
+            x_lo, x_hi, y_lo, y_hi = placement_area(self.base.table, self.in_hand, BALL_RADIUS)
+            x, y = self.to_world(pos)
+            self.cue_xy, self._still = np.array([min(max(x, x_lo), x_hi), min(max(y, y_lo), y_hi)]), None
+        elif self.drag is not None:
+            self.drag = self.to_world(pos)
+
+    def _release(self, pos):
+        if self.tipping:
+            self.tip, self.tipping = self._tip_at(pos, clamp=True), False
+        elif self.placing:
+            self._move(pos)
+            self.cue_xy, self.placing, self._still = self._placed(self.cue_xy), False, None
+        elif self.drag is not None:
+            self.drag = self.to_world(pos)
+            action = self.action()
+            self.drag = None
+            if action is None:
+                return
+            if self.needs_call and self.called is None:
+                self.note = "shooting at the 8: click a pocket to call it first"
+                return
+            self.pending = action
+
+    # --- actions ------------------------------------------------------------------------------
+    def action(self):
+        """The env action of the drag under way (None without one, or for a drag shorter than
+        MIN_DRAG): `shot_action`'s entries, then the ball-in-hand placement of the cue ball as
+        the game env maps a[4:6] (linearly onto `placement_area`), then the called pocket (the
+        centre of its bin of a[6])."""
+        if self.drag is None:
+            return None
+        head = shot_action(self.cue_xy, self.drag, self.tip)
+        if head is None:
+            return None
+        size = self.base.action_space.shape[0]
+        action = np.zeros(size)
+        action[:4] = head
+        if size > 4 and self.in_hand is not None:
+            x_lo, x_hi, y_lo, y_hi = placement_area(self.base.table, self.in_hand, float(self.base.balls.radii[0]))
+            action[4] = 2.0 * (self.cue_xy[0] - x_lo) / (x_hi - x_lo) - 1.0
+            action[5] = 2.0 * (self.cue_xy[1] - y_lo) / (y_hi - y_lo) - 1.0
+        if size > 6:
+            n = self.base.table.pockets.shape[0]
+            action[6] = -1.0 + (2 * (self.called or 0) + 1) / n
+        return np.clip(action, -1.0, 1.0).astype(np.float32)
+
+    def update(self):
+        """Play the pending shot, if any (the human's, then the opponent's replies)."""
+        if self.pending is None:
+            return
+        action, self.pending = self.pending, None
+        self.shoot(action)
+
+    def shoot(self, action):
+        """Step the env with `action`; note the rules' messages and queue the frames."""
+        action = np.asarray(action, dtype=np.float32)
+        shooter = 0 if self.state is None else self.state.shooter
+        obs, reward, terminated, truncated, info = self.env.step(action)
+        self.actions.append([float(a) for a in action])
+        self.done = bool(terminated or truncated)
+        self.lines = self._shot_lines(info, shooter)
+        frames = self.base.shot_frames(self.base.metadata["render_fps"] * (SLOW if self.slow else 1))
+        self.note = ""
+        self._begin_turn()
+        if self.animate:
+            self.frames = frames
+
+    def _shot_lines(self, info, shooter):
+        """The rules' messages of a step (both players' shots), or what a break shot did."""
+        if self.state is None:
+            pocketed = [b for b in info["pocketed"] if b]
+            return [f"pocketed: {', '.join(map(str, pocketed)) or 'none'}"] + (["scratch"] if info["scratch"] else [])
+        lines = [f"{self._player(shooter)}: {m}" for m in info["messages"]]
+        for shot in info.get("opponent_shots", []):
+            lines += [f"opponent: {m}" for m in shot["messages"]]
+        return lines
+
+    def undo(self):
+        """Take back the last shot: the game replayed from its seed with every action but the last."""
+        if not self.actions:
+            self.note = "nothing to undo"
+            return
+        actions = self.actions[:-1]
+        self.env.reset(seed=self.seed)
+        self.actions, self.done, self.lines = [], False, []
+        for action in actions:
+            obs, reward, terminated, truncated, info = self.env.step(np.asarray(action, dtype=np.float32))
+            self.actions.append(action)
+            self.done = bool(terminated or truncated)
+        self._begin_turn()
+        self.note = f"undone: back to shot {len(self.actions) + 1}"
+
+    def write(self, path=None):
+        """Save the game so far (`pool_env.save_game`) and return the path (None if it cannot be saved)."""
+        if path is None:
+            path = self.save_dir / f"pool_game_{self.game}_{time.strftime('%Y%m%d_%H%M%S')}.json"
+        actions = iter(self.actions)
+        env = make_env(self.game, self.opponent, self.two_players, self.size, render_mode=None)
+        try:
+            record = record_game(env, lambda obs: next(actions), seed=self.seed, max_steps=len(self.actions))
+        except ValueError as exc:
+            self.note = f"cannot save: {exc}"
+            return None
+        finally:
+            env.close()
+        self.saved_path = save_game(path, record)
+        self.note = f"saved {self.saved_path}"
+        print(f"pool_env.play: {self.note}", flush=True)
+        return self.saved_path
+
+    # --- geometry -----------------------------------------------------------------------------
+    def to_world(self, pos):
+        """Window pixel (col, row) to table metres (x, y)."""
+        origin, unit = self.base.playback.renderer.world_to_pixel(np.array([[0.0, 0.0], [1.0, 1.0]]))
+        scale = unit - origin
+        return np.array([(pos[0] - origin[0]) / scale[0], (pos[1] - origin[1]) / scale[1]])
+
+    def to_pixel(self, xy):
+        return self.base.playback.renderer.world_to_pixel(np.asarray(xy, dtype=np.float64))[0]
+
+    def _pocket_at(self, xy):
+        """The pocket (index in `Table.pockets`) whose mouth is under `xy` (m), else None."""
+        pockets = self.base.table.pockets
+        if not pockets.shape[0]:
+            return None
+        d = np.hypot(pockets[:, 0] - xy[0], pockets[:, 1] - xy[1])
+        k = int(np.argmin(d))
+        return k if d[k] <= pockets[k, 2] + 2 * BALL_RADIUS else None
+
+    def tip_centre(self):
+        return self.size[0] + PANEL // 2, TIP_RADIUS + 40
+
+    def _tip_at(self, pos, clamp=False):
+        """The tip offset (side, top) in R under the pixel `pos` of the diagram (None outside it, unless clamp)."""
+        cx, cy = self.tip_centre()
+        side, top = (pos[0] - cx) / TIP_RADIUS, (cy - pos[1]) / TIP_RADIUS
+        if not clamp and math.hypot(side, top) > 1.0:
+            return None
+        return clamp_tip(side, top)
+
+    def _player(self, shooter=None):
+        """A player's name (default: the shooter now): "you" and "opponent", or "player 1" and "player 2"."""
+        if self.state is None:
+            return "you"
+        shooter = self.state.shooter if shooter is None else shooter
+        if self.two_players:
+            return f"player {shooter + 1}"
+        return "you" if shooter == 0 else "opponent"
+
+    # --- drawing ------------------------------------------------------------------------------
+    def status(self):
+        """The lines of text on the table: the game, whose turn, ball in hand, the last shot's messages."""
+        name = NAMES[self.game]
+        if self.state is None:
+            head = f"{name}: shot {len(self.actions) + 1}" + (" - over, R for a new rack" if self.done else "")
+            return [head, *self.lines]
+        state = self.state
+        if state.winner is not None:
+            head = f"{name}: {self._player(state.winner)} {'win' if self._player(state.winner) == 'you' else 'wins'}"
+        elif self.done:
+            head = f"{name}: game stopped"
+        else:
+            who = self._player()
+            head = f"{name}  shot {state.shot + 1}: {who} {'shoot' if who == 'you' else 'shoots'}"
+            if state.ball_in_hand:
+                head += f", ball in hand ({state.ball_in_hand.replace('_', ' ')}): drag the cue ball"
+        lines = [head]
+        if self.game == "eight_ball" and state.groups[state.shooter] is not None:
+            lines.append(f"group: {state.groups[state.shooter]}")
+        if self.needs_call:
+            called = self.called is not None
+            lines.append(f"8 called in pocket {self.called}" if called else "click a pocket to call the 8")
+        return lines + self.lines
+
+    def table_frame(self):
+        """The table now (uint8 (H, W, 3)), the cue ball where it is to be placed, with the status lines."""
+        if self._still is None:
+            balls, playback = self.base.balls, self.base.playback
+            xy, pocketed = balls.xy.copy(), balls.pocketed.copy()
+            xy[0], pocketed[0] = self.cue_xy, False
+            playback.frame()  # brings the rotation markers to the end of the last shot
+            self._still = playback.renderer.draw(xy, pocketed, playback.orientation)
+        return overlay(self._still, self.status())
+
+    def draw(self, surface):
+        """Draw the session on a pygame surface of `window_size`; advance the animation by a frame."""
+        from .play_draw import draw_session
+
+        draw_session(self, surface)
+
+    def tick(self, seconds):
+        """Advance the animation by `seconds` of wall time (at metadata["render_fps"] frames a second)."""
+        if self.frames:
+            self.frame_pos += seconds * self.base.metadata["render_fps"]
+            if self.frame_pos >= len(self.frames):
+                self.frames, self.frame_pos = [], 0.0
+
+    def power(self):
+        """(|a[0:2]|, cue-ball speed in m/s) of the drag under way, or None."""
+        action = self.action()
+        if action is None:
+            return None
+        power = float(np.hypot(action[0], action[1]))
+        return power, power * MAX_SPEED

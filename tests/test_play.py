@@ -1,0 +1,142 @@
+"""render_mode="human" and `python -m pool_env.play`, headless (SDL's dummy video driver; conftest sets it)."""
+
+import math
+import os
+import sys
+
+import gymnasium as gym
+import numpy as np
+import pytest
+
+import pool_env
+from pool_env.env import MAX_TIP_OFFSET
+from pool_env.games import placement_area
+
+try:
+    import pygame
+except ImportError:
+    if os.environ.get("POOL_ENV_REQUIRE_PYGAME") == "1":
+        raise
+    pytest.skip("pygame is not installed (pip install -e '.[play]'); POOL_ENV_REQUIRE_PYGAME=1 makes this fail",
+                allow_module_level=True)
+
+from pool_env.play_session import DRAG_FULL, MIN_DRAG, PlaySession, shot_action  # noqa: E402
+from pool_env.saved import replay  # noqa: E402
+
+SIZE = (640, 360)
+
+
+def mouse(kind, pos):
+    pos = tuple(float(v) for v in pos)
+    if kind == "motion":
+        return pygame.event.Event(pygame.MOUSEMOTION, pos=pos, rel=(0, 0), buttons=(1, 0, 0))
+    return pygame.event.Event(pygame.MOUSEBUTTONDOWN if kind == "down" else pygame.MOUSEBUTTONUP, pos=pos, button=1)
+
+
+def key(k):
+    return pygame.event.Event(pygame.KEYDOWN, key=k, mod=0, unicode="")
+
+
+def drag(session, start, end):
+    for event in (mouse("down", start), mouse("motion", end), mouse("up", end)):
+        session.handle(event)
+
+
+@pytest.mark.parametrize("env_id", ["PoolBreak-v0", "PoolNineBall-v0"])
+def test_human_mode_opens_draws_and_closes(env_id):
+    env = gym.make(env_id, render_mode="human", render_size=SIZE)
+    env.reset(seed=0)
+    window = env.unwrapped._window
+    assert window.is_open and pygame.display.get_init()
+    env.step(np.array([1.0, 0.0] + [0.0] * (env.action_space.shape[0] - 2), dtype=np.float32))
+    assert env.render() is None
+    frame = window.frame()
+    assert frame.shape == (SIZE[1], SIZE[0], 3) and frame.max() > 0  # the table, not a black window
+    if env_id == "PoolBreak-v0":
+        assert np.array_equal(frame, env.unwrapped.playback.frame())  # render() shows the table now
+    env.close()
+    assert not window.is_open and not pygame.display.get_init()
+    env.close()  # twice is fine
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="the early display check is for Linux")
+def test_human_mode_without_a_display_names_the_fix(monkeypatch):
+    for name in ("SDL_VIDEODRIVER", "DISPLAY", "WAYLAND_DISPLAY"):
+        monkeypatch.delenv(name, raising=False)
+    env = gym.make("PoolBreak-v0", render_mode="human")
+    with pytest.raises(RuntimeError, match="SDL_VIDEODRIVER=dummy"):
+        env.reset(seed=0)
+    env.close()
+
+
+def test_the_drag_mapping():
+    a = shot_action((1.0, 0.5), (0.7, 0.5), tip=(0.1, -0.2))  # dragged 0.3 m back along -x
+    assert np.allclose(a, [0.3 / DRAG_FULL, 0.0, 0.1 / MAX_TIP_OFFSET, -0.2 / MAX_TIP_OFFSET])
+    assert np.allclose(shot_action((1.0, 0.5), (1.0, -1.0))[:2], [0.0, 1.0])  # a long drag is full power
+    assert shot_action((1.0, 0.5), (1.0 + 0.5 * MIN_DRAG, 0.5)) is None  # a click is no shot
+
+
+def test_a_scripted_session_places_aims_shoots_undoes_and_saves(tmp_path):
+    session = PlaySession("nine_ball", "ghost_ball", seed=3, size=SIZE, save_dir=tmp_path, animate=False)
+    base = session.base
+    assert session.in_hand == "behind_head_string"
+    # Ball in hand: drag the cue ball to a free spot in the kitchen.
+    spot = np.array([0.4, 0.45])
+    drag(session, session.to_pixel(session.cue_xy), session.to_pixel(spot))
+    assert np.allclose(session.cue_xy, spot, atol=2.0 / base.playback.renderer.scale)
+    placed = session.cue_xy.copy()
+    # The tip: a click on the diagram's lower half is draw (clamped to the miscue limit).
+    cx, cy = session.tip_centre()
+    session.handle(mouse("down", (cx, cy + 60)))
+    session.handle(mouse("up", (cx, cy + 60)))
+    assert session.tip == pytest.approx((0.0, -MAX_TIP_OFFSET))
+    # Aim: press on the table, drag back about 0.3 m along -x from the cue ball, release.
+    back = placed + np.array([-0.3, 0.02])
+    session.handle(mouse("down", session.to_pixel(placed + (-0.15, 0.0))))  # off the cue ball: aiming
+    session.handle(mouse("motion", session.to_pixel(back)))
+    action = session.action()
+    session.handle(mouse("up", session.to_pixel(back)))
+    assert session.pending is not None and np.array_equal(session.pending, action)
+    pulled = session.to_world(session.to_pixel(back)) - placed  # the drag, as the mouse reported it
+    assert np.allclose(action[:2], -pulled / DRAG_FULL, atol=1e-6)  # opposite the drag, |a| = drag / 0.6 m
+    assert math.hypot(*action[:2]) == pytest.approx(math.hypot(-0.3, 0.02) / DRAG_FULL, abs=0.01)
+    assert np.allclose(action[2:4], [0.0, -1.0], atol=1e-6)
+    x_lo, x_hi, y_lo, y_hi = placement_area(base.table, "behind_head_string", float(base.balls.radii[0]))
+    wanted = (x_lo + 0.5 * (action[4] + 1) * (x_hi - x_lo), y_lo + 0.5 * (action[5] + 1) * (y_hi - y_lo))
+    assert np.allclose(wanted, placed, atol=1e-6)
+    session.update()  # the shot, then the opponent's replies
+    assert len(session.actions) == 1 and session.pending is None
+    assert session.status()[0].startswith("9-ball") and session.lines
+    balls_1, state_1 = base.balls, base.state
+    # A second shot, then undo: the game is back exactly where it was.
+    cue = session.cue_xy
+    drag(session, session.to_pixel(cue), session.to_pixel(cue + (0.1, 0.15)))
+    session.update()
+    assert len(session.actions) == 2
+    session.handle(key(pygame.K_u))
+    assert len(session.actions) == 1
+    assert np.array_equal(base.balls.xy, balls_1.xy) and np.array_equal(base.balls.pocketed, balls_1.pocketed)
+    assert base.state == state_1
+    # W writes a file that load_game and replay accept.
+    session.handle(key(pygame.K_w))
+    assert session.saved_path is not None and session.saved_path.exists()
+    record = pool_env.load_game(session.saved_path)
+    assert record["actions"] == session.actions
+    env = replay(record)
+    assert np.array_equal(env.unwrapped.balls.xy, balls_1.xy)
+    # Drawing works on an off-screen surface, and R racks a new game.
+    surface = pygame.Surface(session.window_size)
+    session.draw(surface)
+    assert pygame.surfarray.array3d(surface).max() > 0
+    session.handle(key(pygame.K_r))
+    assert session.actions == [] and session.seed == 4
+
+
+def test_two_players_take_turns():
+    session = PlaySession("nine_ball", two_players=True, seed=0, size=SIZE, animate=False)
+    assert session.status()[0].startswith("9-ball  shot 1: player 1")
+    cue = session.cue_xy
+    drag(session, session.to_pixel(cue + (0.0, 0.1)), session.to_pixel(cue + (0.0, 0.12)))  # a miss: a foul
+    session.update()
+    assert not session.done and session.state.shooter == 1
+    assert "player 2" in session.status()[0]
