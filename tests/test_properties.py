@@ -130,7 +130,9 @@ def test_momentum_check_allows_the_cloth_across_the_sample_gap():
     # collide; between the sample one ulp before the instant (4.4e-16 s) and the instant,
     # sliding friction (mu_s g = 4.9 m/s^2) changes each one's momentum by 0.17 kg x 4.9 x
     # 4.4e-16 = 3.7e-16 kg m/s, more than 1e-12 of their momentum (6e-4 kg m/s). No violation.
-    balls = Balls([[1.0, 0.5], [0.5, 1.0], [2.0, 1.0], [1.0, 1.0]], v=[[0.0, 0.0], [0.0, 0.0], [0.0, 0.0], [0.8775825618903728, 0.479425538604203]], w=[[0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [-11.0, 0.0, 0.0], [0.0, 0.0, 0.0]])
+    balls = Balls([[1.0, 0.5], [0.5, 1.0], [2.0, 1.0], [1.0, 1.0]],
+                  v=[[0.0, 0.0], [0.0, 0.0], [0.0, 0.0], [0.8775825618903728, 0.479425538604203]],
+                  w=[[0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [-11.0, 0.0, 0.0], [0.0, 0.0, 0.0]])
     physics = Physics(ball_ball="elastic", cushion="restitution", mu_s=0.5, mu_r=0.00390625, e_b=0.984375,
                       e_c=0.125, f_c=0.0, spin=False)
     result, violations = run_checked(balls, Table.seed(), physics)
