@@ -9,6 +9,7 @@ them alike:
 | `BreakAgent(table, spin)` | full-power break a tenth of a radius off the head ball's centre |
 | `GhostBallAgent(table, physics, spin)` | breaks, then pots by the ghost-ball method (multi-shot env) |
 | `GameGhostBallAgent(game, table, physics)` | the game envs' rule-aware ghost-ball player (their default opponent) |
+| `SearchAgent.from_env(env, budget, seed)` | simulates candidate shots in a batch, plays the best by the rules |
 | `SB3Agent(model)` / `SB3Agent.load(path)` | a Stable-Baselines3 model; `load_model` reads the algorithm from the zip |
 
 ```python
@@ -27,9 +28,10 @@ from .evaluate import baselines, evaluate, format_table, heuristic_for, paired_d
 from .game_player import GameGhostBallAgent
 from .heuristic import BreakAgent, GhostBallAgent, Shot
 from .sb3 import SB3Agent, algorithm_of, load_model
+from .search import SearchAgent
 
 __all__ = [
-    "Agent", "RandomAgent", "BreakAgent", "GhostBallAgent", "GameGhostBallAgent", "Shot", "SB3Agent", "load_model",
-    "algorithm_of",
+    "Agent", "RandomAgent", "BreakAgent", "GhostBallAgent", "GameGhostBallAgent", "SearchAgent", "Shot", "SB3Agent",
+    "load_model", "algorithm_of",
     "evaluate", "play_episode", "summarize", "paired_difference", "format_table", "baselines", "heuristic_for",
 ]

@@ -1,0 +1,532 @@
+"""`SearchAgent`: a PickPocket-style player that simulates candidate shots in one batch and plays the best."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from pool_env import rules
+from pool_env.env import CONTACT_TIME, MAX_SPEED, MAX_TIP_OFFSET, cue_force
+from pool_env.games import GAMES, noisy_shot, place_cue_ball, placement_area
+from pool_env.physics import BALL_RADIUS, Balls, Physics, Table, strike
+from pool_env.physics.batch import simulate_batch
+
+from . import geometry as geo
+from .base import Agent
+from .heuristic import GhostBallAgent
+
+ARRIVALS = (0.25, 0.7, 1.6)  # m/s: the object ball's speed at the pocket, one planner each (three speeds)
+TIPS = ((0.0, 0.0), (0.0, 0.3), (0.0, -0.3))  # (side, top) in R: stun, follow, draw
+JITTER = (0.0, math.radians(0.15), -math.radians(0.15))  # aim corrections tried around the ghost-ball line
+SAFETY_SPEEDS = (1.2, 2.2, 3.5)  # m/s
+SAFETY_EDGES = (0.0, 0.9, -0.9, 1.6, -1.6)  # aim this many R beside the legal ball's centre
+KICK_SPEEDS = (2.5, 4.5)  # m/s: off one rail at the mirror image of a legal ball
+KICK_TURNS = tuple(math.radians(t) for t in (0.0, 0.5, -0.5, 1.0, -1.0, 2.0, -2.0))  # around the image line
+BREAK_SPEEDS = (10.0, 12.0)  # m/s
+BREAK_SIDES = (0.0, 0.15, -0.15, 0.35, -0.35)  # m from the head spot, along the head string (game break)
+BREAK_OFFSETS = (0.0, 0.1, -0.1, 0.3, -0.3)  # R beside the head ball's centre
+RUN_BREAKS = ((3, 1.3), (3, -1.3), (1, 0.1), (1, -0.1), (2, 1.0), (2, -1.0), (3, 1.1), (3, 1.5))  # (row, offset)
+SPOT_BACKS = (0.12, 0.3)  # m: ball-in-hand spots this far behind the object ball
+SPOT_TURNS = (0.0, math.radians(25.0), -math.radians(25.0))  # ... on the pot line and turned off it
+SPOTS = 6  # ball-in-hand spots searched in full
+SPOT_TRIES = 14  # spots (best by the cheap ranking) whose shots are planned to rank them
+# Values of an outcome (the shooter's view): a win, a pot with the position it leaves (from
+# CONTINUE up to 1 with the best next shot's quality), a miss leaving the opponent a shot,
+# a foul (ball in hand for the opponent), a loss.
+WIN, CONTINUE, MISS, FOUL, LOSS = 1.0, 0.35, -0.55, -0.75, -1.0
+IN_HAND_QUALITY = 1.0  # the next shooter's quality with ball in hand
+MAX_CUT_COS = math.cos(math.radians(80.0))  # the planner's 75 degrees with room for the pocket's width
+LOOKAHEAD_WORK = 150  # outcomes x legal balls the lookahead scores per decision (best plain value first)
+
+
+@dataclass
+class Candidate:
+    """One shot to try: the cue ball sent along `direction` at `speed` m/s with tip `tip`,
+    from `spot` (ball in hand; None: where it lies), the 8 called in `pocket`."""
+
+    direction: np.ndarray
+    speed: float
+    tip: tuple = (0.0, 0.0)
+    spot: np.ndarray | None = None
+    pocket: int | None = None
+    kind: str = "pot"
+    prior: float = 0.0
+
+
+@dataclass
+class Decoded:
+    """An observation read back: positions (m), on-table flags, legal first contacts (object
+    balls 1..n-1), ball in hand, consecutive fouls (shooter, opponent), the shooter's 8-ball group."""
+
+    xy: np.ndarray
+    on_table: np.ndarray
+    legal: frozenset
+    ball_in_hand: str | None = None
+    fouls: tuple = (0, 0)
+    group: str | None = None
+
+
+def decode(observation, n_balls: int, table: Table, game: bool = True) -> Decoded:
+    """Read a game observation (`pool_env.games.game_observation`, n_balls 10 or 16) or, with
+    `game=False`, a `PoolBreakEnv` observation (16 balls, every object ball legal)."""
+    obs = np.asarray(observation, dtype=np.float64)
+    per_ball = obs[: 3 * n_balls].reshape(n_balls, 3)
+    on_table = per_ball[:, 2] > 0
+    xy = np.column_stack([(per_ball[:, 0] + 1.0) * 0.5 * table.length, (per_ball[:, 1] + 1.0) * 0.5 * table.width])
+    if not game:
+        return Decoded(xy, on_table, frozenset(int(b) for b in np.flatnonzero(on_table[1:]) + 1))
+    n = n_balls
+    legal = frozenset(int(b) + 1 for b in np.flatnonzero(obs[3 * n: 4 * n - 1] > 0))
+    hand = obs[4 * n - 1: 4 * n + 1]
+    in_hand = "anywhere" if hand[0] > 0 else ("behind_head_string" if hand[1] > 0 else None)
+    fouls = tuple(int(round(f + 1.0)) for f in obs[4 * n + 1: 4 * n + 3])
+    group = None
+    if n == 16:
+        flags = obs[4 * n + 3: 4 * n + 6]
+        group = "solids" if flags[1] > 0 else ("stripes" if flags[2] > 0 else None)
+    return Decoded(xy, on_table, legal, in_hand, fouls, group)
+
+
+def racked(xy, on_table, radius: float = BALL_RADIUS) -> bool:
+    """Every object ball on the table, each touching (within 10 %) another: the break is next."""
+    p = xy[1:][on_table[1:]]
+    if len(p) < len(xy) - 1 or len(p) < 2:
+        return False
+    d = np.hypot(p[:, None, 0] - p[None, :, 0], p[:, None, 1] - p[None, :, 1])
+    np.fill_diagonal(d, np.inf)
+    return bool(np.all(d.min(axis=1) < 2.2 * radius))
+
+
+def game_state(decoded: Decoded, game: str, rule_options: dict | None = None) -> rules.GameState:
+    """The `rules.GameState` of a decoded game observation, the shooter as player 0."""
+    state = rules.new_game(game, breaker=0, **(rule_options or {}))
+    groups = (None, None)
+    if decoded.group is not None:
+        groups = (decoded.group, "stripes" if decoded.group == "solids" else "solids")
+    on = frozenset(int(b) for b in np.flatnonzero(decoded.on_table[1:]) + 1)
+    is_break = decoded.ball_in_hand == "behind_head_string" and racked(decoded.xy, decoded.on_table)
+    return dataclasses.replace(state, on_table=on, shooter=0, ball_in_hand=decoded.ball_in_hand,
+                               fouls=decoded.fouls, groups=groups, is_break=is_break, shot=0 if is_break else 1)
+
+
+def balls_of(decoded: Decoded, radius: float = BALL_RADIUS) -> Balls:
+    """The balls of a decoded observation (pocketed balls parked at the origin)."""
+    xy = np.where(decoded.on_table[:, None], decoded.xy, 0.0)
+    return Balls(xy, radius=radius, pocketed=~decoded.on_table)
+
+
+class SearchAgent(Agent):
+    """Plays by simulation (PickPocket-style): candidate shots (ghost-ball pots of every legal
+    ball into every pocket at three speeds with stun, follow and draw and small aim
+    corrections; kicks off each rail when no pot is on; safeties; with ball in hand, the
+    best-ranked spots times their shots; on the break, spots x aims x speeds) are all
+    simulated in one `simulate_batch` call (`noise_samples` draws each when the env has
+    noise), judged by the rules and scored: a win, a pot plus the quality of the position it
+    leaves (depth-1 lookahead: the best ghost-ball score of the next legal ball), a miss minus
+    the opponent's best shot, a foul, a loss. The best mean value is played.
+
+    `budget` caps the simulated shots per decision (candidates x noise samples); the lookahead
+    covers the best candidates by their plain value (`LOOKAHEAD_WORK`). `seconds` (optional)
+    also stops the lookahead when the decision has used that much wall time (decisions then
+    depend on the machine's speed; without it they depend only on the seed and the observation).
+    `last_stats` holds the last decision's candidates, simulations, seconds and value."""
+
+    name = "search"
+
+    def __init__(self, game: str | None = "nine_ball", table: Table | None = None, physics: Physics | None = None,
+                 noise: dict | None = None, spin: bool = True, budget: int = 600, noise_samples: int = 6,
+                 seed: int | None = 0, lookahead: bool = True, threads: int = 1, seconds: float | None = None,
+                 rule_options: dict | None = None, radius: float = BALL_RADIUS):
+        if game is not None and game not in GAMES:
+            raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAMES)} or None (PoolBreakRun-v0)")
+        if int(budget) < 1 or int(noise_samples) < 1:
+            raise ValueError(f"budget and noise_samples must be >= 1, got {budget!r}, {noise_samples!r}")
+        self.game, self.n_balls = game, GAMES.get(game, 16)
+        self.table = Table.eight_foot() if table is None else table
+        self.physics = Physics.standard() if physics is None else physics
+        self.noise, self.spin, self.radius = noise, bool(spin or game is not None), radius
+        self.budget, self.noise_samples = int(budget), int(noise_samples) if noise else 1
+        self.lookahead, self.threads, self.seconds = bool(lookahead), int(threads), seconds
+        self.rule_options = dict(rule_options or {})
+        self.planners = [GhostBallAgent(self.table, self.physics, arrival_speed=v, radius=radius) for v in ARRIVALS]
+        self.scorer = GhostBallAgent(self.table, self.physics, radius=radius)
+        self.pockets = self.scorer.pockets
+        self.seed = seed
+        self.rng = np.random.default_rng(seed)
+        self.last_stats: dict = {}
+
+    @classmethod
+    def from_env(cls, env, **options) -> SearchAgent:
+        """For a game env (PoolNineBall-v0, PoolEightBall-v0, the PettingZoo AEC envs) or PoolBreakRun-v0."""
+        env = env.unwrapped
+        env = getattr(env, "game_env", env)  # a PettingZoo env wraps a PoolGameEnv
+        if hasattr(env, "game"):
+            return cls(game=env.game, table=env.table, physics=env.physics, noise=env.noise,
+                       rule_options=getattr(env, "rule_options", None), **options)
+        return cls(game=None, table=env.table, physics=env.physics, spin=env.spin, **options)
+
+    def reset(self, seed: int | None = None) -> None:
+        if seed is not None:
+            self.seed = seed
+        self.rng = np.random.default_rng(self.seed)
+
+    # --- a decision ----------------------------------------------------------------------------
+    def act(self, observation) -> np.ndarray:
+        start = time.perf_counter()
+        d = decode(observation, self.n_balls, self.table, game=self.game is not None)
+        state = game_state(d, self.game, self.rule_options) if self.game is not None else None
+        candidates = self.candidates(d, state)[: max(1, self.budget // self.noise_samples)]
+        values = self.evaluate(d, state, candidates, start)
+        best = int(np.argmax(values))
+        self.last_stats = {"candidates": len(candidates), "simulations": len(candidates) * self.noise_samples,
+                           "seconds": time.perf_counter() - start, "value": float(values[best]),
+                           "kind": candidates[best].kind}
+        return self.action(candidates[best], d.ball_in_hand)
+
+    def candidates(self, d: Decoded, state) -> list[Candidate]:
+        """Every candidate of this decision, best prior first (pots, then kicks and safeties)."""
+        if racked(d.xy, d.on_table, self.radius):
+            return self.break_candidates(d, state)
+        if d.ball_in_hand is not None:
+            out = []
+            for spot in self.spots(d):
+                xy = d.xy.copy()
+                xy[0] = spot
+                out += [dataclasses.replace(c, spot=spot) for c in self.shot_candidates(xy, d.on_table, d.legal)]
+            return self.ranked(out)
+        return self.ranked(self.shot_candidates(d.xy, d.on_table, d.legal))
+
+    def ranked(self, cands: list[Candidate]) -> list[Candidate]:
+        """Pots by prior first, but the budget keeps a quarter of its room for kicks and safeties."""
+        room = max(1, self.budget // self.noise_samples)
+        pots = sorted((c for c in cands if c.kind == "pot"), key=lambda c: -c.prior)
+        rest = sorted((c for c in cands if c.kind != "pot"), key=lambda c: -c.prior)
+        keep = max(room - len(rest), (3 * room) // 4)
+        return pots[:keep] + rest[: room - min(keep, len(pots))]
+
+    # --- candidate generation --------------------------------------------------------------------
+    def shot_candidates(self, xy, on_table, legal) -> list[Candidate]:
+        """Ghost-ball pots of the legal balls; kicks if no pot is on; safeties."""
+        objects = np.flatnonzero(on_table[1:]) + 1
+        pots = []
+        for ball in sorted(legal):
+            others = xy[objects[objects != ball]]
+            for pocket in self.pockets:
+                if not self.cuttable(xy[0], xy[ball], pocket):
+                    continue
+                for k, planner in enumerate(self.planners):
+                    shot = planner._plan(xy[0], ball, xy[ball], pocket, others)
+                    if shot is None:
+                        continue
+                    for j, turn in enumerate(JITTER):
+                        direction = geo.rotate(shot.direction, turn)
+                        for t, tip in enumerate(self.tips()):
+                            prior = shot.score * (1.0 - 0.1 * j - 0.05 * t - 0.02 * k)
+                            pots.append(Candidate(direction, shot.speed, tip, pocket=pocket.index, prior=prior))
+        rest = self.safeties(xy, on_table, legal)
+        if not pots:
+            rest += self.kicks(xy, legal)
+        return pots + rest
+
+    def tips(self):
+        return TIPS if self.spin else TIPS[:1]
+
+    def safeties(self, xy, on_table, legal) -> list[Candidate]:
+        out = []
+        for ball in sorted(legal):
+            to = xy[ball] - xy[0]
+            dist = float(np.hypot(*to))
+            if dist < 1e-9:
+                continue
+            side = np.array([-to[1], to[0]]) / dist
+            for edge in SAFETY_EDGES:
+                direction = geo.unit(xy[ball] + edge * self.radius * side - xy[0])
+                for speed in SAFETY_SPEEDS:
+                    out.append(Candidate(direction, speed, kind="safety", prior=-dist - abs(edge)))
+        return out
+
+    def kicks(self, xy, legal) -> list[Candidate]:
+        """One-rail kicks: the cue ball aimed at a legal ball's image in each rail's line."""
+        R, L, W = self.radius, self.table.length, self.table.width
+        out = []
+        for ball in sorted(legal):
+            x, y = xy[ball]
+            for image in ((2 * R - x, y), (2 * (L - R) - x, y), (x, 2 * R - y), (x, 2 * (W - R) - y)):
+                line = geo.unit(np.array(image) - xy[0])
+                for turn in KICK_TURNS:
+                    for speed in KICK_SPEEDS:
+                        out.append(Candidate(geo.rotate(line, turn), speed, kind="kick", prior=-1.0 - abs(turn)))
+        return out
+
+    def spots(self, d: Decoded) -> list[np.ndarray]:
+        """Ball in hand: straight-in (and turned) spots behind each legal ball for each open
+        pocket, ranked cheaply (open mouth, distances), the best `SPOT_TRIES` then ranked by the
+        best ghost-ball score from there (a coarse grid when none is free); the best `SPOTS`."""
+        area = placement_area(self.table, d.ball_in_hand, self.radius)
+        x_lo, x_hi, y_lo, y_hi = area
+        objects = np.flatnonzero(d.on_table[1:]) + 1
+        cheap = []
+        for ball in sorted(d.legal):
+            others = d.xy[objects[objects != ball]]
+            for pocket in self.pockets:
+                aim = geo.pocket_aim(d.xy[ball], pocket, self.table, self.radius, others)
+                if aim is None:
+                    continue
+                u, d2 = geo.unit(aim[0] - d.xy[ball]), float(np.hypot(*(aim[0] - d.xy[ball])))
+                for back in SPOT_BACKS:
+                    for turn in SPOT_TURNS:
+                        spot = d.xy[ball] - geo.rotate(u, turn) * (2.0 * self.radius + back)
+                        cheap.append((aim[1] / ((d2 + 0.5) * (back + 0.5)) * (1.0 - abs(turn)), tuple(spot)))
+        cheap.sort(reverse=True)
+        spots = [np.array(p) for _, p in cheap if self.free(p, d, objects, area)][:SPOT_TRIES]
+        if len(spots) < SPOTS:
+            spots += [np.array((x, y)) for x in np.linspace(x_lo, x_hi, 6) for y in np.linspace(y_lo, y_hi, 3)
+                      if self.free((x, y), d, objects, area)]
+        on = d.on_table.copy()
+        on[0] = True
+        ranked = []
+        for spot in spots:
+            xy = d.xy.copy()
+            xy[0] = spot
+            ranked.append((self.quality(xy, on, d.legal), tuple(spot)))
+        ranked.sort(reverse=True)
+        return [np.array(s) for _, s in ranked[:SPOTS]] or [np.array((0.5 * (x_lo + x_hi), 0.5 * (y_lo + y_hi)))]
+
+    def free(self, spot, d: Decoded, objects, area) -> bool:
+        """The spot is inside the placement area and clear of every object ball."""
+        x_lo, x_hi, y_lo, y_hi = area
+        gap = np.min(np.hypot(*(d.xy[objects] - np.asarray(spot)).T), initial=np.inf)
+        return x_lo <= spot[0] <= x_hi and y_lo <= spot[1] <= y_hi and gap >= 2.2 * self.radius
+
+    def break_candidates(self, d: Decoded, state) -> list[Candidate]:
+        """The break: spots along the head string (game envs) x aims beside the head ball x speeds;
+        PoolBreakRun-v0 (no ball in hand): `BreakAgent` aims at several rack rows."""
+        objects = np.flatnonzero(d.on_table[1:]) + 1
+        out = []
+        if d.ball_in_hand is None:
+            for row, offset in RUN_BREAKS:
+                self.scorer.breaker.row, self.scorer.breaker.offset = row, offset
+                a = self.scorer.breaker.break_shot(d.xy, d.on_table)
+                for tip in self.tips()[:1] + (((0.3, 0.0),) if self.spin else ()):
+                    out.append(Candidate(geo.unit(a[:2]), MAX_SPEED, tip, kind="break"))
+            return out
+        x_lo, x_hi, y_lo, y_hi = placement_area(self.table, d.ball_in_hand, self.radius)
+        head = rules.head_spot(self.table)
+        for side in BREAK_SIDES:
+            spot = np.array((min(head[0], x_hi) - 0.02, min(max(head[1] + side, y_lo), y_hi)))
+            target = objects[np.argmin(np.hypot(*(d.xy[objects] - spot).T))]
+            to = geo.unit(d.xy[target] - spot)
+            for offset in BREAK_OFFSETS:
+                aim = d.xy[target] + offset * self.radius * np.array([-to[1], to[0]])
+                for speed in BREAK_SPEEDS:
+                    out.append(Candidate(geo.unit(aim - spot), speed, spot=spot, kind="break"))
+        return out
+
+    # --- evaluation ------------------------------------------------------------------------------
+    def struck(self, d: Decoded, cand: Candidate, balls: Balls) -> Balls:
+        """The struck balls exactly as the env would strike the candidate's action (noise drawn
+        from the agent's generator)."""
+        a = self.action(cand, d.ball_in_hand).astype(np.float64)
+        if self.game is not None:
+            force, offset = cue_force(a[0:4], spin=True)
+            if d.ball_in_hand is not None:
+                x_lo, x_hi, y_lo, y_hi = placement_area(self.table, d.ball_in_hand, self.radius)
+                wanted = (x_lo + 0.5 * (a[4] + 1.0) * (x_hi - x_lo), y_lo + 0.5 * (a[5] + 1.0) * (y_hi - y_lo))
+                balls = place_cue_ball(balls, self.table, self.physics, d.ball_in_hand, wanted)
+        else:
+            force, offset = cue_force(a, spin=self.spin)
+        force, offset = noisy_shot(force, offset, self.noise, self.rng)
+        return strike(balls, force, offset, CONTACT_TIME)
+
+    def evaluate(self, d: Decoded, state, candidates, start) -> np.ndarray:
+        """The mean value of each candidate over its noise samples (one `simulate_batch`)."""
+        balls, s = balls_of(d, self.radius), self.noise_samples
+        scenes = []
+        for cand in candidates:
+            for _ in range(s):
+                try:
+                    scenes.append(self.struck(d, cand, balls))
+                except ValueError as exc:
+                    scenes.append(exc)
+        todo = [k for k, x in enumerate(scenes) if not isinstance(x, Exception)]
+        results = list(scenes)
+        for k, r in zip(todo, simulate_batch([scenes[k] for k in todo], self.table, self.physics,
+                                             threads=self.threads)):
+            results[k] = r
+        judged = [self.judge(state, results[k], candidates[k // s]) for k in range(len(results))]
+        plain = np.array([v for v, _ in judged]).reshape(len(candidates), s).mean(axis=1)
+        if not self.lookahead:
+            return plain
+        values = plain - 10.0  # only the candidates that get the lookahead can be chosen
+        for c in np.argsort(-plain)[: max(4, LOOKAHEAD_WORK // (s * max(1, len(d.legal))))]:
+            if self.seconds is not None and time.perf_counter() - start > self.seconds:
+                break
+            values[c] = np.mean([self.deep_value(*judged[c * s + k]) for k in range(s)])
+        return values
+
+    def judge(self, state, result, cand):
+        """(plain value, what the lookahead needs) of one simulated shot."""
+        if isinstance(result, Exception):
+            return FOUL, None
+        shot = rules.outcome_from_result(result)
+        if state is None:  # PoolBreakRun-v0: no rules, a scratch ends the episode
+            if shot.cue_pocketed:
+                return LOSS, None
+            left = np.count_nonzero(~result.final.pocketed[1:])
+            if left == 0:
+                return WIN, None
+            on = frozenset(int(b) for b in np.flatnonzero(~result.final.pocketed[1:]) + 1)
+            kept = len(shot.pocketed) > 0
+            return (CONTINUE + 0.5 * (1 - CONTINUE)) if kept else MISS, ("self" if kept else "miss",
+                                                                         result.final, on, None)
+        after, ruling = rules.judge(state, shot, cand.pocket)
+        if ruling.winner is not None:
+            return (WIN if ruling.winner == 0 else LOSS), None
+        balls = result.final
+        if ruling.balls_to_spot:
+            balls = rules.spot_balls(balls, self.table, ruling.balls_to_spot)
+        legal = rules.legal_targets(after)
+        if not ruling.turn_passed:
+            return CONTINUE + 0.5 * (1 - CONTINUE), ("self", balls, legal, after.ball_in_hand)
+        if ruling.foul is not None:
+            return FOUL - (0.15 if after.fouls[0] >= 2 else 0.0), None
+        return MISS * 0.5, ("opponent", balls, legal, None)
+
+    def deep_value(self, value, info) -> float:
+        """The value with the depth-1 lookahead: the next shooter's best ghost-ball quality."""
+        if info is None:
+            return value
+        who, balls, legal, in_hand = info
+        if who == "miss":  # PoolBreakRun-v0: our turn again after a miss
+            return MISS + 0.5 * self.quality(balls.xy, ~balls.pocketed, legal)
+        q = IN_HAND_QUALITY if in_hand is not None else self.quality(balls.xy, ~balls.pocketed, legal)
+        return CONTINUE + (1.0 - CONTINUE) * q if who == "self" else MISS * q
+
+    def quality(self, xy, on_table, legal) -> float:
+        """The best ghost-ball score (capped at 1) of a legal ball into any pocket from this layout."""
+        if not on_table[0]:
+            return IN_HAND_QUALITY
+        objects = np.flatnonzero(on_table[1:]) + 1
+        best = 0.0
+        for ball in legal:
+            others = xy[objects[objects != ball]]
+            for pocket in self.pockets:
+                if not self.cuttable(xy[0], xy[ball], pocket):
+                    continue
+                shot = self.scorer._plan(xy[0], int(ball), xy[ball], pocket, others)
+                if shot is not None:
+                    best = max(best, shot.score)
+        return min(best, 1.0)
+
+    def cuttable(self, cue, obj, pocket) -> bool:
+        """A quick filter before the planner: the cut towards the pocket's centre is under 80 degrees."""
+        u = geo.unit(pocket.centre - obj)
+        ghost = obj - 2.0 * self.radius * u
+        to = ghost - cue
+        return float(to @ u) > MAX_CUT_COS * float(np.hypot(*to))
+
+    # --- the action ------------------------------------------------------------------------------
+    def action(self, cand: Candidate, in_hand) -> np.ndarray:
+        """The env's action for a candidate: force (direction x speed / MAX_SPEED), tip / 0.5,
+        placement (the inverse of the area's mapping), the 8's pocket (its bin's centre)."""
+        force = geo.unit(cand.direction) * min(cand.speed / MAX_SPEED, 1.0)
+        tip = np.asarray(cand.tip, dtype=np.float64) / MAX_TIP_OFFSET
+        if self.game is None:
+            return np.clip(np.concatenate([force, tip] if self.spin else [force]), -1, 1).astype(np.float32)
+        place = (0.0, 0.0)
+        if in_hand is not None and cand.spot is not None:
+            x_lo, x_hi, y_lo, y_hi = placement_area(self.table, in_hand, self.radius)
+            place = ((cand.spot[0] - x_lo) / (x_hi - x_lo) * 2.0 - 1.0,
+                     (cand.spot[1] - y_lo) / (y_hi - y_lo) * 2.0 - 1.0)
+        action = [*force, *tip, *place]
+        if self.n_balls == 16:
+            n_pockets = max(self.table.pockets.shape[0], 1)
+            action.append(-1.0 + (2.0 * (cand.pocket if cand.pocket is not None else 0) + 1.0) / n_pockets)
+        return np.clip(np.array(action, dtype=np.float64), -1.0, 1.0).astype(np.float32)
+
+
+# --- measuring ---------------------------------------------------------------------------------
+def wilson(wins: int, n: int, z: float = 1.96) -> tuple[float, float]:
+    """The 95 % Wilson score interval of a win rate."""
+    if n == 0:
+        return 0.0, 1.0
+    p = wins / n
+    centre, half = p + z * z / (2 * n), z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
+    return (centre - half) / (1 + z * z / n), (centre + half) / (1 + z * z / n)
+
+
+def head_to_head(games: int = 20, seed: int = 0, env_id: str = "PoolNineBall-v0", noise=None, **options) -> dict:
+    """`SearchAgent` against the env's ghost-ball opponent, alternating breaks, game k seeded
+    `seed + k`: wins, the win rate and its 95 % interval, break-and-run rate (games the agent
+    broke and won in its first turn), seconds per decision (median, p95)."""
+    import gymnasium as gym
+
+    import pool_env  # noqa: F401  (registers the envs)
+
+    wins = breaks = runs = 0
+    seconds = []
+    for k in range(games):
+        env = gym.make(env_id, opponent="ghost_ball", noise=noise, agent_breaks=k % 2 == 0)
+        agent = SearchAgent.from_env(env, seed=seed + k, **options)
+        obs, _ = env.reset(seed=seed + k)
+        first_turn, done, info = True, False, {}
+        while not done:
+            obs, _, terminated, truncated, info = env.step(agent.act(obs))
+            seconds.append(agent.last_stats["seconds"])
+            done = terminated or truncated
+            if not done and info["opponent_shots"]:
+                first_turn = False
+        won = info.get("winner") == "agent"
+        wins += won
+        breaks += k % 2 == 0
+        runs += won and first_turn and k % 2 == 0
+        env.close()
+    lo, hi = wilson(wins, games)
+    return {"games": games, "wins": wins, "win_rate": wins / max(games, 1), "ci95": (lo, hi),
+            "breaks": breaks, "break_and_runs": runs, "break_and_run_rate": runs / max(breaks, 1),
+            "decisions": len(seconds), "median_seconds": float(np.median(seconds)) if seconds else 0.0,
+            "p95_seconds": float(np.percentile(seconds, 95)) if seconds else 0.0}
+
+
+def clear_rate(episodes: int = 20, seed: int = 0, **options) -> dict:
+    """`SearchAgent` in PoolBreakRun-v0: racks cleared (every object ball down, no scratch) and
+    balls pocketed per episode, episode k seeded `seed + k`."""
+    import gymnasium as gym
+
+    import pool_env  # noqa: F401  (registers the envs)
+
+    cleared, balls = 0, []
+    for k in range(episodes):
+        env = gym.make("PoolBreakRun-v0")
+        agent = SearchAgent.from_env(env, seed=seed + k, **options)
+        obs, _ = env.reset(seed=seed + k)
+        done, info = False, {}
+        while not done:
+            obs, _, terminated, truncated, info = env.step(agent.act(obs))
+            done = terminated or truncated
+        cleared += info["balls_left"] == 0 and not info["scratch"]
+        balls.append(15 - info["balls_left"])
+        env.close()
+    lo, hi = wilson(cleared, episodes)
+    return {"episodes": episodes, "cleared": cleared, "clear_rate": cleared / max(episodes, 1), "ci95": (lo, hi),
+            "balls_per_episode": float(np.mean(balls)) if balls else 0.0}
+
+
+if __name__ == "__main__":
+    import argparse
+    import json
+
+    parser = argparse.ArgumentParser(description="SearchAgent against the ghost-ball player")
+    parser.add_argument("--games", type=int, default=20)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--env-id", default="PoolNineBall-v0")
+    parser.add_argument("--noise", default=None)
+    args = parser.parse_args()
+    if args.env_id == "PoolBreakRun-v0":
+        print(json.dumps(clear_rate(args.games, args.seed), indent=1))
+    else:
+        print(json.dumps(head_to_head(args.games, args.seed, args.env_id, args.noise), indent=1))

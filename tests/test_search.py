@@ -1,0 +1,133 @@
+"""SearchAgent: pots what is on, places the cue ball, plays safe, keeps its budget, decodes and repeats exactly."""
+
+import gymnasium as gym
+import numpy as np
+import pytest
+
+import pool_env  # noqa: F401  (registers the envs)
+from agents import GameGhostBallAgent, SearchAgent
+from agents.search import balls_of, decode, game_state, head_to_head, wilson
+from pool_env import rules
+from pool_env.games import game_observation
+from pool_env.physics import Balls, Table
+
+TABLE = Table.eight_foot()
+
+
+def layout(n, on):
+    """n balls by number: those in `on` (number -> (x, y)) on the table, the rest pocketed."""
+    xy = np.zeros((n, 2))
+    pocketed = np.ones(n, dtype=bool)
+    for k, p in on.items():
+        xy[k], pocketed[k] = p, False
+    return Balls(xy, pocketed=pocketed)
+
+
+@pytest.mark.parametrize("cue, ball", [((1.12, 0.30), (1.12, 0.80)), ((1.40, 0.40), (1.80, 0.80)),
+                                       ((0.60, 0.60), (0.30, 0.30))])
+def test_pots_a_straight_in_ball(cue, ball):
+    env = gym.make("PoolNineBall-v0", opponent="ghost_ball")
+    agent = SearchAgent.from_env(env)
+    obs, _ = env.reset(seed=0, options={"balls": layout(10, {0: cue, 1: ball, 9: (0.25, 1.0)})})
+    _, _, _, _, info = env.step(agent.act(obs))
+    assert info["pocketed"] == [1] and info["foul"] is None and not info["turn_passed"]
+    assert agent.last_stats["kind"] == "pot"
+
+
+def test_ball_in_hand_goes_to_a_spot_that_makes_a_shot():
+    env = gym.make("PoolNineBall-v0", opponent="ghost_ball")
+    agent = SearchAgent.from_env(env)
+    # The cue ball lies behind the 9, which blocks the 1: only a placement makes the pot.
+    balls = layout(10, {0: (0.40, 0.56), 1: (1.60, 0.56), 9: (1.00, 0.56)})
+    obs, _ = env.reset(seed=0, options={"balls": balls, "ball_in_hand": True})
+    _, _, _, _, info = env.step(agent.act(obs))
+    # From where it lay the cue ball would hit the 9 first; placed, it pots (the 1, or the 9 off it: a win).
+    assert info["pocketed"] and info["foul"] is None and (not info["turn_passed"] or info["winner"] == "agent")
+
+
+def test_plays_a_safety_when_every_pot_is_blocked():
+    env = gym.make("PoolNineBall-v0", opponent="ghost_ball")
+    agent = SearchAgent.from_env(env)
+    # The 1 frozen in the middle of the foot rail, hidden behind the 9 from a cue ball far up the table.
+    balls = layout(10, {0: (0.50, 0.56), 1: (2.24 - 0.0290, 0.56), 9: (1.60, 0.56), 2: (2.10, 0.40),
+                        3: (2.10, 0.72)})
+    obs, _ = env.reset(seed=0, options={"balls": balls})
+    d = decode(obs, 10, TABLE)
+    assert not [c for c in agent.shot_candidates(d.xy, d.on_table, d.legal) if c.kind == "pot"]
+    _, _, _, _, info = env.step(agent.act(obs))
+    assert agent.last_stats["kind"] in ("safety", "kick")
+    assert info["foul"] is None
+
+
+@pytest.mark.parametrize("env_id", ["PoolNineBall-v0", "PoolEightBall-v0", "PoolBreakRun-v0"])
+def test_actions_stay_in_the_space_and_the_budget_holds(env_id):
+    kwargs = {} if env_id == "PoolBreakRun-v0" else {"noise": "olympiad"}
+    env = gym.make(env_id, **kwargs)
+    agent = SearchAgent.from_env(env, budget=60, noise_samples=3)
+    obs, _ = env.reset(seed=3)
+    for _ in range(4):
+        action = agent.act(obs)
+        assert env.action_space.contains(action)
+        assert agent.last_stats["simulations"] <= 60 and agent.last_stats["candidates"] <= 60 // agent.noise_samples
+        obs, _, terminated, truncated, _ = env.step(action)
+        if terminated or truncated:
+            obs, _ = env.reset(seed=4)
+
+
+def test_decoding_round_trips_a_known_state():
+    balls = layout(16, {0: (0.5, 0.5), 3: (1.0, 0.3), 8: (1.5, 0.9), 12: (2.0, 0.2)})
+    state = rules.new_game("eight_ball")
+    state = state.__class__(state.rules, on_table=frozenset({3, 8, 12}), shooter=0, ball_in_hand="anywhere",
+                            fouls=(1, 2), groups=("stripes", "solids"), is_break=False, shot=7)
+    obs = game_observation(balls, state, 0, 7, 100, TABLE)
+    d = decode(obs, 16, TABLE)
+    np.testing.assert_allclose(d.xy[~balls.pocketed], balls.xy[~balls.pocketed], atol=1e-6)
+    assert np.array_equal(d.on_table, ~balls.pocketed)
+    back = game_state(d, "eight_ball")
+    assert (back.on_table, back.ball_in_hand, back.fouls, back.groups, back.is_break) == \
+        (state.on_table, "anywhere", (1, 2), ("stripes", "solids"), False)
+    assert d.legal == rules.legal_targets(state) == rules.legal_targets(back) == frozenset({12})
+    assert np.array_equal(balls_of(d).pocketed, balls.pocketed)
+    rack = rules.nine_ball_rack(TABLE, seed=1)
+    nine = game_state(decode(game_observation(rack, rules.new_game("nine_ball"), 0, 0, 100, TABLE), 10, TABLE),
+                      "nine_ball")
+    assert nine.is_break and nine.ball_in_hand == "behind_head_string"
+
+
+def test_the_same_seed_gives_the_same_actions():
+    env = gym.make("PoolNineBall-v0", noise="olympiad")
+    obs, _ = env.reset(seed=2)
+    obs, *_ = env.step(GameGhostBallAgent.from_env(env).act(obs))
+    first = [SearchAgent.from_env(env, seed=5, budget=80).act(obs) for _ in range(2)]
+    assert np.array_equal(first[0], first[1])
+    agent = SearchAgent.from_env(env, seed=5, budget=80)
+    a = agent.act(obs)
+    agent.reset(5)
+    assert np.array_equal(agent.act(obs), a)
+
+
+def test_wilson_interval_holds_the_estimate():
+    lo, hi = wilson(7, 10)
+    assert 0.3 < lo < 0.7 < hi < 1.0
+
+
+def ghost_vs_ghost(games, seed):
+    """The ghost-ball player's wins against itself (alternating breaks, same seeds as head_to_head)."""
+    wins = 0
+    for k in range(games):
+        env = gym.make("PoolNineBall-v0", opponent="ghost_ball", agent_breaks=k % 2 == 0)
+        agent = GameGhostBallAgent.from_env(env)
+        obs, _ = env.reset(seed=seed + k)
+        done, info = False, {}
+        while not done:
+            obs, _, terminated, truncated, info = env.step(agent.act(obs))
+            done = terminated or truncated
+        wins += info.get("winner") == "agent"
+    return wins
+
+
+@pytest.mark.slow
+def test_beats_the_ghost_ball_player_more_than_it_beats_itself():
+    result = head_to_head(10, seed=100)
+    assert result["wins"] > ghost_vs_ghost(10, seed=100)
+    assert result["wins"] >= 7
