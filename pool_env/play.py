@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from .play_draw import draw_session
 from .play_session import BUILT_IN_PLAYERS, GAMES, TABLE_SIZE, PlaySession
 
 EPILOG = """mouse: press on the table and drag back from the cue ball, release to shoot (a drag of 0.6 m on
@@ -37,7 +38,7 @@ def run(session, surface, pygame):
             session.handle(event)
         session.update()
         session.tick(clock.get_time() / 1000.0)
-        session.draw(surface)
+        draw_session(session, surface)
         pygame.display.flip()
         clock.tick(60)
 
@@ -54,7 +55,7 @@ def screenshot(session, surface, pygame, path):
                   pg.event.Event(pg.MOUSEBUTTONDOWN, pos=tuple(back), button=1),
                   pg.event.Event(pg.MOUSEMOTION, pos=tuple(back), rel=(0, 0), buttons=(1, 0, 0))):
         session.handle(event)
-    session.draw(surface)
+    draw_session(session, surface)
     pygame.image.save(surface, path)
     print(f"wrote {path}")
 

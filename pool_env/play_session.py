@@ -129,7 +129,7 @@ class Hotseat(gym.Wrapper):
 
 class PlaySession:
     """A game played with the mouse: feed it pygame events (`handle`), let it play pending shots
-    (`update`), draw it on a surface (`draw`). Mouse: press on the table and drag back from the
+    (`update`), draw it (`play_draw.draw_session`). Mouse: press on the table and drag back from the
     cue ball, release to shoot (`shot_action`'s mapping; a drag shorter than a ball radius
     cancels); with ball in hand drag the cue ball itself to place it; click or drag on the tip
     diagram (right panel) to set the tip offset (clamped to the 0.5 R miscue limit); when shooting
@@ -431,12 +431,6 @@ class PlaySession:
             playback.frame()  # brings the rotation markers to the end of the last shot
             self._still = playback.renderer.draw(xy, pocketed, playback.orientation)
         return overlay(self._still, self.status())
-
-    def draw(self, surface):
-        """Draw the session on a pygame surface of `window_size`; advance the animation by a frame."""
-        from .play_draw import draw_session
-
-        draw_session(self, surface)
 
     def tick(self, seconds):
         """Advance the animation by `seconds` of wall time (at metadata["render_fps"] frames a second)."""

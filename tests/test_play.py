@@ -20,6 +20,7 @@ except ImportError:
     pytest.skip("pygame is not installed (pip install -e '.[play]'); POOL_ENV_REQUIRE_PYGAME=1 makes this fail",
                 allow_module_level=True)
 
+from pool_env.play_draw import draw_session  # noqa: E402
 from pool_env.play_session import DRAG_FULL, MIN_DRAG, PlaySession, shot_action  # noqa: E402
 from pool_env.saved import replay  # noqa: E402
 
@@ -126,7 +127,7 @@ def test_a_scripted_session_places_aims_shoots_undoes_and_saves(tmp_path):
     assert np.array_equal(env.unwrapped.balls.xy, balls_1.xy)
     # Drawing works on an off-screen surface, and R racks a new game.
     surface = pygame.Surface(session.window_size)
-    session.draw(surface)
+    draw_session(session, surface)
     assert pygame.surfarray.array3d(surface).max() > 0
     session.handle(key(pygame.K_r))
     assert session.actions == [] and session.seed == 4
