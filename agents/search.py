@@ -40,6 +40,7 @@ SPOT_TRIES = 14  # spots (best by the cheap ranking) whose shots are planned to 
 WIN, CONTINUE, MISS, FOUL, LOSS = 1.0, 0.35, -0.55, -0.75, -1.0
 IN_HAND_QUALITY = 1.0  # the next shooter's quality with ball in hand
 MAX_CUT_COS = math.cos(math.radians(80.0))  # the planner's 75 degrees with room for the pocket's width
+SEPARATION, SEPARATION_PASSES = 1e-9, 5  # m: overlaps the observation's rounding leaves, undone
 LOOKAHEAD_WORK = 150  # outcomes x legal balls the lookahead scores per decision (best plain value first)
 
 
@@ -114,8 +115,25 @@ def game_state(decoded: Decoded, game: str, rule_options: dict | None = None) ->
 
 
 def balls_of(decoded: Decoded, radius: float = BALL_RADIUS) -> Balls:
-    """The balls of a decoded observation (pocketed balls parked at the origin)."""
+    """The balls of a decoded observation (pocketed balls parked at the origin). Touching balls
+    that the observation's float32 rounding made overlap are pushed apart to touch."""
     xy = np.where(decoded.on_table[:, None], decoded.xy, 0.0)
+    on = np.flatnonzero(decoded.on_table)
+    p = xy[on]
+    d = np.hypot(p[:, None, 0] - p[None, :, 0], p[:, None, 1] - p[None, :, 1]) + 3.0 * radius * np.eye(len(on))
+    for _ in range(SEPARATION_PASSES if np.any(d < 2.0 * radius + SEPARATION) else 0):
+        moved = False
+        for a in range(len(on)):
+            for b in range(a + 1, len(on)):
+                gap = xy[on[b]] - xy[on[a]]
+                dist = float(np.hypot(*gap))
+                if dist < 2.0 * radius + SEPARATION and dist > 0.0:
+                    push = gap / dist * (2.0 * radius + SEPARATION - dist) * 0.5
+                    xy[on[a]] -= push
+                    xy[on[b]] += push
+                    moved = True
+        if not moved:
+            break
     return Balls(xy, radius=radius, pocketed=~decoded.on_table)
 
 

@@ -6,10 +6,10 @@ import pytest
 
 import pool_env  # noqa: F401  (registers the envs)
 from agents import GameGhostBallAgent, SearchAgent
-from agents.search import balls_of, decode, game_state, head_to_head, wilson
+from agents.search import Decoded, balls_of, decode, game_state, head_to_head, wilson
 from pool_env import rules
 from pool_env.games import game_observation
-from pool_env.physics import Balls, Table
+from pool_env.physics import BALL_RADIUS, Balls, Table
 
 TABLE = Table.eight_foot()
 
@@ -92,6 +92,13 @@ def test_decoding_round_trips_a_known_state():
     nine = game_state(decode(game_observation(rack, rules.new_game("nine_ball"), 0, 0, 100, TABLE), 10, TABLE),
                       "nine_ball")
     assert nine.is_break and nine.ball_in_hand == "behind_head_string"
+
+
+def test_balls_the_observation_rounding_made_overlap_are_pushed_apart():
+    xy = np.array([[0.5, 0.5], [0.5 + 2 * BALL_RADIUS - 1e-9, 0.5], [1.0, 0.3]])
+    balls = balls_of(Decoded(xy, np.ones(3, dtype=bool), frozenset()))  # Balls raises on an overlap
+    gap = np.hypot(*(balls.xy[1] - balls.xy[0])) - 2 * BALL_RADIUS
+    assert 0.0 <= gap < 1e-8 and np.array_equal(balls.xy[2], xy[2])
 
 
 def test_the_same_seed_gives_the_same_actions():
