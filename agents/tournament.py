@@ -193,29 +193,39 @@ def player_seed(seed: int, slot: int) -> int:
 
 
 def play_game(game: str, breaker: str, other: str, players: dict, timers: dict, seed: int, noise,
-              max_shots: int = 100) -> dict:
+              max_shots: int = 100, save_to=None) -> dict:
     """One game on `seed`: the breaker is the env's agent (it breaks), the other its opponent, so each
     sees the observation from its own side. (The env re-racks a game the opponent wins before the
-    agent's first shot, so the breaker is never the opponent: its break-and-runs all count.)"""
+    agent's first shot, so the breaker is never the opponent: its break-and-runs all count.)
+    `save_to`: also save the game there (`game_recorder`)."""
     from pool_env.games import PoolGameEnv
 
     for slot, name in enumerate((breaker, other)):
         if hasattr(players[name], "reset"):
             players[name].reset(seed=player_seed(seed, slot))
     env = PoolGameEnv(game, opponent=timers[other], noise=noise, agent_breaks=True, max_shots=max_shots)
+    recorder = None if save_to is None else game_recorder(env, seed, noise, max_shots)
     obs, _ = env.reset(seed=seed)
     shots, done, info, forfeit = [], False, {}, None
     while not done:
         try:
-            obs, _, terminated, truncated, info = env.step(timers[breaker](obs))
+            action = timers[breaker](obs)
+            action = action if recorder is None else recorder.action(action)
+            obs, reward, terminated, truncated, info = env.step(action)
         except PlayerError as exc:  # the player that raised forfeits (this step's shots are lost)
             forfeit = exc
             break
+        if recorder is not None:
+            recorder.stepped(reward, terminated, truncated, info)
         done = terminated or truncated
         shots.append({"by": breaker, "foul": info["foul"], "pocketed": [int(b) for b in info["pocketed"]]})
         shots += [{"by": other, "foul": s["foul"], "pocketed": [int(b) for b in s["pocketed"]]}
                   for s in info["opponent_shots"]]
     env.close()
+    if recorder is not None:
+        from pool_env.saved import save_game
+
+        save_game(save_to, {**recorder.record(), "players": [breaker, other]})
     if forfeit is not None:
         winner, reason = (other if forfeit.name == breaker else breaker), f"forfeit ({forfeit})"
         return {"seed": int(seed), "players": [breaker, other], "breaker": breaker, "winner": winner,
@@ -226,16 +236,31 @@ def play_game(game: str, breaker: str, other: str, players: dict, timers: dict, 
             "end_reason": reason, "shots": shots}
 
 
-def play_pairing(game: str, a: str, b: str, players: dict, timers: dict, games: int, seed: int, noise) -> list[dict]:
-    """Games k = 0 .. games - 1 of A against B on seeds seed + k; A breaks the even ones."""
+def game_recorder(env, seed: int, noise, max_shots: int):
+    """A `pool_env.saved.GameRecorder` for a tournament game: the breaker's actions and the other
+    player's (as the recorded opponent), under the env id and kwargs that replay it exactly
+    (`pool_env.replay`, `python -m pool_env.replay`: the breaker is the agent)."""
+    from pool_env.saved import RECORDED, GameRecorder
+
+    env_id = {"nine_ball": "PoolNineBall-v0", "eight_ball": "PoolEightBall-v0"}[env.game]
+    kwargs = {"game": env.game, "opponent": RECORDED, "noise": noise, "agent_breaks": True, "max_shots": max_shots}
+    return GameRecorder(env, seed, record_opponent=True, env_id=env_id, env_kwargs=kwargs)
+
+
+def play_pairing(game: str, a: str, b: str, players: dict, timers: dict, games: int, seed: int, noise,
+                 save_games=None) -> list[dict]:
+    """Games k = 0 .. games - 1 of A against B on seeds seed + k; A breaks the even ones. With
+    `save_games` (a folder) each is saved as <breaker>-vs-<other>-seed<seed>.json."""
     records = []
     for k in range(games):
         breaker, other = (a, b) if k % 2 == 0 else (b, a)
-        records.append(play_game(game, breaker, other, players, timers, seed + k, noise))
+        save_to = None if save_games is None else Path(save_games) / f"{breaker}-vs-{other}-seed{seed + k}.json"
+        records.append(play_game(game, breaker, other, players, timers, seed + k, noise, save_to=save_to))
     return records
 
 
-def run_setting(game: str, specs: list[str], games: int, seed: int, noise_name: str, log=None) -> dict:
+def run_setting(game: str, specs: list[str], games: int, seed: int, noise_name: str, log=None,
+                save_games=None) -> dict:
     """The round-robin for one noise setting: pairings, Elo, per-player statistics, game records."""
     players, skipped = make_players(specs, game, NOISES[noise_name])
     names = list(players)
@@ -245,7 +270,8 @@ def run_setting(game: str, specs: list[str], games: int, seed: int, noise_name: 
     records, pairings = [], []
     for a, b in itertools.combinations(names, 2):
         start = time.perf_counter()
-        mine = play_pairing(game, a, b, players, timers, games, seed, NOISES[noise_name])
+        folder = None if save_games is None else Path(save_games) / game / noise_name
+        mine = play_pairing(game, a, b, players, timers, games, seed, NOISES[noise_name], folder)
         records += mine
         pairings.append(pairing_stats(mine, a, b))
         if log is not None:
@@ -259,9 +285,10 @@ def run_setting(game: str, specs: list[str], games: int, seed: int, noise_name: 
 
 
 def tournament(game: str = "nine_ball", players=("random", "ghost_ball"), games: int = 20, noise: str = "none",
-               seed: int = 0, log=None) -> dict:
+               seed: int = 0, log=None, save_games=None) -> dict:
     """The whole tournament (the content of tournament.json): one round-robin per noise setting
-    (`noise`: "none", "olympiad" or "both"), every pairing on seeds seed .. seed + games - 1."""
+    (`noise`: "none", "olympiad" or "both"), every pairing on seeds seed .. seed + games - 1.
+    `save_games`: a folder; every game is saved in <folder>/<game>/<noise>/ (`play_pairing`)."""
     from pool_env.games import GAMES
 
     if game not in GAMES:
@@ -272,7 +299,7 @@ def tournament(game: str = "nine_ball", players=("random", "ghost_ball"), games:
     if int(games) != games or games < 1:
         raise ValueError(f"games must be an integer >= 1, got {games!r}")
     start = time.perf_counter()
-    results = {s: run_setting(game, list(players), int(games), int(seed), s, log) for s in settings}
+    results = {s: run_setting(game, list(players), int(games), int(seed), s, log, save_games) for s in settings}
     return {"game": game, "games_per_pairing": int(games), "seed": int(seed),
             "seeds": [int(seed), int(seed) + games - 1], "noise": settings, "player_specs": list(players),
             "elo_method": ELO_METHOD,
@@ -343,10 +370,12 @@ def main(argv=None) -> dict:
     parser.add_argument("--noise", default="both", choices=("none", "olympiad", "both"))
     parser.add_argument("--seed", type=int, default=0, help="game k of every pairing is played on seed + k")
     parser.add_argument("--out", default="runs/tournament", help="folder for tournament.json and tournament.md")
+    parser.add_argument("--save-games", metavar="DIR", help="save every game (pool_env.save_game) in "
+                        "DIR/<game>/<noise>/<breaker>-vs-<other>-seed<seed>.json: python -m pool_env.replay replays it")
     args = parser.parse_args(argv)
     players = [p.strip() for p in args.players.split(",") if p.strip()]
     log = lambda message: print(message, file=sys.stderr, flush=True)
-    result = tournament(args.game, players, args.games, args.noise, args.seed, log)
+    result = tournament(args.game, players, args.games, args.noise, args.seed, log, args.save_games)
     paths = write(result, args.out)
     print(markdown(result))
     log(f"wrote {paths[0]} and {paths[1]} in {result['wall_seconds']:.1f} s")

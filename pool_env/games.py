@@ -11,6 +11,7 @@ from gymnasium import logger, spaces
 
 from . import rules
 from .env import CONTACT_TIME, MAX_TIP_OFFSET, check_reset_options, cue_force, shot_info
+from .overlay import overlay
 from .physics import BALL_MASS, BALL_RADIUS, Balls, Physics, SimulationError, Table, simulate, strike
 from .physics.simulate import check_on_table
 from .playback import ShotPlayback
@@ -124,22 +125,6 @@ def game_observation(balls: Balls, state, viewer: int, shots: int, max_shots: in
                  1.0 if group == "stripes" else -1.0]
     counter = [2.0 * min(shots, max_shots) / max_shots - 1.0]
     return np.concatenate([per_ball.ravel(), legal, np.array(hand + fouls + extra + counter, dtype=np.float32)])
-
-
-def overlay(frame: np.ndarray, lines) -> np.ndarray:
-    """The frame with `lines` of text in its top-left corner, on a dark band (PIL's default font)."""
-    from PIL import Image, ImageDraw
-
-    if not lines:
-        return frame
-    image = Image.fromarray(frame)
-    draw = ImageDraw.Draw(image)
-    height = 12 * len(lines) + 4
-    width = min(frame.shape[1], 8 + 6 * max(len(line) for line in lines))
-    draw.rectangle((0, 0, width, height), fill=(0, 0, 0))
-    for k, line in enumerate(lines):
-        draw.text((4, 2 + 12 * k), line, fill=(255, 255, 255))
-    return np.asarray(image)
 
 
 def observation_size(game: str) -> int:

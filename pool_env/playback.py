@@ -26,14 +26,17 @@ def quaternion_rotations(q) -> np.ndarray:
     ], axis=1)
 
 
+def frame_times(duration, fps) -> np.ndarray:
+    """The times a shot of `duration` s is drawn at, at `fps`: 0, 1/fps, ... and its end."""
+    times = np.arange(int(math.floor(duration * fps)) + 1) / fps
+    return np.append(times, duration) if times[-1] < duration else times
+
+
 def sample_shot(result, start, fps):
     """(times (F,), xy (F, n, 2), pocketed (F, n), orientation (F, n, 3, 3)) of a shot (a
     `Result`) sampled at `fps` from its exact trajectory, the balls starting in orientations
     `start` (n, 3, 3): frames at t = 0, 1/fps, ... and at the shot's end."""
-    duration = result.duration
-    times = np.arange(int(math.floor(duration * fps)) + 1) / fps
-    if times[-1] < duration:
-        times = np.append(times, duration)
+    times = frame_times(result.duration, fps)
     # Angular velocity at the midpoints of ORIENTATION_SUBSTEPS substeps per frame interval:
     # the midpoint rule is exact while w changes linearly about a fixed axis (sliding, rolling).
     k = ORIENTATION_SUBSTEPS
@@ -113,6 +116,11 @@ class ShotPlayback:
             self._shot = None
             return
         self._balls, self._shot, self._rotated = result.final, (result, start), False
+
+    @property
+    def last_result(self):
+        """The last shot's `Result` (None before any shot, or after a failed one)."""
+        return None if self._shot is None else self._shot[0]
 
     def place(self, balls):
         """The balls were moved between shots (a ball spotted, the cue ball placed with ball in

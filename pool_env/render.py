@@ -60,12 +60,27 @@ _DIGITS = {
     "8": ("111", "101", "111", "101", "111"),
     "9": ("111", "101", "111", "001", "111"),
 }
+# 4x7 digits for the one-digit numbers: taller, so readable on balls ~13 px across (640 x 360).
+_DIGITS_TALL = {
+    "1": ("0010", "0110", "0010", "0010", "0010", "0010", "0111"),
+    "2": ("0110", "1001", "0001", "0010", "0100", "1000", "1111"),
+    "3": ("1110", "0001", "0001", "0110", "0001", "0001", "1110"),
+    "4": ("1001", "1001", "1001", "1111", "0001", "0001", "0001"),
+    "5": ("1111", "1000", "1000", "1110", "0001", "0001", "1110"),
+    "6": ("0110", "1000", "1000", "1110", "1001", "1001", "0110"),
+    "7": ("1111", "0001", "0010", "0010", "0100", "0100", "0100"),
+    "8": ("0110", "1001", "1001", "0110", "1001", "1001", "0110"),
+    "9": ("0110", "1001", "1001", "0111", "0001", "0001", "0110"),
+}
+_DISC = 0.64  # number disc radius, in ball radii: room for the digits, a coloured ring left
 
 
-def _text_mask(text: str, scale: int) -> np.ndarray:
-    """Bool mask of `text` in the 3x5 digit font, 1 px spacing, each font pixel scale x scale."""
-    glyphs = [np.array([[c == "1" for c in row] for row in _DIGITS[ch]]) for ch in text]
-    gap = np.zeros((5, 1), dtype=bool)
+def _text_mask(text: str, scale: int, tall: bool = False) -> np.ndarray:
+    """Bool mask of `text` in the 3x5 digit font (`tall`: the 4x7 one, one digit), 1 px
+    spacing, each font pixel scale x scale."""
+    font = _DIGITS_TALL if tall else _DIGITS
+    glyphs = [np.array([[c == "1" for c in row] for row in font[ch]]) for ch in text]
+    gap = np.zeros((glyphs[0].shape[0], 1), dtype=bool)
     parts = []
     for k, g in enumerate(glyphs):
         if k:
@@ -240,10 +255,9 @@ class TableRenderer:
         """
         r = self._r_px
         side = 2 * self._half + 1
-        number_scale = max(1, int(r / 10))
-        two_digit = _text_mask("88", number_scale).shape
-        # Number disc: big enough to hold two digits, but leave a coloured ring.
-        disc_r = max(0.5 * r, min(0.68 * r, 0.95 * 0.5 * math.hypot(*two_digit)))
+        # Digits about 0.8 R tall (whole pixels: they stay crisp) on a flat white disc.
+        number_scale = max(1, round(0.8 * r / 7))
+        disc_r = _DISC * r
         shape = (_PHASES, _PHASES, side, side)
         maps = {k: np.empty(shape) for k in ("alpha", "body", "band", "disc")}
         centres = self._phase_centres(self._half)
@@ -260,7 +274,7 @@ class TableRenderer:
                 band = (np.abs(dy) <= _BAND_HALF) & ~disc
                 body = ~band & ~disc
                 maps["alpha"][qy, qx] = _downsample(inside.astype(np.float64), side)
-                maps["disc"][qy, qx] = _downsample(shade * disc, side)
+                maps["disc"][qy, qx] = _downsample((inside & disc).astype(np.float64), side)  # flat: contrast
                 maps["band"][qy, qx] = _downsample(shade * band, side)
                 maps["body"][qy, qx] = _downsample(shade * body, side)
         maps["number_scale"] = number_scale
@@ -280,7 +294,10 @@ class TableRenderer:
         disc_rgb = white if idx != 0 else col
         prem = g["body"][..., None] * body_rgb + g["band"][..., None] * band_rgb + g["disc"][..., None] * disc_rgb
         alpha = g["alpha"]
-        mask = _text_mask(str(idx), g["number_scale"]) if numbered else None
+        mask = None
+        if numbered:
+            tall = idx <= 9 and 7 * g["number_scale"] <= 2 * _DISC * self._r_px + 1  # the 4x7 digit fits the disc
+            mask = _text_mask(str(idx), g["number_scale"], tall)
         if mask is not None and mask.shape[1] <= 2 * self._r_px:  # very long numbers are skipped
             # The number is stamped crisply at whole pixels (snapped to the rounded centre),
             # which keeps the tiny digits sharp; only the disc/edges use sub-pixel phases.

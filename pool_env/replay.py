@@ -5,9 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-import gymnasium as gym
-
-from .saved import ReplayMismatch, load_game, replay
+from .saved import ReplayMismatch, load_game, make_env, replay
 from .video import _Writer
 
 
@@ -18,7 +16,7 @@ def main(argv=None) -> int:
     parser.add_argument("--shot", type=int, help="stop after this many of the agent's shots")
     args = parser.parse_args(argv)
     record = load_game(args.path)
-    env = gym.make(record["env_id"], **record["env_kwargs"])
+    env = make_env(record)
     writer = None
     if args.video:
         fps = env.unwrapped.metadata["render_fps"]

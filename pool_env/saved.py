@@ -25,40 +25,113 @@ def describe_table(table) -> dict:
             "side_pocket": dataclasses.asdict(table.side_pocket)}
 
 
-def record_game(env, policy, seed=None, max_steps=10_000) -> dict:
+RECORDED = "recorded"  # env_kwargs["opponent"] of a game whose opponent's actions are in the file
+
+
+class ScriptedOpponent:
+    """An opponent that plays recorded actions in order (a saved game's `opponent_actions`)."""
+
+    def __init__(self, actions):
+        self.actions, self.played = [np.asarray(a, dtype=np.float64) for a in actions], 0
+
+    def __call__(self, observation):
+        if self.played >= len(self.actions):
+            raise ReplayMismatch(f"the opponent shoots more often than the {len(self.actions)} recorded times: "
+                                 "the physics, the rules or the file changed")
+        self.played += 1
+        return self.actions[self.played - 1]
+
+
+class GameRecorder:
+    """Records one episode of `env` as a saved game while something else plays it: `action(a)`
+    gives the action to step (float32, as the file keeps it), `stepped(...)` notes each step's
+    outcome, `record()` returns the saved-game dict. The header (and the refusal of what cannot
+    be saved) comes first, before `env.reset(seed=seed)`. With `record_opponent`, a game's
+    opponent that is not a built-in name (an agent, a callable) has its actions recorded too
+    (`opponent_actions`; env_kwargs["opponent"] is "recorded") and replays from them.
+    `env_id`/`env_kwargs` stand in for an env made without `gym.make` (no spec)."""
+
+    def __init__(self, env, seed=None, record_opponent=False, env_id=None, env_kwargs=None):
+        self.env, self.actions, self.outcomes = env, [], []
+        self.base, self._wrapped = env.unwrapped, None
+        kwargs = dict(env.spec.kwargs) if env_kwargs is None and env.spec is not None else dict(env_kwargs or {})
+        opponent = kwargs.get("opponent", "the default")  # absent: the env's default, a built-in name
+        unnamed = not isinstance(opponent, str) or opponent == RECORDED
+        if record_opponent and getattr(self.base, "_opponent", None) is not None and unnamed:
+            kwargs["opponent"] = RECORDED
+            self.opponent_actions, self._wrapped = [], self.base._opponent
+            self.base._opponent = self._opponent
+        self.header = _header(env, seed, env_id, kwargs)  # refuses what cannot be saved
+
+    def _opponent(self, observation):
+        action = self._wrapped(observation)
+        self.opponent_actions.append([float(a) for a in np.asarray(action, dtype=np.float64).ravel()])
+        return action
+
+    def action(self, action) -> np.ndarray:
+        action = np.asarray(action, dtype=np.float32)
+        self.actions.append([float(a) for a in action])
+        return action
+
+    def stepped(self, reward, terminated, truncated, info):
+        self.outcomes.append(_outcome(self.env, reward, terminated, truncated, info))
+
+    def record(self) -> dict:
+        """The saved game (and the env's own opponent back in place)."""
+        out = {**self.header, "actions": self.actions, "outcomes": self.outcomes}
+        if self._wrapped is not None:
+            self.base._opponent, self._wrapped = self._wrapped, None
+            out["opponent_actions"] = self.opponent_actions
+        return out
+
+
+def record_game(env, policy, seed=None, max_steps=10_000, record_opponent=False) -> dict:
     """Play one episode of `env` (an id, or a made env whose spec has its id and kwargs) with
-    `policy` (a callable or an agent with `act`) and return the saved-game record."""
+    `policy` (a callable or an agent with `act`) and return the saved-game record. A game's
+    opponent that is an agent or a callable is refused, unless `record_opponent` (its actions
+    are then saved: see `GameRecorder`)."""
     owned = isinstance(env, str)
     env = gym.make(env) if owned else env
     act = policy.act if hasattr(policy, "act") else policy
-    record = _header(env, seed)  # refuses what cannot be saved before anything is played
+    recorder = GameRecorder(env, seed, record_opponent)
     obs, _ = env.reset(seed=seed)
-    actions, steps = [], []
     for _ in range(max_steps):
-        action = np.asarray(act(obs), dtype=np.float32)
-        obs, reward, terminated, truncated, info = env.step(action)
-        actions.append([float(a) for a in action])
-        steps.append(_outcome(env, reward, terminated, truncated, info))
+        obs, reward, terminated, truncated, info = env.step(recorder.action(act(obs)))
+        recorder.stepped(reward, terminated, truncated, info)
         if terminated or truncated:
             break
-    record.update(actions=actions, outcomes=steps)
+    record = recorder.record()
     if owned:
         env.close()
     return record
 
 
-def _header(env, seed) -> dict:
+def _header(env, seed, env_id=None, kwargs=None) -> dict:
     spec, base = env.spec, env.unwrapped
-    kwargs = dict(spec.kwargs) if spec is not None else {}
+    if kwargs is None:
+        kwargs = dict(spec.kwargs) if spec is not None else {}
+    scalar = (str, int, float, bool, type(None))
     for key, value in kwargs.items():
-        if not isinstance(value, (str, int, float, bool, type(None))):
+        if not (isinstance(value, scalar) or isinstance(value, (tuple, list)) and all(isinstance(v, scalar)
+                                                                                    for v in value)):
             raise ValueError(f"env kwarg {key}={value!r} cannot be saved: only names and numbers replay "
-                             "(an opponent must be a built-in player's name)")
+                             "(an opponent must be a built-in player's name, or record its actions: "
+                             "record_opponent=True)")
     from . import __version__
 
-    return {"format": FORMAT, "version": VERSION, "pool_env": __version__, "env_id": spec.id if spec else None,
-            "env_kwargs": kwargs, "seed": seed, "table": describe_table(base.table),
+    env_id = env_id if env_id is not None else (spec.id if spec else None)
+    return {"format": FORMAT, "version": VERSION, "pool_env": __version__, "env_id": env_id,
+            "env_kwargs": json.loads(json.dumps(kwargs)), "seed": seed, "table": describe_table(base.table),
             "physics": dataclasses.asdict(base.physics)}
+
+
+def make_env(record: dict, **kwargs):
+    """The env a saved game was played on (`gym.make` of its id and kwargs; an opponent whose
+    actions were recorded plays them back)."""
+    env_kwargs = {**record["env_kwargs"], **kwargs}
+    if env_kwargs.get("opponent") == RECORDED:
+        env_kwargs["opponent"] = ScriptedOpponent(record.get("opponent_actions", []))
+    return gym.make(record["env_id"], **env_kwargs)
 
 
 def _outcome(env, reward, terminated, truncated, info) -> dict:
@@ -101,7 +174,7 @@ def replay(record: dict, env=None, on_step=None, until=None):
     ReplayMismatch at the first difference (naming the step and what differs). `on_step(k,
     env)` is called after step k (e.g. to film it); `until` stops after that many steps.
     Returns the env, at the end of the replayed steps."""
-    env = gym.make(record["env_id"], **record["env_kwargs"]) if env is None else env
+    env = make_env(record) if env is None else env
     base = env.unwrapped
     if describe_table(base.table) != record["table"] or dataclasses.asdict(base.physics) != record["physics"]:
         raise ReplayMismatch("the env's table or physics differ from the saved game's")

@@ -3,11 +3,14 @@
 from __future__ import annotations
 
 import os
+import sys
 
 import gymnasium as gym
 import numpy as np
 
-HOLD_SECONDS = 0.5  # the last frame of every episode is held this long
+from .video_overlay import CARD_SECONDS, Story
+
+HOLD_SECONDS = 0.5  # without the overlay, the last frame of every episode is held this long
 # Containers ffmpeg writes H.264 into (.gif, .webm, ... are not: the first fails when the writer
 # opens, the second only at the first frame, after a whole shot was simulated).
 VIDEO_EXTENSIONS = (".mp4", ".mov", ".mkv", ".avi")
@@ -75,7 +78,7 @@ class _Writer:
         self._writer.close()
 
 
-def record_video(env, policy, path, episodes=1, fps=None, *, seed=None) -> int:
+def record_video(env, policy, path, episodes=1, fps=None, *, seed=None, overlay=True, save_games=None) -> int:
     """Play `episodes` episodes with `policy` and write every shot, whole, to the .mp4 at `path`.
 
     `env` is a PoolBreakEnv or a PoolGameEnv (possibly wrapped, any render mode; a game's
@@ -83,36 +86,77 @@ def record_video(env, policy, path, episodes=1, fps=None, *, seed=None) -> int:
     "PoolBreak-v0" or "PoolNineBall-v0". `policy` maps an observation to an action: a callable, an object with
     `.act(obs)`, a Stable-Baselines3 model (`.predict(obs, deterministic=True)`), or None for
     random actions. Frames are sampled from the exact trajectories at `fps` (default
-    `metadata["render_fps"]`) and the video plays at that rate, so in real time; the last
-    frame of each episode is held for 0.5 s. `seed` seeds the first reset. Returns the number
-    of frames written. `path` may also end in .mov, .mkv or .avi; another extension (e.g.
-    .gif) raises `ValueError` before anything is simulated. A missing folder is created.
+    `metadata["render_fps"]`) and the video plays at that rate, so in real time. `seed` seeds
+    the first reset. Returns the number of frames written. `path` may also end in .mov, .mkv
+    or .avi; another extension (e.g. .gif) raises `ValueError` before anything is simulated.
+    A missing folder is created.
+
+    `overlay=True` (see `video_frames`): a caption (episode, shot, reward so far, what the last
+    shot did, the rules' messages), the cue line for CUE_SECONDS before every shot, the pocket
+    a cue ball fell into ringed, and a CARD_SECONDS card with each episode's result.
+    `overlay=False`: the shots' frames exactly as `shot_frames` gives them, the last frame of
+    each episode held HOLD_SECONDS.
+
+    `save_games=folder` also saves each episode as a saved game (`pool_env.save_game`,
+    `<folder>/<video name>-episode-<k>.json`) that `pool_env.replay` / `python -m
+    pool_env.replay` plays again exactly; a game's opponent that is an agent or a callable has
+    its actions saved with it. So that every episode replays from its seed, episode k is then
+    reset with seed + k (`seed` None: a random one); the env must come from `gym.make` (or be
+    an id), whose spec names it.
     """
     _check_path(path)
     owned = isinstance(env, str)
     if owned:
         env = gym.make(env, render_mode="rgb_array_list")
     try:
-        base = _base(env)
-        fps = base.metadata["render_fps"] if fps is None else fps
-        act = _policy_fn(policy, env)
+        fps = _base(env).metadata["render_fps"] if fps is None else fps
         writer = _Writer(path, fps)
         try:
-            for episode in range(int(episodes)):
-                obs, _ = env.reset(seed=seed if episode == 0 else None)
-                done, first = False, True
-                while not done:
-                    obs, _, terminated, truncated, _ = env.step(act(obs))
-                    frames = base.shot_frames(fps)
-                    writer.append(frames if first else frames[1:])  # a shot starts where the last ended
-                    done, first = terminated or truncated, False
-                writer.hold(round(HOLD_SECONDS * fps))
+            for frame in video_frames(env, policy, episodes, fps, seed=seed, overlay=overlay,
+                                      save_games=save_games, name=os.path.splitext(os.path.basename(path))[0]):
+                writer.append([frame])
         finally:
             writer.close()
         return writer.frames
     finally:
         if owned:
             env.close()
+
+
+def video_frames(env, policy, episodes=1, fps=None, *, seed=None, overlay=True, save_games=None, name="game"):
+    """The frames `record_video` writes (a generator; arguments as there, `name` the saved
+    games' file prefix): per shot, with `overlay`, CUE_SECONDS of the cue line on the shot's
+    first frame, then its moving frames with the caption; per episode a CARD_SECONDS result card."""
+    from .saved import GameRecorder, save_game
+
+    base = _base(env)
+    fps = base.metadata["render_fps"] if fps is None else fps
+    act = _policy_fn(policy, env)
+    if save_games is not None and seed is None:
+        seed = int(np.random.SeedSequence().generate_state(1)[0] >> 1)
+    for episode in range(int(episodes)):
+        episode_seed = (seed + episode) if save_games is not None else (seed if episode == 0 else None)
+        recorder = None if save_games is None else GameRecorder(env, episode_seed, record_opponent=True)
+        obs, _ = env.reset(seed=episode_seed)
+        story, done, first, frames = Story(base, episode + 1, fps), False, True, []
+        while not done:
+            action = act(obs) if recorder is None else recorder.action(act(obs))
+            obs, reward, terminated, truncated, info = env.step(action)
+            if recorder is not None:
+                recorder.stepped(reward, terminated, truncated, info)
+            frames = base.shot_frames(fps)
+            if overlay:
+                yield from story.step(frames, info, reward, first)
+            else:
+                yield from (frames if first else frames[1:])  # a shot starts where the last ended
+            done, first = terminated or truncated, False
+        if recorder is not None:
+            out = save_game(os.path.join(os.fspath(save_games), f"{name}-episode-{episode}.json"), recorder.record())
+            print(f"record_video: saved episode {episode} to {out}", file=sys.stderr)
+        if overlay:
+            yield from [story.card(info)] * round(CARD_SECONDS * fps)
+        elif frames:
+            yield from [frames[-1]] * round(HOLD_SECONDS * fps)
 
 
 def capped_cubic_schedule(episode_id: int) -> bool:

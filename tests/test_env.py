@@ -407,7 +407,7 @@ def test_record_video_writes_every_frame_of_every_shot(tmp_path):
     queue = list(shots)
     env = PoolBreakEnv(max_shots=2, render_size=(320, 180))  # no render mode needed
     path = tmp_path / "two_shots.mp4"
-    written = record_video(env, lambda obs: queue.pop(0), path, fps=20, seed=3)
+    written = record_video(env, lambda obs: queue.pop(0), path, fps=20, seed=3, overlay=False)
     per_shot = [frame_count(d, 20) for d in durations]
     assert written == per_shot[0] + per_shot[1] - 1 + round(HOLD_SECONDS * 20)  # shot 2 starts where 1 ended
     assert count_frames(path, (320, 180)) == (written, (180, 320, 3))

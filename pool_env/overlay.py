@@ -1,0 +1,126 @@
+"""Text and marks drawn over frames (PIL): the shared `overlay`, cue lines, pocket marks and result cards."""
+
+from __future__ import annotations
+
+import functools
+import math
+
+import numpy as np
+
+BAND_RGB = (0, 0, 0)
+BAND_ALPHA = 0.62  # how dark the band behind text is
+TEXT_RGB = (255, 255, 255)
+CUE_LINE_RGB = (250, 236, 200)  # the cue: from the cue ball backwards, as long as the shot is strong
+AIM_RGB = (255, 255, 255)  # the aim: a thin dashed line forwards
+MARK_RGB = (255, 80, 60)  # the ring on the pocket the cue ball fell into
+CUE_PIXELS_PER_MPS = 0.022  # cue line length per m/s of cue-ball speed, as a fraction of the frame width
+
+
+def font_size(height: int) -> int:
+    """The text size for frames `height` pixels tall: 15 px at 360, never below 10."""
+    return max(10, round(height / 24))
+
+
+@functools.lru_cache(maxsize=16)
+def font(size: int):
+    """PIL's scalable default font at `size` px (Pillow >= 10.1), else its fixed bitmap font."""
+    from PIL import ImageFont
+
+    try:
+        return ImageFont.load_default(size=size)
+    except TypeError:  # Pillow < 10.1: no size argument
+        return ImageFont.load_default()
+
+
+def _measure(draw, text, face) -> tuple[int, int]:
+    left, top, right, bottom = draw.textbbox((0, 0), text, font=face)
+    return right - left, bottom
+
+
+def overlay(frame: np.ndarray, lines, *, where: str = "top", size: int | None = None) -> np.ndarray:
+    """The frame with `lines` of text in its top-left (`where="top"`) or bottom-left
+    (`"bottom"`) corner, white on a translucent dark band (one home for every overlay: the
+    games', the play window's and the videos'). Text size: `font_size(height)` unless `size`."""
+    from PIL import Image, ImageDraw
+
+    lines = [line for line in (lines or []) if line]
+    if not lines:
+        return frame
+    h, w = frame.shape[:2]
+    face = font(size or font_size(h))
+    image = Image.fromarray(np.ascontiguousarray(frame))
+    draw = ImageDraw.Draw(image)
+    sizes = [_measure(draw, line, face) for line in lines]
+    step = max(height for _, height in sizes) + 2
+    band_w, band_h = min(w, 8 + max(width for width, _ in sizes)), min(h, step * len(lines) + 4)
+    top = 0 if where == "top" else h - band_h
+    out = np.asarray(image).copy()
+    region = out[top : top + band_h, :band_w].astype(np.float32)
+    out[top : top + band_h, :band_w] = region * (1 - BAND_ALPHA) + BAND_ALPHA * np.asarray(BAND_RGB, np.float32)
+    image = Image.fromarray(out)
+    draw = ImageDraw.Draw(image)
+    for k, line in enumerate(lines):
+        draw.text((4, top + 2 + step * k), line, fill=TEXT_RGB, font=face)
+    return np.asarray(image)
+
+
+def card(frame: np.ndarray, lines) -> np.ndarray:
+    """The frame dimmed, with `lines` centred in large text: an episode's result."""
+    from PIL import Image, ImageDraw
+
+    h, w = frame.shape[:2]
+    face = font(max(12, round(h / 12)))
+    dimmed = (frame.astype(np.float32) * 0.45).astype(np.uint8)
+    image = Image.fromarray(dimmed)
+    draw = ImageDraw.Draw(image)
+    sizes = [_measure(draw, line, face) for line in lines]
+    step = max(height for _, height in sizes) + 6
+    y = (h - step * len(lines)) / 2
+    for (width, _), line in zip(sizes, lines, strict=True):
+        draw.text(((w - width) / 2, y), line, fill=TEXT_RGB, font=face)
+        y += step
+    return np.asarray(image)
+
+
+def cue_line(frame: np.ndarray, renderer, cue_xy, velocity) -> np.ndarray:
+    """The frame with the shot drawn before it is played: the cue from the cue ball at `cue_xy`
+    (m) backwards, its length growing with the cue ball's `velocity` (m/s), and a dashed aim line
+    forwards along the shot."""
+    from PIL import Image, ImageDraw
+
+    speed = float(np.hypot(*velocity))
+    if not (math.isfinite(speed) and speed > 0):
+        return frame
+    h, w = frame.shape[:2]
+    ux, uy = velocity[0] / speed, velocity[1] / speed
+    start = renderer.world_to_pixel(np.asarray(cue_xy, dtype=np.float64))[0]
+    d = np.array([ux, -uy])  # image rows grow downwards
+    gap = renderer.ball_radius * renderer.scale + 3
+    length = CUE_PIXELS_PER_MPS * w * speed
+    image = Image.fromarray(np.ascontiguousarray(frame))
+    draw = ImageDraw.Draw(image)
+    back0, back1 = start - d * gap, start - d * (gap + length)
+    draw.line([tuple(back0), tuple(back1)], fill=CUE_LINE_RGB, width=max(3, round(h / 90)))
+    dash = max(4.0, h / 60)
+    for k in range(int(0.45 * w / (2 * dash))):
+        a, b = start + d * (gap + 2 * k * dash), start + d * (gap + (2 * k + 1) * dash)
+        draw.line([tuple(a), tuple(b)], fill=AIM_RGB, width=1)
+    face = font(font_size(h))
+    label = f"{speed:.1f} m/s"
+    draw.text(tuple(back1 + np.array([4, 4])), label, fill=CUE_LINE_RGB, font=face)
+    return np.asarray(image)
+
+
+def pocket_mark(frame: np.ndarray, renderer, pocket: int, strength: float = 1.0) -> np.ndarray:
+    """The frame with a red ring on pocket `pocket` (index into the renderer's pockets), for the
+    cue ball that fell in; `strength` in [0, 1] fades it."""
+    from PIL import Image, ImageDraw
+
+    centre = renderer.world_to_pixel(renderer.pockets[pocket, :2])[0]
+    r = renderer.pockets[pocket, 2] * renderer.scale + 2
+    image = Image.fromarray(np.ascontiguousarray(frame))
+    layer = Image.new("RGBA", image.size, (0, 0, 0, 0))
+    ImageDraw.Draw(layer).ellipse([centre[0] - r, centre[1] - r, centre[0] + r, centre[1] + r],
+                                  outline=(*MARK_RGB, round(255 * min(max(strength, 0.0), 1.0))),
+                                  width=max(2, round(frame.shape[0] / 120)))
+    return np.asarray(Image.alpha_composite(image.convert("RGBA"), layer).convert("RGB"))

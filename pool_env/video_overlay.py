@@ -1,0 +1,128 @@
+"""What a video's overlay says and draws: captions per shot, cue lines, the scratch pocket, episode cards."""
+
+from __future__ import annotations
+
+import textwrap
+
+import numpy as np
+
+from .overlay import card, cue_line, font_size, overlay, pocket_mark
+from .physics.kinds import BALL_POCKET
+from .playback import frame_times
+
+CUE_SECONDS = 0.5  # the cue line is shown this long before each shot
+CARD_SECONDS = 1.5  # each episode ends on a card with its result, this long
+
+
+def shot_summary(info: dict) -> str:
+    """One shot in words: the balls pocketed, a scratch, a foul."""
+    balls = [int(b) for b in info.get("pocketed", []) if b != 0]
+    parts = [("pocketed " + ", ".join(str(b) for b in balls)) if balls else "nothing pocketed"]
+    if info.get("scratch") or 0 in info.get("pocketed", []):
+        parts.append("cue ball pocketed (scratch)")
+    if info.get("foul"):
+        parts.append(f"foul: {info['foul'].replace('_', ' ')}")
+    if info.get("error"):
+        parts.append("could not be simulated")
+    return "; ".join(parts)
+
+
+def episode_result(base, episode: int, info: dict, reward: float, shots: int, balls: int, scratches: int) -> list:
+    """The lines of an episode's closing card."""
+    from .games import PoolGameEnv
+
+    lines = [f"episode {episode}"]
+    if isinstance(base, PoolGameEnv):
+        name = {"nine_ball": "9-ball", "eight_ball": "8-ball"}[base.game]
+        winner = info.get("winner")
+        if winner is not None:
+            reason = info.get("end_reason")
+            lines.append(f"{winner} wins {name}" + (f" ({reason.replace('_', ' ')})" if reason else ""))
+        else:
+            lines.append(f"{name}: no winner ({'error' if 'error' in info else 'shot limit'})")
+        lines.append(f"{shots} shots, reward {reward:+.2f}")
+        return lines
+    lines.append(f"{balls} ball{'s' if balls != 1 else ''} in {shots} shot{'s' if shots != 1 else ''}"
+                 + (f", {scratches} scratch{'es' if scratches != 1 else ''}" if scratches else ""))
+    lines.append(f"reward {reward:+.2f}")
+    return lines
+
+
+class Story:
+    """An episode told on its frames: `step(frames, info, reward, first)` decorates one step's
+    frames (every shot of it), `card(info)` is the closing card."""
+
+    def __init__(self, base, episode: int, fps: float):
+        self.base, self.episode, self.fps = base, episode, float(fps)
+        self.reward, self.shots, self.balls, self.scratches = 0.0, 0, 0, 0
+        self.last = []  # lines about the last shot
+
+    def step(self, frames, info, reward, first):
+        """The step's frames with the overlay: per shot the cue frames, then its moving frames."""
+        results, infos = self._shots(info)
+        counts = [len(frame_times(r.duration, self.fps)) for r in results]
+        if not results or sum(counts) != len(frames):  # a failed shot: the table as it is
+            self.reward += reward
+            self.last = [f"last shot: {shot_summary(info)}"]
+            return [self._caption(frame) for frame in (frames if first else frames[-1:])]
+        out, start = [], 0
+        for k, (result, shot_info, count) in enumerate(zip(results, infos, counts, strict=True)):
+            shot = frames[start : start + count]
+            start += count
+            self.shots += 1
+            who = shot_info.pop("_who", None)
+            label = f"shot {self.shots}" + (f" ({who})" if who else "")
+            rows, _ = result.sample(np.zeros(1))
+            cue = cue_line(shot[0], self.base.playback.renderer, rows[0, 0, 0:2], rows[0, 0, 2:4])
+            out += [self._caption(cue, label)] * round(CUE_SECONDS * self.fps)
+            pocket_at = self._cue_pocket(result)
+            for j in range(1, count):
+                frame = shot[j]
+                if pocket_at is not None and min(j / self.fps, result.duration) >= pocket_at[0]:
+                    frame = pocket_mark(frame, self.base.playback.renderer, pocket_at[1])
+                if j == count - 1:  # the shot is over: what it did
+                    self._note(shot_info, reward if k == len(results) - 1 else 0.0, who)
+                out.append(self._caption(frame, label))
+        return out
+
+    def card(self, info):
+        """The episode's closing card (on the last frame, dimmed)."""
+        frame = self.base.shot_frames(self.fps)[-1]
+        lines = episode_result(self.base, self.episode, info, self.reward, self.shots, self.balls, self.scratches)
+        return card(frame, lines)
+
+    def _shots(self, info):
+        """(the step's Results, an info per shot) in the order they were played."""
+        from .games import PoolGameEnv
+
+        if isinstance(self.base, PoolGameEnv):
+            results = list(self.base._step_shots)
+            others = [{**s, "_who": "opponent"} for s in info.get("opponent_shots", [])]
+            infos = ([{**info, "_who": "agent"}] + others) if self.base._agent_info is not None else others
+            return (results, infos) if len(infos) == len(results) else ([], [])
+        result = self.base.playback.last_result
+        return ([result], [dict(info)]) if result is not None else ([], [])
+
+    @staticmethod
+    def _cue_pocket(result):
+        """(time, pocket) of the cue ball falling in during `result`, or None."""
+        times, kind, i, j = result.event_arrays
+        hits = np.flatnonzero((kind == BALL_POCKET) & (i == 0))
+        return (float(times[hits[0]]), int(j[hits[0]])) if hits.size else None
+
+    def _note(self, info, reward, who):
+        self.reward += reward
+        scratch = bool(info.get("scratch")) or 0 in info.get("pocketed", [])
+        if who in (None, "agent"):
+            self.balls += sum(1 for b in info.get("pocketed", []) if b != 0)
+            self.scratches += scratch
+        self.last = [f"last shot{f' ({who})' if who else ''}: {shot_summary(info)}"]
+        self.last += [m for m in info.get("messages", []) if m]
+
+    def _caption(self, frame, label=None):
+        width = max(20, int(frame.shape[1] / (0.55 * font_size(frame.shape[0]))) - 2)
+        head = f"episode {self.episode}" + (f"   {label}" if label else "") + f"   reward so far {self.reward:+.2f}"
+        lines = [head]
+        for line in self.last:
+            lines += textwrap.wrap(line, width)
+        return overlay(frame, lines, where="bottom")
