@@ -6,6 +6,7 @@ from typing import Any
 
 import gymnasium as gym
 import numpy as np
+from gymnasium.envs.registration import load_env_creator
 from gymnasium.vector import AutoresetMode
 from stable_baselines3.common.vec_env.base_vec_env import VecEnv
 
@@ -36,7 +37,10 @@ class SB3VecEnv(VecEnv):
         kwargs = {**spec.kwargs, **env_kwargs}
         if spec.max_episode_steps is not None:
             kwargs.setdefault("max_episode_steps", spec.max_episode_steps)
-        self.venv = PoolVectorEnv(num_envs=num_envs, autoreset_mode=AutoresetMode.SAME_STEP, threads=threads,
+        vector_class = PoolVectorEnv
+        if isinstance(spec.vector_entry_point, str):  # the game ids: PoolGameVectorEnv
+            vector_class = load_env_creator(spec.vector_entry_point)
+        self.venv = vector_class(num_envs=num_envs, autoreset_mode=AutoresetMode.SAME_STEP, threads=threads,
                                   **kwargs)
         self.render_mode = self.venv.render_mode
         super().__init__(num_envs, self.venv.single_observation_space, self.venv.single_action_space)

@@ -57,3 +57,15 @@ def test_ppo_trains_on_it():
     assert envs.get_attr("max_shots") == [1, 1, 1, 1]
     assert envs.env_method("strike", np.array([1.0, 0.0], dtype=np.float32), indices=[0])[0] is not None
     check_env(gym.make("PoolBreak-v0"))
+
+
+def test_game_ids_use_the_game_vector_env():
+    from pool_env.vector import PoolGameVectorEnv
+
+    envs = SB3VecEnv("PoolNineBall-v0", num_envs=2, opponent=None)
+    assert isinstance(envs.venv, PoolGameVectorEnv) and envs.action_space.shape == (6,)
+    envs.seed(0)
+    assert envs.reset().shape == (2, 44)
+    obs, rewards, dones, infos = envs.step(np.zeros((2, 6), dtype=np.float32))
+    assert obs.shape == (2, 44) and len(infos) == 2 and "foul" in infos[0]
+    envs.close()
