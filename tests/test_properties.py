@@ -8,6 +8,7 @@ import dataclasses
 import math
 
 import numpy as np
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -17,7 +18,11 @@ from pool_env.physics.invariants import run_checked
 
 R = BALL_RADIUS
 TABLES = {"seed": Table.seed(), "eight_foot": Table.eight_foot()}
-SETTINGS = settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+# Derandomized: CI runs the same examples every time (a random search found the two known
+# failures in test_known_wedge_chatter_with_seed_models_and_no_restitution below; run with
+# `--hypothesis-seed=N` to explore further).
+SETTINGS = settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow], derandomize=True,
+                    database=None)
 
 
 def fits(p, xy, table):
@@ -138,3 +143,26 @@ def test_momentum_check_allows_the_cloth_across_the_sample_gap():
     result, violations = run_checked(balls, Table.seed(), physics)
     assert violations == []
     assert any(e.kind == "ball_ball" and e.i == 2 and e.j == 3 for e in result.events)
+
+
+WEDGE_SCENES = [  # (xy, v, w, mu_s, mu_r): seed models, e_b = e_c = 0, the eight-foot table
+    ([[0.25, 0.19921875], [2.211425, 0.138671875], [0.30537334490076334, 0.21335788627139599], [1.0, 1.0],
+      [1.0, 0.5]],
+     [[1.0, 0.0], [0.0, 0.0], [3.25, 0.0], [0.0, 0.0], [0.0, 0.0]],
+     [[0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [-48.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]], 0.05078125, 0.002),
+    ([[0.3125, 0.19921875], [2.211425, 0.138671875], [0.36787334490076334, 0.21335788627139599], [1.0, 1.0],
+      [1.0, 0.5]],
+     [[1.0, 0.0], [0.0, 0.0], [3.0, 0.0], [0.0, 0.0], [0.0, 0.0]],
+     [[0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [-38.0, -1.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]], 0.0546875, 0.015625),
+]
+
+
+@pytest.mark.xfail(strict=True, reason="known: a ball driven between two balls frozen to a rail, with the seed "
+                   "models and no restitution (e_b = e_c = 0), chases its contacts round at one instant; the "
+                   "cluster solve takes no cushion in (present before issue 11; found by a random Hypothesis run)")
+@pytest.mark.parametrize("scene", WEDGE_SCENES)
+def test_known_wedge_chatter_with_seed_models_and_no_restitution(scene):
+    xy, v, w, mu_s, mu_r = scene
+    physics = Physics(ball_ball="seed", cushion="seed", mu_s=mu_s, mu_r=mu_r, e_b=0.0, e_c=0.0, f_c=0.0, spin=False)
+    result, violations = run_checked(Balls(xy, v=v, w=w), Table.eight_foot(), physics)
+    assert violations == [] and len(result.event_times) <= 500 * len(xy)
