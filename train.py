@@ -3,6 +3,9 @@
     python train.py                      # PPO on PoolBreak-v0, about 5.5 minutes on 2 CPU cores (321 s)
     python train.py --timesteps 2000     # a smoke run: every artefact in well under a minute
     python train.py --help               # every option
+    python train.py --env-id PoolNineBall-v0 --opponent ghost_ball --ghost-ball-action --practice
+                                         # 9-ball: practice run-outs through the ghost-ball action
+                                         # wrapper, judged by the win rate against the ghost-ball player
 
 Single file, read top to bottom (in the spirit of CleanRL): the options, then `main`, whose
 phases follow it in the order they run: the run folder and logging, the vectorised envs and
@@ -11,7 +14,9 @@ line every few seconds in train.log and on a redirected stdout, TensorBoard), th
 evaluation of the trained model, RandomAgent and the geometric heuristic on the same fixed
 seeds (table printed and written to results.md with a verdict, eval.json written), the
 learning-curve PNG and an .mp4 of the trained agent playing whole shots. The run folder's
-path is printed first.
+path is printed first. The game envs (PoolNineBall-v0, PoolEightBall-v0) are judged by the win
+rate against --opponent (95 % Wilson interval, fixed seeds, breaks alternating) instead, and
+the video is of whole games.
 """
 
 from __future__ import annotations
@@ -37,7 +42,8 @@ def option(default, help: str, **kwargs):
 @dataclass
 class Args:
     # --- what to train ---
-    env_id: str = option("PoolBreak-v0", "PoolBreak-v0 (the break: one shot) or PoolBreakRun-v0 (play on)")
+    env_id: str = option("PoolBreak-v0", "PoolBreak-v0 (the break: one shot), PoolBreakRun-v0 (play on), "
+                         "PoolNineBall-v0 or PoolEightBall-v0 (a game against --opponent)")
     algo: str = option("ppo", "learning algorithm", choices=("ppo", "sac"))
     timesteps: int = option(250_000, "total environment steps (shots) to train for")
     n_envs: int = option(2, "parallel environments")
@@ -47,6 +53,14 @@ class Args:
     seed: int = option(0, "seed of the model and the training envs")
     spin: bool = option(False, "add the cue-tip offset (side, top) to the action")
     randomize_cue: bool = option(False, "start the cue ball anywhere in the kitchen")
+    # --- game envs only ---
+    opponent: str = option("ghost_ball", "game envs: the opponent of the evaluations (and of training unless "
+                           "--practice)", choices=("ghost_ball", "random"))
+    practice: bool = option(False, "game envs: train without an opponent (run-outs: +1 per ball pocketed legally, "
+                            "+1 for the rack; the episode ends when the turn passes), evaluate against --opponent")
+    ghost_ball_action: bool = option(False, "game envs: act through pool_env.wrappers.GhostBallAction (choose "
+                                     "ball and pocket, correct the ghost-ball aim, speed, tip, placement)")
+    shaping: bool = option(False, "game envs against an opponent: +0.1 per ball pocketed legally, -0.1 per foul")
     # --- hyperparameters (PPO unless marked) ---
     learning_rate: float = option(1e-3, "optimizer step size (PPO and SAC)")
     lr_schedule: str = option("linear", "learning rate over training: constant, or linear decay to 0",
@@ -120,6 +134,8 @@ class Run:
     multi_shot: bool
     eval_seeds: list[int]    # the final evaluation's, the same for every agent
     curve_seeds: list[int]   # the learning curve's (and the best checkpoint's), disjoint from eval_seeds
+    game: bool = False       # a game env: judged by the win rate against args.opponent
+    train_kwargs: dict | None = None  # the training envs' kwargs, when not env_kwargs (game practice)
 
 
 def open_run(args: Args) -> Run:
@@ -142,18 +158,31 @@ def open_run(args: Args) -> Run:
     log.info("run folder: %s", run_dir.resolve())
     (run_dir / "args.json").write_text(json.dumps(dataclasses.asdict(args), indent=2))
 
-    env_kwargs = {"spin": args.spin, "randomize_cue": args.randomize_cue}
+    game = is_game(args.env_id)
+    env_kwargs = {"opponent": args.opponent} if game else {"spin": args.spin, "randomize_cue": args.randomize_cue}
+    train_kwargs = ({"opponent": None} if args.practice else {**env_kwargs, "shaping": args.shaping}) if game else None
     probe = quiet_env(args.env_id, **env_kwargs)
     multi_shot = probe.unwrapped.max_shots > 1
-    eval_episodes = args.eval_episodes or (100 if multi_shot else 1000)
+    eval_episodes = args.eval_episodes or (200 if game else 100 if multi_shot else 1000)
     eval_seeds = list(range(args.eval_seed, args.eval_seed + eval_episodes))
     curve_seeds = list(range(args.eval_seed + 10_000_000, args.eval_seed + 10_000_000 + args.curve_episodes))
     log.info("env %s %s, pool_env %s, algo %s, %d timesteps on %d envs", args.env_id, env_kwargs,
              pool_env.__version__, args.algo.upper(), args.timesteps, args.n_envs)
+    if game:
+        log.info("training envs %s%s", train_kwargs, ", through GhostBallAction" if args.ghost_ball_action else "")
     # Compile the physics (or load it from numba's cache) once, here, with a word on a first
     # run, rather than in each worker process behind a frozen progress bar.
     log.info("physics ready in %.1f s", warm_up())
-    return Run(run_dir, env_kwargs, probe, multi_shot, eval_seeds, curve_seeds)
+    return Run(run_dir, env_kwargs, probe, multi_shot, eval_seeds, curve_seeds, game, train_kwargs)
+
+
+def is_game(env_id: str) -> bool:
+    """True for the game envs (PoolNineBall-v0, PoolEightBall-v0): `pool_env.games.PoolGameEnv`."""
+    import gymnasium as gym
+
+    import pool_env  # noqa: F401  (registers the ids)
+
+    return str(gym.spec(env_id).entry_point).startswith("pool_env.games:")
 
 
 def make_model(args: Args, run: Run):
@@ -166,21 +195,28 @@ def make_model(args: Args, run: Run):
 
     torch.set_num_threads(1)  # small networks: one thread is fastest, and leaves the cores to the envs
     (run.dir / "monitor").mkdir(exist_ok=True)
-    if args.vec_env == "native":
+    train_kwargs = run.env_kwargs if run.train_kwargs is None else run.train_kwargs
+    wrapper = None
+    if run.game and args.ghost_ball_action:
+        from pool_env.wrappers import GhostBallAction
+
+        wrapper = GhostBallAction  # a Python wrapper: SB3's subprocess envs rather than the native vector env
+    if args.vec_env == "native" and wrapper is None:
         # The same shots as DummyVecEnv over gym.make envs (tests/test_sb3_vec.py), simulated together.
         from stable_baselines3.common.vec_env import VecMonitor
 
         from pool_env.sb3 import SB3VecEnv
 
         quiet_env(args.env_id)  # silences gymnasium's per-shot warnings in this process, as in the workers
-        envs = SB3VecEnv(args.env_id, num_envs=args.n_envs, **run.env_kwargs)
+        envs = SB3VecEnv(args.env_id, num_envs=args.n_envs, **train_kwargs)
         envs.seed(args.seed)
         envs = VecMonitor(envs, filename=str(run.dir / "monitor" / "native"))
     else:
         vec_cls = {"subproc": SubprocVecEnv, "dummy": DummyVecEnv}.get(args.vec_env)
         vec_cls = vec_cls or (SubprocVecEnv if args.n_envs > 1 else DummyVecEnv)
-        envs = make_vec_env(functools.partial(quiet_env, args.env_id, **run.env_kwargs), n_envs=args.n_envs,
-                            seed=args.seed, vec_env_cls=vec_cls, monitor_dir=str(run.dir / "monitor"))
+        envs = make_vec_env(functools.partial(quiet_env, args.env_id, **train_kwargs), n_envs=args.n_envs,
+                            seed=args.seed, vec_env_cls=vec_cls, monitor_dir=str(run.dir / "monitor"),
+                            wrapper_class=wrapper)
 
     net_arch = [int(n) for n in args.net_arch.split(",") if n]
     learning_rate = args.learning_rate
@@ -247,16 +283,23 @@ def make_callbacks(args: Args, run: Run):
             self.trained_steps = int(self.num_timesteps)
 
         def measure(self):
-            result = evaluate(SB3Agent(self.model), args.env_id, run.curve_seeds, run.env_kwargs)
-            point = {"timesteps": int(self.num_timesteps), "reward": result["reward"],
-                     "pocketed_per_shot": result["pocketed_per_shot"]["mean"],
-                     "scratch_rate": result["scratch_rate"]["mean"]}
+            if run.game:  # games against the opponent: the reward is +1 a win, -1 a loss
+                result = play_games(trained_agent(args, run, self.model), args, run, run.curve_seeds)
+                point = {"timesteps": int(self.num_timesteps), "reward": result["reward"],
+                         "win_rate": result["win_rate"]["mean"]}
+            else:
+                result = evaluate(SB3Agent(self.model), args.env_id, run.curve_seeds, run.env_kwargs)
+                point = {"timesteps": int(self.num_timesteps), "reward": result["reward"],
+                         "pocketed_per_shot": result["pocketed_per_shot"]["mean"],
+                         "scratch_rate": result["scratch_rate"]["mean"]}
             self.points.append(point)
             if self.best is None or point["reward"]["mean"] > self.best["reward"]["mean"]:
                 self.best = point
                 self.model.save(run.dir / "best_model.zip")
             self.logger.record("eval/mean_reward", point["reward"]["mean"])
-            self.logger.record("eval/scratch_rate", point["scratch_rate"])
+            for key in ("scratch_rate", "win_rate"):
+                if key in point:
+                    self.logger.record(f"eval/{key}", point[key])
             self.logger.dump(self.num_timesteps)
 
     class AnnealStd(BaseCallback):
@@ -318,6 +361,8 @@ def final_evaluation(args: Args, run: Run, model, curve) -> dict:
     differences (logged and written to results.md), the verdict, eval_episodes.json; returns eval.json's content."""
     from agents import BreakAgent, SB3Agent, baselines, evaluate, format_table, paired_difference
 
+    if run.game:
+        return game_evaluation(args, run, model, curve)
     eval_start = time.perf_counter()
     agents = {"trained": SB3Agent(model), **baselines(run.probe, seed=args.seed)}
     if not run.multi_shot:  # the naive break too: full power straight at the head ball
@@ -364,15 +409,7 @@ def verdict(differences: dict[str, dict], trained_steps: int, min_timesteps: int
     """The comparison in words: "beats X" only when the paired 95 % interval of the reward
     difference excludes zero in the trained agent's favour, and no claim at all from a run too
     short to mean anything, or whose kept checkpoint (`untrained`) is the untrained policy."""
-    reasons = []
-    if trained_steps < min_timesteps:
-        reasons.append(f"too short to mean anything ({trained_steps:,} timesteps, under --min-timesteps "
-                       f"{min_timesteps:,})")
-    if untrained is not None:
-        reasons.append(f"the kept checkpoint is the untrained policy (the first evaluation, at "
-                       f"{untrained['timesteps']:,} timesteps, before any policy update)")
-    if episodes < 2:
-        reasons.append("one evaluation episode gives no confidence interval")
+    reasons = no_claim_reasons(trained_steps, min_timesteps, untrained, episodes)
     if reasons:
         return "no claim against the baselines: " + "; ".join(reasons)
     claims = []
@@ -384,20 +421,158 @@ def verdict(differences: dict[str, dict], trained_steps: int, min_timesteps: int
             + " in reward per episode (paired on the same seeds; 95 % intervals)")
 
 
+def no_claim_reasons(trained_steps: int, min_timesteps: int, untrained: dict | None, episodes: int) -> list[str]:
+    """Why a run may claim nothing: too short, the untrained policy kept, a single evaluation episode."""
+    reasons = []
+    if trained_steps < min_timesteps:
+        reasons.append(f"too short to mean anything ({trained_steps:,} timesteps, under --min-timesteps "
+                       f"{min_timesteps:,})")
+    if untrained is not None:
+        reasons.append(f"the kept checkpoint is the untrained policy (the first evaluation, at "
+                       f"{untrained['timesteps']:,} timesteps, before any policy update)")
+    if episodes < 2:
+        reasons.append("one evaluation episode gives no confidence interval")
+    return reasons
+
+
 def film(args: Args, run: Run, model) -> float:
     """A video of the trained agent, every shot whole; returns its wall time."""
     import gymnasium as gym
 
     import pool_env
-    from agents import SB3Agent
 
     video_start = time.perf_counter()
     video_env = gym.make(args.env_id, render_mode="rgb_array_list", **run.env_kwargs)
-    frames = pool_env.record_video(video_env, SB3Agent(model), str(run.dir / "trained.mp4"),
+    frames = pool_env.record_video(video_env, trained_agent(args, run, model), str(run.dir / "trained.mp4"),
                                    episodes=args.video_episodes, seed=args.eval_seed)
     video_env.close()
     log.info("video: %s (%d frames)", run.dir / "trained.mp4", frames)
     return time.perf_counter() - video_start
+
+
+def trained_agent(args: Args, run: Run, model):
+    """The trained model as a player of the bare env (through GhostBallAction's mapping when trained with it)."""
+    from agents import SB3Agent
+
+    agent = SB3Agent(model)
+    if run.game and args.ghost_ball_action:
+        from pool_env.wrappers import GhostBallActionAgent
+
+        return GhostBallActionAgent(agent, run.probe)
+    return agent
+
+
+def play_games(agent, args: Args, run: Run, seeds) -> dict:
+    """`agent` against args.opponent, one game per seed, the agent breaking the even-numbered ones
+    (reset option agent_breaks): game_summary of the records, which it keeps under "per_episode"."""
+    env = quiet_env(args.env_id, **run.env_kwargs)
+    games = []
+    for k, seed in enumerate(seeds):
+        if hasattr(agent, "reset"):
+            agent.reset(seed=int(seed))
+        obs, _ = env.reset(seed=int(seed), options={"agent_breaks": k % 2 == 0})
+        done, shots, info = False, 0, {}
+        while not done:
+            obs, _, terminated, truncated, info = env.step(agent.act(obs))
+            done, shots = terminated or truncated, shots + 1
+        games.append({"seed": int(seed), "agent_breaks": k % 2 == 0, "winner": info.get("winner"), "shots": shots})
+    env.close()
+    return {**game_summary(games), "per_episode": games}
+
+
+def game_summary(games: list[dict]) -> dict:
+    """Wins, losses, unfinished games (max_shots or a simulator error: half a win each), the win
+    rate with its 95 % Wilson interval (also among the games the agent broke and did not), the
+    reward per game (+1 a win, -1 a loss, 0 unfinished: mean, sd, 95 % half-width), shots per game."""
+    import math
+
+    import numpy as np
+
+    from agents.tournament import Z95, wilson
+
+    def rate(subset):
+        wins = sum(g["winner"] == "agent" for g in subset) + 0.5 * sum(g["winner"] is None for g in subset)
+        low, high = wilson(wins, len(subset))
+        return {"mean": wins / max(len(subset), 1), "low": low, "high": high, "games": len(subset)}
+
+    reward = np.array([{"agent": 1.0, "opponent": -1.0}.get(g["winner"], 0.0) for g in games])
+    sd = float(reward.std(ddof=1)) if reward.size > 1 else 0.0
+    return {"episodes": len(games), "wins": sum(g["winner"] == "agent" for g in games),
+            "losses": sum(g["winner"] == "opponent" for g in games),
+            "unfinished": sum(g["winner"] is None for g in games), "win_rate": rate(games),
+            "win_rate_breaking": rate([g for g in games if g["agent_breaks"]]),
+            "win_rate_not_breaking": rate([g for g in games if not g["agent_breaks"]]),
+            "reward": {"mean": float(reward.mean()), "sd": sd, "ci95": Z95 * sd / math.sqrt(reward.size)},
+            "shots_per_game": float(np.mean([g["shots"] for g in games]))}
+
+
+def game_evaluation(args: Args, run: Run, model, curve) -> dict:
+    """Game envs: the trained model, the opponent's own player (ghost_ball) and random, each
+    playing args.opponent on the same seeds, breaks alternating: win rates with 95 % Wilson
+    intervals (logged and written to results.md), the verdict, eval_episodes.json; returns eval.json's content."""
+    from agents import RandomAgent
+    from agents.game_player import GameGhostBallAgent
+
+    eval_start = time.perf_counter()
+    agents = {"trained": trained_agent(args, run, model), "ghost_ball": GameGhostBallAgent.from_env(run.probe),
+              "random": RandomAgent(run.probe.action_space, seed=args.seed)}
+    results = {name: play_games(agent, args, run, run.eval_seeds) for name, agent in agents.items()}
+    eval_time = time.perf_counter() - eval_start
+    seeds = f"{len(run.eval_seeds)} fixed seeds ({run.eval_seeds[0]}..{run.eval_seeds[-1]})"
+    table = game_table(results)
+    log.info("win rates against %s on %s, breaks alternating (95 %% Wilson intervals):\n%s", args.opponent, seeds,
+             table)
+    reasons = no_claim_reasons(curve.trained_steps, args.min_timesteps, curve.best if curve.kept_untrained else None,
+                               len(run.eval_seeds))
+    words = game_verdict(results["trained"]["win_rate"], args.opponent, reasons)
+    log.info("verdict: %s", words)
+    kept = (f"the checkpoint at {curve.best['timesteps']:,} timesteps, the best of {len(curve.points)} evaluations "
+            f"on {len(run.curve_seeds)} learning-curve games" if args.keep_best and curve.best else "the last model")
+    how = ("practice run-outs (no opponent)" if args.practice else f"games against {args.opponent}"
+           + (" with shaping" if args.shaping else ""))
+    (run.dir / "results.md").write_text("\n".join([
+        f"# {args.algo.upper()} on {args.env_id}{' through GhostBallAction' if args.ghost_ball_action else ''}, "
+        f"seed {args.seed}", "",
+        f"Trained {curve.trained_steps:,} timesteps (shots) on {how}; the model is {kept}.", "",
+        f"Final evaluation: each agent plays {args.opponent} on {seeds}, the same for every agent, breaking the "
+        "even-numbered games; win rate (an unfinished game counts half) with the 95 % Wilson interval:", "",
+        table, "", f"Verdict: {words}.", ""]))
+    log.info("results table: %s", run.dir / "results.md")
+    (run.dir / "eval_episodes.json").write_text(json.dumps({n: r["per_episode"] for n, r in results.items()}))
+    return {
+        "env_id": args.env_id, "env_kwargs": run.env_kwargs, "train_kwargs": run.train_kwargs, "algo": args.algo,
+        "ghost_ball_action": args.ghost_ball_action, "opponent": args.opponent,
+        "timesteps": int(model.num_timesteps), "trained_timesteps": curve.trained_steps,
+        "eval_seeds": {"first": run.eval_seeds[0], "count": len(run.eval_seeds)},
+        "agents": {name: {k: v for k, v in r.items() if k != "per_episode"} for name, r in results.items()},
+        "verdict": words, "learning_curve": curve.points, "wall_time_s": {"evaluation": eval_time},
+        "args": dataclasses.asdict(args),
+    }
+
+
+def game_table(results: dict[str, dict]) -> str:
+    """A markdown table of game_summary results, a row per agent."""
+    def cell(w):
+        return f"{100 * w['mean']:.1f} % [{100 * w['low']:.1f}, {100 * w['high']:.1f}]"
+
+    rows = ["| agent | win rate [95 % CI] | breaking | not breaking | wins | losses | unfinished | shots / game |",
+            "| --- | --- | --- | --- | --- | --- | --- | --- |"]
+    for name, r in results.items():
+        rows.append(f"| {name} | {cell(r['win_rate'])} | {cell(r['win_rate_breaking'])} | "
+                    f"{cell(r['win_rate_not_breaking'])} | {r['wins']} | {r['losses']} | {r['unfinished']} | "
+                    f"{r['shots_per_game']:.1f} |")
+    return "\n".join(rows)
+
+
+def game_verdict(win_rate: dict, opponent: str, reasons: list[str]) -> str:
+    """"beats" the opponent only when the win rate's 95 % interval lies above 50 %, and no claim
+    at all for the reasons no_claim_reasons gives."""
+    if reasons:
+        return f"no claim against {opponent}: " + "; ".join(reasons)
+    figure = f"{100 * win_rate['mean']:.1f} % [{100 * win_rate['low']:.1f}, {100 * win_rate['high']:.1f}]"
+    word = ("beats" if win_rate["low"] > 0.5 else "loses to" if win_rate["high"] < 0.5
+            else "is not distinguishable from")
+    return f"the trained agent {word} {opponent} (win rate {figure}, 95 % Wilson interval, {win_rate['games']} games)"
 
 
 def read_monitor(folder: Path):

@@ -149,3 +149,48 @@ def test_sac_option_runs(tmp_path):
 
     assert algorithm_of(tmp_path / "sac" / "model.zip") == "SAC"
     assert (tmp_path / "sac" / "eval.json").is_file() and (tmp_path / "sac" / "learning_curve.png").is_file()
+
+
+def test_game_verdict_and_summary():
+    train = load_train()
+    games = ([{"winner": "agent", "agent_breaks": k % 2 == 0, "shots": 5} for k in range(150)]
+             + [{"winner": "opponent", "agent_breaks": k % 2 == 0, "shots": 7} for k in range(48)]
+             + [{"winner": None, "agent_breaks": False, "shots": 100}] * 2)
+    summary = train.game_summary(games)
+    win = summary["win_rate"]
+    assert (summary["wins"], summary["losses"], summary["unfinished"]) == (150, 48, 2)
+    assert win["mean"] == pytest.approx(151 / 200) and win["low"] < win["mean"] < win["high"]
+    assert summary["reward"]["mean"] == pytest.approx((150 - 48) / 200)
+    assert train.game_verdict(win, "ghost_ball", []).startswith("the trained agent beats ghost_ball (win rate 75.5 %")
+    assert "is not distinguishable from x" in train.game_verdict({"mean": 0.52, "low": 0.45, "high": 0.59,
+                                                                  "games": 200}, "x", [])
+    assert "loses to x" in train.game_verdict({"mean": 0.3, "low": 0.24, "high": 0.37, "games": 200}, "x", [])
+    assert train.game_verdict(win, "ghost_ball", ["too short"]) == "no claim against ghost_ball: too short"
+    assert "| trained | 75.5 % [" in train.game_table({"trained": summary})
+
+
+@pytest.mark.slow
+def test_game_env_smoke_run(tmp_path):
+    """The game path: 9-ball through GhostBallAction, practice training, win rates against ghost_ball."""
+    proc = run_train("--env-id", "PoolNineBall-v0", "--opponent", "ghost_ball", "--ghost-ball-action", "--practice",
+                     "--timesteps", "600", "--n-steps", "128", "--batch-size", "64", "--eval-episodes", "6",
+                     "--curve-points", "1", "--curve-episodes", "4", "--video-episodes", "1", "--out", str(tmp_path),
+                     "--run-name", "game", "--no-progress-bar", timeout=600)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    run_dir = tmp_path / "game"
+    for name in ("model.zip", "eval.json", "results.md", "learning_curve.png", "trained.mp4", "eval_episodes.json"):
+        assert (run_dir / name).is_file() and (run_dir / name).stat().st_size > 0, name
+    result = json.loads((run_dir / "eval.json").read_text())
+    assert result["env_id"] == "PoolNineBall-v0" and result["train_kwargs"] == {"opponent": None}
+    assert {"trained", "ghost_ball", "random"} == set(result["agents"])
+    for summary in result["agents"].values():
+        win = summary["win_rate"]
+        assert summary["episodes"] == 6 and win["low"] - 1e-9 <= win["mean"] <= win["high"] + 1e-9
+        assert summary["wins"] + summary["losses"] + summary["unfinished"] == 6
+    episodes = json.loads((run_dir / "eval_episodes.json").read_text())
+    assert [e["agent_breaks"] for e in episodes["trained"]] == [True, False] * 3  # breaks alternate
+    results = (run_dir / "results.md").read_text()
+    assert "| trained |" in results and "| ghost_ball |" in results and "no claim against ghost_ball" in results
+    from agents import SB3Agent
+
+    assert SB3Agent.load(run_dir / "model.zip").act(np.zeros(44, dtype=np.float32)).shape == (13,)
