@@ -463,20 +463,35 @@ def trained_agent(args: Args, run: Run, model):
 
 
 def play_games(agent, args: Args, run: Run, seeds) -> dict:
-    """`agent` against args.opponent, one game per seed, the agent breaking the even-numbered ones
-    (reset option agent_breaks): game_summary of the records, which it keeps under "per_episode"."""
-    env = quiet_env(args.env_id, **run.env_kwargs)
+    """`agent` against args.opponent, one game per seed, the agent breaking the even-numbered ones:
+    game_summary of the records, which it keeps under "per_episode". As in agents.tournament, the
+    breaker is the env's agent and the other player its opponent: the env re-racks a game its
+    opponent wins before the agent's first shot, which would favour the player who did not break."""
+
+    from agents import RandomAgent
+    from agents.game_player import GameGhostBallAgent
+
+    as_agent = quiet_env(args.env_id, **run.env_kwargs)  # the agent breaks; args.opponent replies
+    as_opponent = quiet_env(args.env_id, **{**run.env_kwargs, "opponent": lambda obs: agent.act(obs)})
+    other = (GameGhostBallAgent.from_env(as_opponent) if args.opponent == "ghost_ball"
+             else RandomAgent(as_opponent.action_space, seed=0))
     games = []
     for k, seed in enumerate(seeds):
-        if hasattr(agent, "reset"):
-            agent.reset(seed=int(seed))
-        obs, _ = env.reset(seed=int(seed), options={"agent_breaks": k % 2 == 0})
+        breaks = k % 2 == 0
+        env, breaker = (as_agent, agent) if breaks else (as_opponent, other)
+        for player in (agent, other):
+            if hasattr(player, "reset"):
+                player.reset(seed=int(seed))
+        obs, _ = env.reset(seed=int(seed))
         done, shots, info = False, 0, {}
         while not done:
-            obs, _, terminated, truncated, info = env.step(agent.act(obs))
-            done, shots = terminated or truncated, shots + 1
-        games.append({"seed": int(seed), "agent_breaks": k % 2 == 0, "winner": info.get("winner"), "shots": shots})
-    env.close()
+            obs, _, terminated, truncated, info = env.step(breaker.act(obs))
+            done = terminated or truncated
+            shots += 1 + len(info.get("opponent_shots", []))
+        winner = info.get("winner") if breaks else {"agent": "opponent", "opponent": "agent"}.get(info.get("winner"))
+        games.append({"seed": int(seed), "agent_breaks": breaks, "winner": winner, "shots": shots})
+    as_agent.close()
+    as_opponent.close()
     return {**game_summary(games), "per_episode": games}
 
 
@@ -503,7 +518,7 @@ def game_summary(games: list[dict]) -> dict:
             "win_rate_breaking": rate([g for g in games if g["agent_breaks"]]),
             "win_rate_not_breaking": rate([g for g in games if not g["agent_breaks"]]),
             "reward": {"mean": float(reward.mean()), "sd": sd, "ci95": Z95 * sd / math.sqrt(reward.size)},
-            "shots_per_game": float(np.mean([g["shots"] for g in games]))}
+            "shots_per_game": float(np.mean([g["shots"] for g in games]))}  # both players' shots
 
 
 def game_evaluation(args: Args, run: Run, model, curve) -> dict:

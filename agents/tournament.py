@@ -164,6 +164,10 @@ def make_player(spec: str, env):
     if shape != env.observation_space.shape:
         raise ValueError(f"{spec}: the model observes shape {shape}, the {env.game} env gives "
                          f"{env.observation_space.shape} (trained on another env?)")
+    from pool_env.wrappers import GhostBallAction, GhostBallActionAgent
+
+    if agent.model.action_space.shape == GhostBallAction(env).action_space.shape:  # train.py --ghost-ball-action
+        return GhostBallActionAgent(agent, env)
     return agent
 
 

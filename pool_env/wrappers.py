@@ -12,7 +12,7 @@ from .env import MAX_SPEED
 
 # The corrections are small at |action| = 1: the ghost-ball aim is good, and a policy's
 # exploration noise on a wide correction (a side spin the aim ignores, a speed that stops short)
-# loses most games (a constant 0.3 R of side: 17 % against the ghost-ball player instead of 55 %).
+# loses most games (a constant 0.15 R of side: 17 % against the ghost-ball player instead of 55 %).
 MAX_ANGLE = 0.25  # degrees: the aim correction at |action| = 1
 SPEED_OCTAVES = 0.5  # the speed scale is 2 ** (SPEED_OCTAVES * action): x0.71 .. x1.41
 TIP_SCALE = 0.5  # the env's tip entries are TIP_SCALE * action: 0.25 R at |action| = 1

@@ -120,3 +120,16 @@ def test_agent_adapter_plays_the_bare_env():
 def test_refuses_a_break_env():
     with pytest.raises(TypeError):
         GhostBallAction(gym.make("PoolBreak-v0"))
+
+
+def test_tournament_plays_a_model_trained_through_the_wrapper(tmp_path):
+    from stable_baselines3 import PPO
+
+    from agents.tournament import make_player
+    from pool_env.games import PoolGameEnv
+
+    PPO("MlpPolicy", wrapped(opponent=None), n_steps=8, batch_size=8, device="cpu").save(tmp_path / "model.zip")
+    env = PoolGameEnv("nine_ball", opponent=None)
+    player = make_player(str(tmp_path / "model.zip"), env)
+    assert isinstance(player, GhostBallActionAgent)
+    assert player.act(env.reset(seed=0)[0]).shape == (6,)
