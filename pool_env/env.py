@@ -23,6 +23,7 @@ from .physics.cue import MISCUE_LIMIT
 from .physics.kinds import BALL_BALL, BALL_BALL_SETTLE, BALL_CUSHION, BALL_POCKET
 from .physics.simulate import check_on_table
 from .playback import ShotPlayback
+from .window import HumanWindow
 
 N_BALLS = 16
 CONTACT_TIME = 0.005  # s, the seed report's cue contact time
@@ -164,7 +165,7 @@ def shot_reward(info: dict, before: Balls, after: Balls, table: Table, scratch_p
     return float(reward)
 
 
-class PoolBreakEnv(gym.Env):
+class PoolBreakEnv(HumanWindow, gym.Env):
     """
     ## Description
 
@@ -382,6 +383,7 @@ class PoolBreakEnv(gym.Env):
         self._shots = 0
         self._done = True
         self._window = None  # render_mode="human": a pool_env.window.Window, opened at the first frame
+        self._window_title = f"pool_env: {type(self).__name__}"
         # With a render mode the balls' rotation is carried through every shot (lazily); without
         # one only through the shots whose frames are asked for.
         self.playback = ShotPlayback(self.table, self.render_size, self.metadata["render_fps"],
@@ -413,20 +415,6 @@ class PoolBreakEnv(gym.Env):
         if self.render_mode == "rgb_array":
             return self.playback.frame()
         return self.playback.shot_frames()
-
-    def close(self):
-        self.playback.close()
-        if self._window is not None:
-            self._window.close()
-            self._window = None
-
-    def _show(self, frames):
-        """render_mode="human": show `frames` in the window at `metadata["render_fps"]` (None)."""
-        if self._window is None:
-            from .window import Window
-
-            self._window = Window(f"pool_env: {type(self).__name__}")
-        self._window.play(frames, self.metadata["render_fps"])
 
     def shot_frames(self, fps=None) -> list[np.ndarray]:
         """The frames of the last shot sampled from the exact trajectory at `fps` (default

@@ -15,6 +15,7 @@ from .overlay import overlay
 from .physics import BALL_MASS, BALL_RADIUS, Balls, Physics, SimulationError, Table, simulate, strike
 from .physics.simulate import check_on_table
 from .playback import ShotPlayback
+from .window import HumanWindow
 
 GAMES = {"nine_ball": 10, "eight_ball": 16}  # balls in play, the cue ball included
 # Noise on the executed shot: standard deviations of the aim angle (rad), the cue ball's speed
@@ -153,7 +154,7 @@ def resolve_opponent(opponent, env):
     raise ValueError(f"opponent must be a name, None, an agent with act(observation) or a callable, got {opponent!r}")
 
 
-class PoolGameEnv(gym.Env):
+class PoolGameEnv(HumanWindow, gym.Env):
     """9-ball or 8-ball by the WPA rules (`pool_env.rules`, docs/rules.md): one step is one shot
     of the agent; the opponent's shots are played inside `step` until the agent is to shoot
     again or the game ends.
@@ -289,6 +290,7 @@ class PoolGameEnv(gym.Env):
         self._called, self._shooter, self._end_reason = None, 0, None
         self._hand_before, self._shoots_eight = None, False
         self._window = None  # render_mode="human": a pool_env.window.Window
+        self._window_title = f"pool_env: {self.game}"
         self._begin_step()
 
     # --- Gymnasium API ----------------------------------------------------------------------
@@ -316,20 +318,6 @@ class PoolGameEnv(gym.Env):
         if self.render_mode == "human":
             return self._show([self._annotate(self.playback.frame())])
         return self._annotate(self.playback.frame()) if self.render_mode == "rgb_array" else self.shot_frames()
-
-    def close(self):
-        self.playback.close()
-        if self._window is not None:
-            self._window.close()
-            self._window = None
-
-    def _show(self, frames):
-        """render_mode="human": show `frames` in the window at `metadata["render_fps"]` (None)."""
-        if self._window is None:
-            from .window import Window
-
-            self._window = Window(f"pool_env: {self.game}")
-        self._window.play(frames, self.metadata["render_fps"])
 
     def shot_frames(self, fps=None) -> list[np.ndarray]:
         """Every shot of the last step (the agent's, then the opponent's) sampled at `fps`; after

@@ -108,3 +108,23 @@ class Window:
         if self.surface is not None:
             self.pygame.display.quit()
         self.surface = None
+
+
+class HumanWindow:
+    """The envs' side of `render_mode="human"`: a `Window` opened at the first frame shown,
+    closed by `close()` (PoolBreakEnv and PoolGameEnv mix this in; `_window_title` names it)."""
+
+    _window = None
+    _window_title = "pool_env"
+
+    def close(self):
+        self.playback.close()
+        if self._window is not None:
+            self._window.close()
+            self._window = None
+
+    def _show(self, frames):
+        """render_mode="human": show `frames` in the window at `metadata["render_fps"]` (None)."""
+        if self._window is None:
+            self._window = Window(self._window_title)
+        self._window.play(frames, self.metadata["render_fps"])
