@@ -37,6 +37,17 @@ RESET_OPTIONS = ("balls",)  # the keys reset(options=...) accepts
 NO_EVENTS = np.zeros(0, dtype=np.int64)  # the event arrays of a shot that could not be simulated
 
 
+def simulate_or_error(struck, table: Table, physics: Physics):
+    """A step's shot: its Result, or the SimulationError or ValueError it raised; an error
+    passed in as `struck` (striking failed) is passed on. Both env kinds' phase (b)."""
+    if isinstance(struck, Exception):
+        return struck
+    try:
+        return simulate(struck, table, physics)
+    except (SimulationError, ValueError) as exc:
+        return exc
+
+
 def check_reset_options(options, accepted) -> dict:
     """`reset`'s options checked: None (no options) or a dict whose keys are all `accepted`."""
     if options is None:
@@ -459,12 +470,7 @@ class PoolBreakEnv(HumanWindow, gym.Env):
     def _simulate(self, struck):
         """Phase (b): the shot's Result, or the SimulationError or ValueError it raised (phase
         (a)'s error passed on); `simulate_batch` gives the same for many shots."""
-        if isinstance(struck, Exception):
-            return struck
-        try:
-            return simulate(struck, self.table, self.physics)
-        except (SimulationError, ValueError) as exc:
-            return exc
+        return simulate_or_error(struck, self.table, self.physics)
 
     def _advance(self, outcome):
         """After phase (b): a break env's step is one shot, so nothing follows it (a game env

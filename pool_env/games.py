@@ -10,9 +10,9 @@ import numpy as np
 from gymnasium import logger, spaces
 
 from . import rules
-from .env import CONTACT_TIME, MAX_TIP_OFFSET, check_reset_options, cue_force, shot_info
+from .env import CONTACT_TIME, MAX_TIP_OFFSET, check_reset_options, cue_force, shot_info, simulate_or_error
 from .overlay import overlay
-from .physics import BALL_MASS, BALL_RADIUS, Balls, Physics, SimulationError, Table, simulate, strike
+from .physics import BALL_MASS, BALL_RADIUS, Balls, Physics, SimulationError, Table, strike
 from .physics.simulate import check_on_table
 from .playback import ShotPlayback
 from .window import HumanWindow
@@ -478,12 +478,7 @@ class PoolGameEnv(HumanWindow, gym.Env):
             return exc
 
     def _simulate(self, struck):
-        if isinstance(struck, Exception):
-            return struck
-        try:
-            return simulate(struck, self.table, self.physics)
-        except (SimulationError, ValueError) as exc:
-            return exc
+        return simulate_or_error(struck, self.table, self.physics)
 
     def _advance(self, outcome):
         """Apply the shot just simulated (its Result, or the error it raised): the rules judge
