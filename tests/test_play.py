@@ -61,15 +61,6 @@ def test_human_mode_opens_draws_and_closes(env_id):
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="the early display check is for Linux")
-def test_human_mode_without_a_display_names_the_fix(monkeypatch):
-    for name in ("SDL_VIDEODRIVER", "DISPLAY", "WAYLAND_DISPLAY"):
-        monkeypatch.delenv(name, raising=False)
-    env = gym.make("PoolBreak-v0", render_mode="human")
-    with pytest.raises(RuntimeError, match="SDL_VIDEODRIVER=dummy"):
-        env.reset(seed=0)
-    env.close()
-
-
 def test_the_drag_mapping():
     a = shot_action((1.0, 0.5), (0.7, 0.5), tip=(0.1, -0.2))  # dragged 0.3 m back along -x
     assert np.allclose(a, [0.3 / DRAG_FULL, 0.0, 0.1 / MAX_TIP_OFFSET, -0.2 / MAX_TIP_OFFSET])
