@@ -48,7 +48,7 @@ class Args:
     timesteps: int = option(250_000, "total environment steps (shots) to train for")
     n_envs: int = option(2, "parallel environments")
     vec_env: str = option("native", "native: one process, every step's shots in one simulate_batch call on all "
-                          "cores (pool_env.sb3.SB3VecEnv); auto: SB3 subprocesses when n_envs > 1",
+                          "cores (pool_env.envs.sb3.SB3VecEnv); auto: SB3 subprocesses when n_envs > 1",
                           choices=("native", "auto", "subproc", "dummy"))
     seed: int = option(0, "seed of the model and the training envs")
     spin: bool = option(False, "add the cue-tip offset (side, top) to the action")
@@ -58,7 +58,7 @@ class Args:
                            "--practice)", choices=("ghost_ball", "random"))
     practice: bool = option(False, "game envs: train without an opponent (run-outs: +1 per ball pocketed legally, "
                             "+1 for the rack; the episode ends when the turn passes), evaluate against --opponent")
-    ghost_ball_action: bool = option(False, "game envs: act through pool_env.wrappers.GhostBallAction (choose "
+    ghost_ball_action: bool = option(False, "game envs: act through pool_env.envs.wrappers.GhostBallAction (choose "
                                      "ball and pocket, correct the ghost-ball aim, speed, tip, placement)")
     shaping: bool = option(False, "game envs against an opponent: +0.1 per ball pocketed legally, -0.1 per foul")
     # --- hyperparameters (PPO unless marked) ---
@@ -177,12 +177,12 @@ def open_run(args: Args) -> Run:
 
 
 def is_game(env_id: str) -> bool:
-    """True for the game envs (PoolNineBall-v0, PoolEightBall-v0): `pool_env.games.PoolGameEnv`."""
+    """True for the game envs (PoolNineBall-v0, PoolEightBall-v0): `pool_env.envs.game_env.PoolGameEnv`."""
     import gymnasium as gym
 
     import pool_env  # noqa: F401  (registers the ids)
 
-    return str(gym.spec(env_id).entry_point).startswith("pool_env.games:")
+    return str(gym.spec(env_id).entry_point).startswith("pool_env.envs.game_env:")
 
 
 def make_model(args: Args, run: Run):
@@ -198,14 +198,14 @@ def make_model(args: Args, run: Run):
     train_kwargs = run.env_kwargs if run.train_kwargs is None else run.train_kwargs
     wrapper = None
     if run.game and args.ghost_ball_action:
-        from pool_env.wrappers import GhostBallAction
+        from pool_env.envs.wrappers import GhostBallAction
 
         wrapper = GhostBallAction  # a Python wrapper: SB3's subprocess envs rather than the native vector env
     if args.vec_env == "native" and wrapper is None:
         # The same shots as DummyVecEnv over gym.make envs (tests/test_sb3_vec.py), simulated together.
         from stable_baselines3.common.vec_env import VecMonitor
 
-        from pool_env.sb3 import SB3VecEnv
+        from pool_env.envs.sb3 import SB3VecEnv
 
         quiet_env(args.env_id)  # silences gymnasium's per-shot warnings in this process, as in the workers
         envs = SB3VecEnv(args.env_id, num_envs=args.n_envs, **train_kwargs)
@@ -456,7 +456,7 @@ def trained_agent(args: Args, run: Run, model):
 
     agent = SB3Agent(model)
     if run.game and args.ghost_ball_action:
-        from pool_env.wrappers import GhostBallActionAgent
+        from pool_env.envs.wrappers import GhostBallActionAgent
 
         return GhostBallActionAgent(agent, run.probe)
     return agent
@@ -469,7 +469,7 @@ def play_games(agent, args: Args, run: Run, seeds) -> dict:
     opponent wins before the agent's first shot, which would favour the player who did not break."""
 
     from agents import RandomAgent
-    from agents.game_player import GameGhostBallAgent
+    from pool_env.players.game_ghost_ball import GameGhostBallAgent
 
     as_agent = quiet_env(args.env_id, **run.env_kwargs)  # the agent breaks; args.opponent replies
     as_opponent = quiet_env(args.env_id, **{**run.env_kwargs, "opponent": lambda obs: agent.act(obs)})
@@ -503,7 +503,7 @@ def game_summary(games: list[dict]) -> dict:
 
     import numpy as np
 
-    from agents.tournament import Z95, wilson
+    from agents.stats import Z95, wilson
 
     def rate(subset):
         wins = sum(g["winner"] == "agent" for g in subset) + 0.5 * sum(g["winner"] is None for g in subset)
@@ -526,7 +526,7 @@ def game_evaluation(args: Args, run: Run, model, curve) -> dict:
     playing args.opponent on the same seeds, breaks alternating: win rates with 95 % Wilson
     intervals (logged and written to results.md), the verdict, eval_episodes.json; returns eval.json's content."""
     from agents import RandomAgent
-    from agents.game_player import GameGhostBallAgent
+    from pool_env.players.game_ghost_ball import GameGhostBallAgent
 
     eval_start = time.perf_counter()
     agents = {"trained": trained_agent(args, run, model), "ghost_ball": GameGhostBallAgent.from_env(run.probe),

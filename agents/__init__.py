@@ -23,15 +23,14 @@ print(evaluate(agent, "PoolBreakRun-v0", seeds=range(20))["pocketed_per_episode"
 ```
 """
 
-from .base import Agent, RandomAgent
+from pool_env.players import Agent, BreakAgent, GameGhostBallAgent, GhostBallAgent, Pot, RandomAgent
+
 from .evaluate import baselines, evaluate, format_table, heuristic_for, paired_difference, play_episode, summarize
-from .game_player import GameGhostBallAgent
-from .heuristic import BreakAgent, GhostBallAgent, Shot
 from .sb3 import SB3Agent, algorithm_of, load_model
 from .search import SearchAgent
 
 __all__ = [
-    "Agent", "RandomAgent", "BreakAgent", "GhostBallAgent", "GameGhostBallAgent", "SearchAgent", "Shot", "SB3Agent",
+    "Agent", "RandomAgent", "BreakAgent", "GhostBallAgent", "GameGhostBallAgent", "SearchAgent", "Pot", "SB3Agent",
     "load_model", "algorithm_of",
     "evaluate", "play_episode", "summarize", "paired_difference", "format_table", "baselines", "heuristic_for",
 ]

@@ -7,8 +7,7 @@ import math
 import gymnasium as gym
 import numpy as np
 
-from .base import Agent, RandomAgent
-from .heuristic import BreakAgent, GhostBallAgent
+from pool_env.players import Agent, BreakAgent, GhostBallAgent, RandomAgent
 
 Z95 = 1.959964  # two-sided 95 % normal quantile
 

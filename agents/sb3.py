@@ -8,7 +8,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .base import Agent
+from pool_env.envs.wrappers import GHOST_BALL_ACTION_SIZE, GhostBallActionAgent
+from pool_env.game import game_observation_size
+from pool_env.players import Agent, game_of
 
 ALGORITHMS = ("PPO", "SAC", "TD3", "A2C", "DDPG")
 
@@ -57,3 +59,28 @@ class SB3Agent(Agent):
     def act(self, observation) -> np.ndarray:
         action, _ = self.model.predict(np.asarray(observation, dtype=np.float32), deterministic=self.deterministic)
         return np.asarray(action, dtype=np.float32)
+
+
+def observation_shape(env):
+    """The shape of `env`'s observations (a Gymnasium env, a two-player env or a Game)."""
+    space = getattr(getattr(env, "unwrapped", env), "observation_space", None)
+    if callable(space):  # a PettingZoo env: a space per agent
+        space = space("player_0")
+    if space is None:
+        game = game_of(env)
+        return (game_observation_size(game.mode),) if game.has_rules else (49,)
+    return space.shape
+
+
+def model_player(env, seed=None, path=None):
+    """The player registry's model loader (`pool_env.make_player("runs/x/model.zip", env)`): the
+    SB3 model at `path` as an agent for `env`, a model trained through `GhostBallAction`
+    (`train.py --ghost-ball-action`) behind `GhostBallActionAgent`. ValueError if the model
+    observes another shape than the env gives."""
+    agent = SB3Agent.load(path)
+    shape, wanted = getattr(agent.model.observation_space, "shape", None), observation_shape(env)
+    if shape != wanted:
+        raise ValueError(f"{path}: the model observes shape {shape}, the env gives {wanted} (trained on another env?)")
+    if agent.model.action_space.shape == (GHOST_BALL_ACTION_SIZE,):
+        return GhostBallActionAgent(agent, env)
+    return agent

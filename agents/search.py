@@ -7,17 +7,27 @@ import math
 import time
 from dataclasses import dataclass
 
+import gymnasium as gym
 import numpy as np
 
+import pool_env  # noqa: F401  (registers the envs)
 from pool_env import rules
-from pool_env.env import CONTACT_TIME, MAX_SPEED, MAX_TIP_OFFSET, cue_force
-from pool_env.games import GAMES, noisy_shot, place_cue_ball, placement_area
-from pool_env.physics import BALL_RADIUS, Balls, Physics, Table, strike
-from pool_env.physics.batch import simulate_batch
+from pool_env.game import (
+    GAME_BALLS,
+    MAX_SPEED,
+    Game,
+    GameView,
+    Shot,
+    decode_game_observation,
+    decode_observation,
+    encode_action,
+    placement_area,
+)
+from pool_env.physics import BALL_RADIUS, Balls, Physics, Table
+from pool_env.players import Agent, GhostBallAgent, game_of
+from pool_env.players import geometry as geo
 
-from . import geometry as geo
-from .base import Agent
-from .heuristic import GhostBallAgent
+from .stats import wilson
 
 ARRIVALS = (0.25, 0.7, 1.6)  # m/s: the object ball's speed at the pocket, one planner each (three speeds)
 TIPS = ((0.0, 0.0), (0.0, 0.3), (0.0, -0.3))  # (side, top) in R: stun, follow, draw
@@ -58,38 +68,14 @@ class Candidate:
     prior: float = 0.0
 
 
-@dataclass
-class Decoded:
-    """An observation read back: positions (m), on-table flags, legal first contacts (object
-    balls 1..n-1), ball in hand, consecutive fouls (shooter, opponent), the shooter's 8-ball group."""
-
-    xy: np.ndarray
-    on_table: np.ndarray
-    legal: frozenset
-    ball_in_hand: str | None = None
-    fouls: tuple = (0, 0)
-    group: str | None = None
-
-
-def decode(observation, n_balls: int, table: Table, game: bool = True) -> Decoded:
-    """Read a game observation (`pool_env.games.game_observation`, n_balls 10 or 16) or, with
-    `game=False`, a `PoolBreakEnv` observation (16 balls, every object ball legal)."""
-    obs = np.asarray(observation, dtype=np.float64)
-    per_ball = obs[: 3 * n_balls].reshape(n_balls, 3)
-    on_table = per_ball[:, 2] > 0
-    xy = np.column_stack([(per_ball[:, 0] + 1.0) * 0.5 * table.length, (per_ball[:, 1] + 1.0) * 0.5 * table.width])
-    if not game:
-        return Decoded(xy, on_table, frozenset(int(b) for b in np.flatnonzero(on_table[1:]) + 1))
-    n = n_balls
-    legal = frozenset(int(b) + 1 for b in np.flatnonzero(obs[3 * n: 4 * n - 1] > 0))
-    hand = obs[4 * n - 1: 4 * n + 1]
-    in_hand = "anywhere" if hand[0] > 0 else ("behind_head_string" if hand[1] > 0 else None)
-    fouls = tuple(int(round(f + 1.0)) for f in obs[4 * n + 1: 4 * n + 3])
-    group = None
-    if n == 16:
-        flags = obs[4 * n + 3: 4 * n + 6]
-        group = "solids" if flags[1] > 0 else ("stripes" if flags[2] > 0 else None)
-    return Decoded(xy, on_table, legal, in_hand, fouls, group)
+def decode(observation, n_balls: int, table: Table, game: bool = True) -> GameView:
+    """Read a game observation (`pool_env.game.decode_game_observation`, n_balls 10 or 16) or,
+    with `game=False`, a `PoolBreakEnv` observation (16 balls, every object ball legal)."""
+    if game:
+        return decode_game_observation(observation, "nine_ball" if n_balls == 10 else "eight_ball", table)
+    xy, on_table = decode_observation(observation, table)
+    xy = np.where(on_table[:, None], xy, 0.5 * np.array([table.length, table.width]))
+    return GameView(xy, on_table, frozenset(int(b) for b in np.flatnonzero(on_table[1:]) + 1))
 
 
 def racked(xy, on_table, radius: float = BALL_RADIUS) -> bool:
@@ -102,7 +88,7 @@ def racked(xy, on_table, radius: float = BALL_RADIUS) -> bool:
     return bool(np.all(d.min(axis=1) < 2.2 * radius))
 
 
-def game_state(decoded: Decoded, game: str, rule_options: dict | None = None) -> rules.GameState:
+def game_state(decoded: GameView, game: str, rule_options: dict | None = None) -> rules.GameState:
     """The `rules.GameState` of a decoded game observation, the shooter as player 0."""
     state = rules.new_game(game, breaker=0, **(rule_options or {}))
     groups = (None, None)
@@ -114,7 +100,7 @@ def game_state(decoded: Decoded, game: str, rule_options: dict | None = None) ->
                                fouls=decoded.fouls, groups=groups, is_break=is_break, shot=0 if is_break else 1)
 
 
-def balls_of(decoded: Decoded, radius: float = BALL_RADIUS) -> Balls:
+def balls_of(decoded: GameView, radius: float = BALL_RADIUS) -> Balls:
     """The balls of a decoded observation (pocketed balls parked at the origin). Touching balls
     that the observation's float32 rounding made overlap are pushed apart to touch."""
     xy = np.where(decoded.on_table[:, None], decoded.xy, 0.0)
@@ -159,11 +145,11 @@ class SearchAgent(Agent):
                  noise: dict | None = None, spin: bool = True, budget: int = 600, noise_samples: int = 6,
                  seed: int | None = 0, lookahead: bool = True, threads: int = 1, seconds: float | None = None,
                  rule_options: dict | None = None, radius: float = BALL_RADIUS):
-        if game is not None and game not in GAMES:
-            raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAMES)} or None (PoolBreakRun-v0)")
+        if game is not None and game not in GAME_BALLS:
+            raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)} or None (PoolBreakRun-v0)")
         if int(budget) < 1 or int(noise_samples) < 1:
             raise ValueError(f"budget and noise_samples must be >= 1, got {budget!r}, {noise_samples!r}")
-        self.game, self.n_balls = game, GAMES.get(game, 16)
+        self.game, self.n_balls = game, GAME_BALLS.get(game, 16)
         self.table = Table.eight_foot() if table is None else table
         self.physics = Physics.standard() if physics is None else physics
         self.noise, self.spin, self.radius = noise, bool(spin or game is not None), radius
@@ -176,16 +162,18 @@ class SearchAgent(Agent):
         self.seed = seed
         self.rng = np.random.default_rng(seed)
         self.last_stats: dict = {}
+        # The game it plans on: the env's own rules and strike, at the position it decodes.
+        layout = None if game is not None else ("cue_spin" if self.spin else "cue")
+        self.sim = Game(game or "run", self.table, self.physics, noise, layout=layout, **self.rule_options)
 
     @classmethod
     def from_env(cls, env, **options) -> SearchAgent:
-        """For a game env (PoolNineBall-v0, PoolEightBall-v0, the PettingZoo AEC envs) or PoolBreakRun-v0."""
-        env = env.unwrapped
-        env = getattr(env, "game_env", env)  # a PettingZoo env wraps a PoolGameEnv
-        if hasattr(env, "game"):
-            return cls(game=env.game, table=env.table, physics=env.physics, noise=env.noise,
-                       rule_options=getattr(env, "rule_options", None), **options)
-        return cls(game=None, table=env.table, physics=env.physics, spin=env.spin, **options)
+        """For a game env (PoolNineBall-v0, PoolEightBall-v0, the PettingZoo AEC envs), PoolBreakRun-v0 or a Game."""
+        game = game_of(env)
+        if game.has_rules:
+            return cls(game=game.mode, table=game.table, physics=game.physics, noise=game.noise,
+                       rule_options=game.rule_options, **options)
+        return cls(game=None, table=game.table, physics=game.physics, spin=game.layout.spin, **options)
 
     def reset(self, seed: int | None = None) -> None:
         if seed is not None:
@@ -205,7 +193,7 @@ class SearchAgent(Agent):
                            "kind": candidates[best].kind}
         return self.action(candidates[best], d.ball_in_hand)
 
-    def candidates(self, d: Decoded, state) -> list[Candidate]:
+    def candidates(self, d: GameView, state) -> list[Candidate]:
         """Every candidate of this decision, best prior first (pots, then kicks and safeties)."""
         if racked(d.xy, d.on_table, self.radius):
             return self.break_candidates(d, state)
@@ -237,7 +225,7 @@ class SearchAgent(Agent):
                 if not self.cuttable(xy[0], xy[ball], pocket):
                     continue
                 for k, planner in enumerate(self.planners):
-                    shot = planner._plan(xy[0], ball, xy[ball], pocket, others)
+                    shot = planner.plan(xy[0], ball, xy[ball], pocket, others)
                     if shot is None:
                         continue
                     for j, turn in enumerate(JITTER):
@@ -280,7 +268,7 @@ class SearchAgent(Agent):
                         out.append(Candidate(geo.rotate(line, turn), speed, kind="kick", prior=-1.0 - abs(turn)))
         return out
 
-    def spots(self, d: Decoded) -> list[np.ndarray]:
+    def spots(self, d: GameView) -> list[np.ndarray]:
         """Ball in hand: straight-in (and turned) spots behind each legal ball for each open
         pocket, ranked cheaply (open mouth, distances), the best `SPOT_TRIES` then ranked by the
         best ghost-ball score from there (a coarse grid when none is free); the best `SPOTS`."""
@@ -314,13 +302,13 @@ class SearchAgent(Agent):
         ranked.sort(reverse=True)
         return [np.array(s) for _, s in ranked[:SPOTS]] or [np.array((0.5 * (x_lo + x_hi), 0.5 * (y_lo + y_hi)))]
 
-    def free(self, spot, d: Decoded, objects, area) -> bool:
+    def free(self, spot, d: GameView, objects, area) -> bool:
         """The spot is inside the placement area and clear of every object ball."""
         x_lo, x_hi, y_lo, y_hi = area
         gap = np.min(np.hypot(*(d.xy[objects] - np.asarray(spot)).T), initial=np.inf)
         return x_lo <= spot[0] <= x_hi and y_lo <= spot[1] <= y_hi and gap >= 2.2 * self.radius
 
-    def break_candidates(self, d: Decoded, state) -> list[Candidate]:
+    def break_candidates(self, d: GameView, state) -> list[Candidate]:
         """The break: spots along the head string (game envs) x aims beside the head ball x speeds;
         PoolBreakRun-v0 (no ball in hand): `BreakAgent` aims at several rack rows."""
         objects = np.flatnonzero(d.on_table[1:]) + 1
@@ -345,37 +333,14 @@ class SearchAgent(Agent):
         return out
 
     # --- evaluation ------------------------------------------------------------------------------
-    def struck(self, d: Decoded, cand: Candidate, balls: Balls) -> Balls:
-        """The struck balls exactly as the env would strike the candidate's action (noise drawn
-        from the agent's generator)."""
-        a = self.action(cand, d.ball_in_hand).astype(np.float64)
-        if self.game is not None:
-            force, offset = cue_force(a[0:4], spin=True)
-            if d.ball_in_hand is not None:
-                x_lo, x_hi, y_lo, y_hi = placement_area(self.table, d.ball_in_hand, self.radius)
-                wanted = (x_lo + 0.5 * (a[4] + 1.0) * (x_hi - x_lo), y_lo + 0.5 * (a[5] + 1.0) * (y_hi - y_lo))
-                balls = place_cue_ball(balls, self.table, self.physics, d.ball_in_hand, wanted)
-        else:
-            force, offset = cue_force(a, spin=self.spin)
-        force, offset = noisy_shot(force, offset, self.noise, self.rng)
-        return strike(balls, force, offset, CONTACT_TIME)
-
-    def evaluate(self, d: Decoded, state, candidates, start) -> np.ndarray:
-        """The mean value of each candidate over its noise samples (one `simulate_batch`)."""
-        balls, s = balls_of(d, self.radius), self.noise_samples
-        scenes = []
-        for cand in candidates:
-            for _ in range(s):
-                try:
-                    scenes.append(self.struck(d, cand, balls))
-                except ValueError as exc:
-                    scenes.append(exc)
-        todo = [k for k, x in enumerate(scenes) if not isinstance(x, Exception)]
-        results = list(scenes)
-        for k, r in zip(todo, simulate_batch([scenes[k] for k in todo], self.table, self.physics,
-                                             threads=self.threads)):
-            results[k] = r
-        judged = [self.judge(state, results[k], candidates[k // s]) for k in range(len(results))]
+    def evaluate(self, d: GameView, state, candidates, start) -> np.ndarray:
+        """The mean value of each candidate over its noise samples: `Game.evaluate` of the
+        candidates' actions (as the env reads them) from the decoded position, in one batch."""
+        s = self.noise_samples
+        self.sim.reset(balls=balls_of(d, self.radius), state=state)
+        shots = [self.sim.decode(self.action(cand, d.ball_in_hand)) for cand in candidates]
+        records = self.sim.evaluate(shots, draws=s, seed=self.rng, threads=self.threads)
+        judged = [self.judge(state, records[k], candidates[k // s]) for k in range(len(records))]
         plain = np.array([v for v, _ in judged]).reshape(len(candidates), s).mean(axis=1)
         if not self.lookahead:
             return plain
@@ -386,27 +351,24 @@ class SearchAgent(Agent):
             values[c] = np.mean([self.deep_value(*judged[c * s + k]) for k in range(s)])
         return values
 
-    def judge(self, state, result, cand):
-        """(plain value, what the lookahead needs) of one simulated shot."""
-        if isinstance(result, Exception):
+    def judge(self, state, record, cand):
+        """(plain value, what the lookahead needs) of one simulated shot (a `ShotRecord`)."""
+        if record.error is not None:
             return FOUL, None
-        shot = rules.outcome_from_result(result)
         if state is None:  # PoolBreakRun-v0: no rules, a scratch ends the episode
-            if shot.cue_pocketed:
+            if record.outcome.cue_pocketed:
                 return LOSS, None
-            left = np.count_nonzero(~result.final.pocketed[1:])
+            final = record.balls_after
+            left = np.count_nonzero(~final.pocketed[1:])
             if left == 0:
                 return WIN, None
-            on = frozenset(int(b) for b in np.flatnonzero(~result.final.pocketed[1:]) + 1)
-            kept = len(shot.pocketed) > 0
-            return (CONTINUE + 0.5 * (1 - CONTINUE)) if kept else MISS, ("self" if kept else "miss",
-                                                                         result.final, on, None)
-        after, ruling = rules.judge(state, shot, cand.pocket)
+            on = frozenset(int(b) for b in np.flatnonzero(~final.pocketed[1:]) + 1)
+            kept = len(record.pocketed) > 0
+            return (CONTINUE + 0.5 * (1 - CONTINUE)) if kept else MISS, ("self" if kept else "miss", final, on, None)
+        after, ruling = record.state_after, record.ruling
         if ruling.winner is not None:
             return (WIN if ruling.winner == 0 else LOSS), None
-        balls = result.final
-        if ruling.balls_to_spot:
-            balls = rules.spot_balls(balls, self.table, ruling.balls_to_spot)
+        balls = record.balls_after
         legal = rules.legal_targets(after)
         if not ruling.turn_passed:
             return CONTINUE + 0.5 * (1 - CONTINUE), ("self", balls, legal, after.ball_in_hand)
@@ -435,7 +397,7 @@ class SearchAgent(Agent):
             for pocket in self.pockets:
                 if not self.cuttable(xy[0], xy[ball], pocket):
                     continue
-                shot = self.scorer._plan(xy[0], int(ball), xy[ball], pocket, others)
+                shot = self.scorer.plan(xy[0], int(ball), xy[ball], pocket, others)
                 if shot is not None:
                     best = max(best, shot.score)
         return min(best, 1.0)
@@ -449,42 +411,17 @@ class SearchAgent(Agent):
 
     # --- the action ------------------------------------------------------------------------------
     def action(self, cand: Candidate, in_hand) -> np.ndarray:
-        """The env's action for a candidate: force (direction x speed / MAX_SPEED), tip / 0.5,
-        placement (the inverse of the area's mapping), the 8's pocket (its bin's centre)."""
-        force = geo.unit(cand.direction) * min(cand.speed / MAX_SPEED, 1.0)
-        tip = np.asarray(cand.tip, dtype=np.float64) / MAX_TIP_OFFSET
-        if self.game is None:
-            return np.clip(np.concatenate([force, tip] if self.spin else [force]), -1, 1).astype(np.float32)
-        place = (0.0, 0.0)
-        if in_hand is not None and cand.spot is not None:
-            x_lo, x_hi, y_lo, y_hi = placement_area(self.table, in_hand, self.radius)
-            place = ((cand.spot[0] - x_lo) / (x_hi - x_lo) * 2.0 - 1.0,
-                     (cand.spot[1] - y_lo) / (y_hi - y_lo) * 2.0 - 1.0)
-        action = [*force, *tip, *place]
-        if self.n_balls == 16:
-            n_pockets = max(self.table.pockets.shape[0], 1)
-            action.append(-1.0 + (2.0 * (cand.pocket if cand.pocket is not None else 0) + 1.0) / n_pockets)
-        return np.clip(np.array(action, dtype=np.float64), -1.0, 1.0).astype(np.float32)
+        """The env's action for a candidate (`pool_env.game.encode_action` of its shot)."""
+        shot = Shot.aimed(cand.direction, min(cand.speed, MAX_SPEED), cand.tip, place=cand.spot, pocket=cand.pocket)
+        area = None if in_hand is None else placement_area(self.table, in_hand, self.radius)
+        return encode_action(self.sim.layout, shot, area, max(self.table.pockets.shape[0], 1))
 
 
 # --- measuring ---------------------------------------------------------------------------------
-def wilson(wins: int, n: int, z: float = 1.96) -> tuple[float, float]:
-    """The 95 % Wilson score interval of a win rate."""
-    if n == 0:
-        return 0.0, 1.0
-    p = wins / n
-    centre, half = p + z * z / (2 * n), z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
-    return (centre - half) / (1 + z * z / n), (centre + half) / (1 + z * z / n)
-
-
 def head_to_head(games: int = 20, seed: int = 0, env_id: str = "PoolNineBall-v0", noise=None, **options) -> dict:
     """`SearchAgent` against the env's ghost-ball opponent, alternating breaks, game k seeded
     `seed + k`: wins, the win rate and its 95 % interval, break-and-run rate (games the agent
     broke and won in its first turn), seconds per decision (median, p95)."""
-    import gymnasium as gym
-
-    import pool_env  # noqa: F401  (registers the envs)
-
     wins = breaks = runs = 0
     seconds = []
     for k in range(games):
@@ -513,10 +450,6 @@ def head_to_head(games: int = 20, seed: int = 0, env_id: str = "PoolNineBall-v0"
 def clear_rate(episodes: int = 20, seed: int = 0, **options) -> dict:
     """`SearchAgent` in PoolBreakRun-v0: racks cleared (every object ball down, no scratch) and
     balls pocketed per episode, episode k seeded `seed + k`."""
-    import gymnasium as gym
-
-    import pool_env  # noqa: F401  (registers the envs)
-
     cleared, balls = 0, []
     for k in range(episodes):
         env = gym.make("PoolBreakRun-v0")
@@ -532,6 +465,11 @@ def clear_rate(episodes: int = 20, seed: int = 0, **options) -> dict:
     lo, hi = wilson(cleared, episodes)
     return {"episodes": episodes, "cleared": cleared, "clear_rate": cleared / max(episodes, 1), "ci95": (lo, hi),
             "balls_per_episode": float(np.mean(balls)) if balls else 0.0}
+
+
+def search_player(env, seed=None, **options) -> SearchAgent:
+    """The player registry's "search" (`pool_env.make_player("search", env)`)."""
+    return SearchAgent.from_env(env, seed=0 if seed is None else seed, **options)
 
 
 if __name__ == "__main__":

@@ -12,7 +12,13 @@ from pathlib import Path
 
 import numpy as np
 
-Z95 = 1.959964  # two-sided 95 % normal quantile
+from pool_env.envs.game_env import PoolGameEnv
+from pool_env.game import GAME_BALLS
+from pool_env.players import make_player as registry_player
+from pool_env.records.saved import RECORDED, GameRecorder, save_game
+
+from .stats import wilson
+
 ELO_BASE, ELO_SCALE = 1500.0, 400.0  # ratings average ELO_BASE; a gap of ELO_SCALE is 10:1 odds
 ELO_METHOD = ("Bradley-Terry maximum likelihood on the Elo scale (P(i beats j) = 1 / (1 + 10^((R_j - R_i) / 400))), "
               "fitted by the minorize-maximize iteration over every game of the noise setting (a draw counts half a "
@@ -51,17 +57,6 @@ class Timed:
 
 
 # --- statistics -----------------------------------------------------------------------------
-def wilson(successes: float, n: int, z: float = Z95) -> tuple[float, float]:
-    """The Wilson score interval of a proportion successes / n ((0, 1) when n is 0)."""
-    if n <= 0:
-        return 0.0, 1.0
-    p = successes / n
-    denominator = 1.0 + z * z / n
-    centre = (p + z * z / (2 * n)) / denominator
-    half = z / denominator * math.sqrt(max(p * (1.0 - p) / n + z * z / (4.0 * n * n), 0.0))
-    return max(centre - half, 0.0), min(centre + half, 1.0)
-
-
 def elo(records: list[dict], players: list[str], iterations: int = 10_000, tol: float = 1e-10) -> dict[str, float]:
     """Elo ratings of `players` from game records (ELO_METHOD): {name: rating}."""
     index = {name: k for k, name in enumerate(players)}
@@ -141,40 +136,13 @@ def display_name(spec: str) -> str:
 
 
 def make_player(spec: str, env):
-    """The agent named `spec` for `env` (a PoolGameEnv), or raises ImportError/ValueError saying why not."""
-    if spec == "random":
-        from .base import RandomAgent
-
-        return RandomAgent(env.action_space, seed=0)
-    if spec == "ghost_ball":
-        from .game_player import GameGhostBallAgent
-
-        return GameGhostBallAgent.from_env(env)
-    if spec == "search":
-        import importlib
-
-        return importlib.import_module("agents.search").SearchAgent.from_env(env)
-    path = Path(spec)
-    if not path.exists():
-        raise ValueError(f"unknown player {spec!r}: not one of {', '.join(BUILTIN)} and no file {path}")
-    from .sb3 import SB3Agent
-
-    agent = SB3Agent.load(path)
-    shape = getattr(agent.model.observation_space, "shape", None)
-    if shape != env.observation_space.shape:
-        raise ValueError(f"{spec}: the model observes shape {shape}, the {env.game} env gives "
-                         f"{env.observation_space.shape} (trained on another env?)")
-    from pool_env.wrappers import GhostBallAction, GhostBallActionAgent
-
-    if agent.model.action_space.shape == GhostBallAction(env).action_space.shape:  # train.py --ghost-ball-action
-        return GhostBallActionAgent(agent, env)
-    return agent
+    """The agent named `spec` for `env` (a PoolGameEnv): `pool_env.make_player`'s (a built-in
+    name, "search", a saved model's path), or raises ValueError saying why not."""
+    return registry_player(spec, env, seed=0)
 
 
 def make_players(specs: list[str], game: str, noise) -> tuple[dict, dict]:
     """({name: agent}, {name: why it was skipped}) for one game and noise setting."""
-    from pool_env.games import PoolGameEnv
-
     env = PoolGameEnv(game, opponent=None, noise=noise)
     players, skipped = {}, {}
     for spec in specs:
@@ -199,11 +167,9 @@ def player_seed(seed: int, slot: int) -> int:
 def play_game(game: str, breaker: str, other: str, players: dict, timers: dict, seed: int, noise,
               max_shots: int = 100, save_to=None) -> dict:
     """One game on `seed`: the breaker is the env's agent (it breaks), the other its opponent, so each
-    sees the observation from its own side. (The env re-racks a game the opponent wins before the
-    agent's first shot, so the breaker is never the opponent: its break-and-runs all count.)
+    sees the observation from its own side (so the breaker never plays inside the env's reset:
+    its break-and-runs all count).
     `save_to`: also save the game there (`game_recorder`)."""
-    from pool_env.games import PoolGameEnv
-
     for slot, name in enumerate((breaker, other)):
         if hasattr(players[name], "reset"):
             players[name].reset(seed=player_seed(seed, slot))
@@ -227,8 +193,6 @@ def play_game(game: str, breaker: str, other: str, players: dict, timers: dict, 
                   for s in info["opponent_shots"]]
     env.close()
     if recorder is not None:
-        from pool_env.saved import save_game
-
         save_game(save_to, {**recorder.record(), "players": [breaker, other]})
     if forfeit is not None:
         winner, reason = (other if forfeit.name == breaker else breaker), f"forfeit ({forfeit})"
@@ -241,13 +205,11 @@ def play_game(game: str, breaker: str, other: str, players: dict, timers: dict, 
 
 
 def game_recorder(env, seed: int, noise, max_shots: int):
-    """A `pool_env.saved.GameRecorder` for a tournament game: the breaker's actions and the other
+    """A `pool_env.records.saved.GameRecorder` for a tournament game: the breaker's actions and the other
     player's (as the recorded opponent), under the env id and kwargs that replay it exactly
-    (`pool_env.replay`, `python -m pool_env.replay`: the breaker is the agent)."""
-    from pool_env.saved import RECORDED, GameRecorder
-
-    env_id = {"nine_ball": "PoolNineBall-v0", "eight_ball": "PoolEightBall-v0"}[env.game]
-    kwargs = {"game": env.game, "opponent": RECORDED, "noise": noise, "agent_breaks": True, "max_shots": max_shots}
+    (`pool_env.records.replay`, `python -m pool_env.records.replay`: the breaker is the agent)."""
+    env_id = {"nine_ball": "PoolNineBall-v0", "eight_ball": "PoolEightBall-v0"}[env.game.mode]
+    kwargs = {"game": env.game.mode, "opponent": RECORDED, "noise": noise, "agent_breaks": True, "max_shots": max_shots}
     return GameRecorder(env, seed, record_opponent=True, env_id=env_id, env_kwargs=kwargs)
 
 
@@ -293,10 +255,8 @@ def tournament(game: str = "nine_ball", players=("random", "ghost_ball"), games:
     """The whole tournament (the content of tournament.json): one round-robin per noise setting
     (`noise`: "none", "olympiad" or "both"), every pairing on seeds seed .. seed + games - 1.
     `save_games`: a folder; every game is saved in <folder>/<game>/<noise>/ (`play_pairing`)."""
-    from pool_env.games import GAMES
-
-    if game not in GAMES:
-        raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAMES)}")
+    if game not in GAME_BALLS:
+        raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
     settings = list(NOISES) if noise == "both" else [noise]
     if any(s not in NOISES for s in settings):
         raise ValueError(f"noise must be 'none', 'olympiad' or 'both', got {noise!r}")
@@ -375,7 +335,8 @@ def main(argv=None) -> dict:
     parser.add_argument("--seed", type=int, default=0, help="game k of every pairing is played on seed + k")
     parser.add_argument("--out", default="runs/tournament", help="folder for tournament.json and tournament.md")
     parser.add_argument("--save-games", metavar="DIR", help="save every game (pool_env.save_game) in "
-                        "DIR/<game>/<noise>/<breaker>-vs-<other>-seed<seed>.json: python -m pool_env.replay replays it")
+                        "DIR/<game>/<noise>/<breaker>-vs-<other>-seed<seed>.json "
+                        "(python -m pool_env.records.replay replays it)")
     args = parser.parse_args(argv)
     players = [p.strip() for p in args.players.split(",") if p.strip()]
     log = lambda message: print(message, file=sys.stderr, flush=True)

@@ -19,7 +19,7 @@ import gymnasium as gym
 import numpy as np
 
 import pool_env  # noqa: F401  (registers the env ids)
-from agents.game_player import GameGhostBallAgent
+from pool_env.players.game_ghost_ball import GameGhostBallAgent
 
 IDS = {"nine_ball": "PoolNineBall-v0", "eight_ball": "PoolEightBall-v0"}
 

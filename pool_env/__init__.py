@@ -1,44 +1,46 @@
-"""pool_env: exact, fast pool physics as a Gymnasium environment."""
+"""pool_env: exact, fast pool physics, the games played on it, and Gymnasium and PettingZoo envs."""
 
 import gymnasium
 
 __version__ = "0.1.0"
-__all__ = ["PoolBreakEnv", "PoolGameEnv", "PoolVectorEnv", "record_video", "record_game", "save_game", "load_game",
-           "__version__"]
+__all__ = ["Game", "Shot", "make_player", "PoolBreakEnv", "PoolGameEnv", "PoolVectorEnv", "PoolGameVectorEnv",
+           "GhostBallAction", "record_video", "record_game", "save_game", "load_game", "replay", "__version__"]
 
-# Registered by entry-point strings so that `import pool_env` stays light (no numba, no physics).
-# `gymnasium.make_vec(id, num_envs=N, vectorization_mode="vector_entry_point")` makes a
-# PoolVectorEnv (one simulate_batch call per step), with the id's kwargs (max_shots) passed on.
-for _id, _kwargs in (("PoolBreak-v0", {"max_shots": 1}), ("PoolBreakRun-v0", {"max_shots": 30})):
+# The env ids, one registry: registered by entry-point strings so that `import pool_env` stays
+# light (no numba, no physics). `gymnasium.make_vec(id, num_envs=N,
+# vectorization_mode="vector_entry_point")` makes the native vector env (one simulate_batch
+# call per round of shots), with the id's kwargs passed on.
+ENV_IDS = {
+    "PoolBreak-v0": ("pool_env.envs.break_env:PoolBreakEnv", "pool_env.envs.vector:PoolVectorEnv", {"max_shots": 1}),
+    "PoolBreakRun-v0": ("pool_env.envs.break_env:PoolBreakEnv", "pool_env.envs.vector:PoolVectorEnv",
+                        {"max_shots": 30}),
+    "PoolNineBall-v0": ("pool_env.envs.game_env:PoolGameEnv", "pool_env.envs.vector:PoolGameVectorEnv",
+                        {"game": "nine_ball"}),
+    "PoolEightBall-v0": ("pool_env.envs.game_env:PoolGameEnv", "pool_env.envs.vector:PoolGameVectorEnv",
+                         {"game": "eight_ball"}),
+}
+for _id, (_entry, _vector, _kwargs) in ENV_IDS.items():
     if _id not in gymnasium.registry:
-        gymnasium.register(id=_id, entry_point="pool_env.env:PoolBreakEnv",
-                           vector_entry_point="pool_env.vector:PoolVectorEnv", kwargs=_kwargs)
-# The games (pool_env/games.py): 9-ball and 8-ball by the WPA rules against an opponent.
-for _id, _game in (("PoolNineBall-v0", "nine_ball"), ("PoolEightBall-v0", "eight_ball")):
-    if _id not in gymnasium.registry:
-        gymnasium.register(id=_id, entry_point="pool_env.games:PoolGameEnv",
-                           vector_entry_point="pool_env.vector:PoolGameVectorEnv", kwargs={"game": _game})
+        gymnasium.register(id=_id, entry_point=_entry, vector_entry_point=_vector, kwargs=_kwargs)
+
+_LAZY = {  # name: (module, attribute), imported on first use
+    "Game": ("pool_env.game", "Game"), "Shot": ("pool_env.game", "Shot"),
+    "make_player": ("pool_env.players", "make_player"),
+    "PoolBreakEnv": ("pool_env.envs.break_env", "PoolBreakEnv"),
+    "PoolGameEnv": ("pool_env.envs.game_env", "PoolGameEnv"),
+    "PoolVectorEnv": ("pool_env.envs.vector", "PoolVectorEnv"),
+    "PoolGameVectorEnv": ("pool_env.envs.vector", "PoolGameVectorEnv"),
+    "GhostBallAction": ("pool_env.envs.wrappers", "GhostBallAction"),
+    "record_video": ("pool_env.records.video", "record_video"),
+    "record_game": ("pool_env.records.saved", "record_game"), "save_game": ("pool_env.records.saved", "save_game"),
+    "load_game": ("pool_env.records.saved", "load_game"), "replay": ("pool_env.records.saved", "replay"),
+}
 
 
 def __getattr__(name):
-    if name == "PoolBreakEnv":
-        from .env import PoolBreakEnv
+    if name in _LAZY:
+        import importlib
 
-        return PoolBreakEnv
-    if name == "PoolGameEnv":
-        from .games import PoolGameEnv
-
-        return PoolGameEnv
-    if name == "PoolVectorEnv":
-        from .vector import PoolVectorEnv
-
-        return PoolVectorEnv
-    if name in ("record_game", "save_game", "load_game"):
-        from . import saved
-
-        return getattr(saved, name)
-    if name == "record_video":
-        from .video import record_video
-
-        return record_video
+        module, attribute = _LAZY[name]
+        return getattr(importlib.import_module(module), attribute)
     raise AttributeError(f"module 'pool_env' has no attribute {name!r}")

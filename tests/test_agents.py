@@ -18,8 +18,8 @@ from agents import (
     load_model,
     paired_difference,
 )
-from agents import geometry as geo
 from pool_env.physics import BALL_RADIUS, Balls, Physics, Table, simulate, strike
+from pool_env.players import geometry as geo
 
 R = BALL_RADIUS
 TABLE = Table.eight_foot()
@@ -117,7 +117,7 @@ def test_ghost_ball_pots_a_straight_shot_and_a_cut():
 
 
 def geo_decode(obs):
-    from pool_env.env import decode_observation
+    from pool_env.game import decode_observation
 
     return decode_observation(obs, TABLE)
 

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from pool_env.env import MAX_TIP_OFFSET, cue_force
+from pool_env.game import MAX_TIP_OFFSET, cue_force
 from pool_env.physics import BALL_MASS, BALL_RADIUS, Balls, Physics, Table, simulate, strike
 from pool_env.physics.cue import END_MASS
 

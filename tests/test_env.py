@@ -11,10 +11,11 @@ import numpy as np
 import pytest
 
 import pool_env
-from pool_env.env import MAX_FORCE, PoolBreakEnv, cue_force, decode_observation, spread, spread_gain
+from pool_env.envs.break_env import PoolBreakEnv, spread, spread_gain
+from pool_env.game import MAX_FORCE, cue_force, decode_observation
 from pool_env.physics import BALL_MASS, Balls, Physics, SimulationError, Table
-from pool_env.render import CLOTH_RGB
-from pool_env.video import HOLD_SECONDS, ShotVideoRecorder, record_video
+from pool_env.records.video import HOLD_SECONDS, ShotVideoRecorder, record_video
+from pool_env.render.table import CLOTH_RGB
 
 IDS = ("PoolBreak-v0", "PoolBreakRun-v0")
 BREAK = np.array([1.0, 0.0], dtype=np.float32)
@@ -253,12 +254,12 @@ def test_shaping_is_off_by_default_and_documented_terms():
     _, r_plain, *_ = plain.step(hit)
     _, r_shaped, _, _, info = shaped.step(hit)
     assert r_plain == 0.0 and info["first_contact"] == 5
-    gain = spread_gain(scene({0: cue, 5: (1.2, 0.56), 6: (1.8, 0.9)}), shaped._balls, shaped.table)
+    gain = spread_gain(scene({0: cue, 5: (1.2, 0.56), 6: (1.8, 0.9)}), shaped.balls, shaped.table)
     assert math.isclose(r_shaped, 0.1 + 0.5 * gain)
     shaped.reset(seed=0, options=layout)
     _, r_miss, _, _, info = shaped.step(np.array([0.0, 0.3], dtype=np.float32))
     assert info["first_contact"] == -1 and math.isclose(r_miss, -0.1 + 0.5 * spread_gain(
-        scene({0: cue, 5: (1.2, 0.56), 6: (1.8, 0.9)}), shaped._balls, shaped.table))
+        scene({0: cue, 5: (1.2, 0.56), 6: (1.8, 0.9)}), shaped.balls, shaped.table))
 
 
 def test_pocketless_table_rewards_the_spread():
@@ -280,14 +281,14 @@ def test_pocketless_table_rewards_the_spread():
 
 
 def test_simulation_failure_truncates_with_error(monkeypatch):
-    import pool_env.env as env_module
+    import pool_env.game.core as game_core
 
     def broken(*args, **kwargs):
         raise SimulationError("simulation exceeded the event cap of 1 events")
 
     env = PoolBreakEnv(max_shots=5)
     obs0, _ = env.reset(seed=0)
-    monkeypatch.setattr(env_module, "simulate", broken)
+    monkeypatch.setattr(game_core, "simulate", broken)
     with pytest.warns(UserWarning, match="event cap"):
         obs, reward, terminated, truncated, info = env.step(BREAK)
     assert (reward, terminated, truncated) == (0.0, False, True)
@@ -361,9 +362,9 @@ def test_rotation_markers_turn_with_the_ball():
     after = env.playback.orientation
     assert np.allclose(after[0] @ after[0].T, np.eye(3), atol=1e-9)
     # The ball turns about +y by (distance - slip) / R, the slip while sliding being v0^2 / (7 mu_s g).
-    xy, _ = decode_observation(env._observation(), env.table)
+    xy, _ = decode_observation(env.observation(), env.table)
     v0, physics = 0.04 * 12.0, env.physics
-    angle = (xy[0, 0] - 0.5 - v0**2 / (7 * physics.mu_s * physics.g)) / env._balls.radius
+    angle = (xy[0, 0] - 0.5 - v0**2 / (7 * physics.mu_s * physics.g)) / env.balls.radius
     assert angle > 10
     rel = after[0] @ before[0].T
     assert math.isclose(rel[0, 0], math.cos(angle), abs_tol=0.02) and math.isclose(rel[0, 2], math.sin(angle),

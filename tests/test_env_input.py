@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 import pool_env
-from pool_env.env import PoolBreakEnv
+from pool_env.envs.break_env import PoolBreakEnv
 from pool_env.physics import rack
-from pool_env.video import VIDEO_EXTENSIONS
+from pool_env.records.video import VIDEO_EXTENSIONS
 
 IDS = ("PoolBreak-v0", "PoolBreakRun-v0")
 
@@ -94,7 +94,7 @@ def test_unsupported_video_path_is_refused_before_any_simulation(tmp_path, name)
         pool_env.record_video(env, never, path)
     with pytest.raises(ValueError, match=message):
         pool_env.record_video("PoolBreak-v0", never, str(path))
-    assert env._balls is None and not list(tmp_path.iterdir())  # never reset, and no file left behind
+    assert env.balls is None and not list(tmp_path.iterdir())  # never reset, and no file left behind
 
 
 @pytest.mark.parametrize("extension", VIDEO_EXTENSIONS + (".MP4",))
@@ -110,4 +110,4 @@ def test_a_folder_that_cannot_be_made_fails_before_any_simulation(tmp_path):
     env = PoolBreakEnv()
     with pytest.raises(OSError):
         pool_env.record_video(env, never, tmp_path / "file" / "break.mp4")
-    assert env._balls is None
+    assert env.balls is None

@@ -10,7 +10,8 @@ from gymnasium.utils.env_checker import check_env
 
 import pool_env
 from pool_env import rules
-from pool_env.games import PoolGameEnv, place_cue_ball, placement_area
+from pool_env.envs.game_env import PoolGameEnv
+from pool_env.game import place_cue_ball, placement_area
 from pool_env.physics import BALL_RADIUS, Balls, Physics, Table
 from pool_env.physics.simulate import check_on_table
 
@@ -112,7 +113,7 @@ def test_ball_in_hand_placement_maps_onto_the_area_and_avoids_balls():
     env = gym.make("PoolNineBall-v0", opponent=None)
     env.reset(seed=0)
     env.step(action(vx=9.0, place=(1.0, 0.0)))  # the break, placed on the head string's middle
-    first = env.unwrapped._step_shots[0]
+    first = env.unwrapped.step_records[0].result
     assert first.sample([0.0])[0][0, 0, 0:2] == pytest.approx((TABLE.length / 4, TABLE.width / 2))
 
 

@@ -24,9 +24,9 @@ if importlib.util.find_spec("pettingzoo") is None:
 from pettingzoo import AECEnv  # noqa: E402
 from pettingzoo.test import api_test  # noqa: E402
 
-from agents.game_player import GameGhostBallAgent  # noqa: E402
 from pool_env.multiagent import PoolGameAEC, eight_ball_v0, nine_ball_v0  # noqa: E402
 from pool_env.physics import Balls, Table  # noqa: E402
+from pool_env.players.game_ghost_ball import GameGhostBallAgent  # noqa: E402
 
 MODULES = [nine_ball_v0, eight_ball_v0]
 TABLE = Table.eight_foot()
@@ -142,8 +142,9 @@ def test_winning_shot_rewards_and_dead_steps():
     assert env.infos["player_0"]["end_reason"] == "nine_pocketed"
     assert env.rewards == {"player_0": 1.0, "player_1": -1.0}
     assert all(env.terminations.values()) and not any(env.truncations.values())
-    for agent in ("player_0", "player_1"):
-        assert env.unwrapped._cumulative_rewards[agent] == (1.0 if agent == "player_0" else -1.0)
+    for agent in ("player_0", "player_1"):  # last() gives each agent its cumulative reward
+        env.unwrapped.agent_selection = agent
+        assert env.last()[1] == (1.0 if agent == "player_0" else -1.0)
     with pytest.raises(ValueError, match="only valid action is None"):
         env.step(MISS)
     env.step(None)
@@ -237,7 +238,7 @@ def test_bad_input():
         env.step(np.zeros(7, dtype=np.float32))
     with pytest.raises(ValueError, match="finite"):
         env.step(np.full(6, np.nan, dtype=np.float32))
-    assert env.agent_selection == "player_0" and env.unwrapped.game_env._shots == 0, "a bad action changes nothing"
+    assert env.agent_selection == "player_0" and env.unwrapped.shots == 0, "a bad action changes nothing"
     with pytest.raises(ValueError, match="unknown agent"):
         env.observation_space("player_2")
     with pytest.raises(ValueError, match="breaker"):

@@ -9,8 +9,7 @@ import numpy as np
 import pytest
 
 import pool_env
-from pool_env.env import MAX_TIP_OFFSET
-from pool_env.games import placement_area
+from pool_env.game import MAX_TIP_OFFSET, placement_area
 
 try:
     import pygame
@@ -20,9 +19,9 @@ except ImportError:
     pytest.skip("pygame is not installed (pip install -e '.[play]'); POOL_ENV_REQUIRE_PYGAME=1 makes this fail",
                 allow_module_level=True)
 
-from pool_env.play_draw import draw_session  # noqa: E402
-from pool_env.play_session import DRAG_FULL, MIN_DRAG, PlaySession, shot_action  # noqa: E402
-from pool_env.saved import replay  # noqa: E402
+from pool_env.play.draw import draw_session  # noqa: E402
+from pool_env.play.session import DRAG_FULL, MIN_DRAG, PlaySession, shot_action  # noqa: E402
+from pool_env.records.saved import replay  # noqa: E402
 
 SIZE = (640, 360)
 
@@ -47,7 +46,7 @@ def drag(session, start, end):
 def test_human_mode_opens_draws_and_closes(env_id):
     env = gym.make(env_id, render_mode="human", render_size=SIZE)
     env.reset(seed=0)
-    window = env.unwrapped._window
+    window = env.unwrapped.window
     assert window.is_open and pygame.display.get_init()
     env.step(np.array([1.0, 0.0] + [0.0] * (env.action_space.shape[0] - 2), dtype=np.float32))
     assert env.render() is None

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from pool_env.render import (
+from pool_env.render.table import (
     CLOTH_RGB,
     TableRenderer,
     identity_orientation,

@@ -7,8 +7,8 @@ import pytest
 
 import pool_env
 from agents import GameGhostBallAgent, RandomAgent
-from pool_env.replay import main as replay_main
-from pool_env.saved import ReplayMismatch, load_game, record_game, replay, save_game
+from pool_env.records.replay import main as replay_main
+from pool_env.records.saved import ReplayMismatch, load_game, record_game, replay, save_game
 
 
 @pytest.fixture(scope="module")

@@ -12,7 +12,7 @@ from stable_baselines3.common.env_checker import check_env  # noqa: E402
 from stable_baselines3.common.vec_env import DummyVecEnv  # noqa: E402
 
 import pool_env  # noqa: E402,F401
-from pool_env.sb3 import SB3VecEnv  # noqa: E402
+from pool_env.envs.sb3 import SB3VecEnv  # noqa: E402
 
 
 def _same_info(a, b):
@@ -60,7 +60,7 @@ def test_ppo_trains_on_it():
 
 
 def test_game_ids_use_the_game_vector_env():
-    from pool_env.vector import PoolGameVectorEnv
+    from pool_env.envs.vector import PoolGameVectorEnv
 
     envs = SB3VecEnv("PoolNineBall-v0", num_envs=2, opponent=None)
     assert isinstance(envs.venv, PoolGameVectorEnv) and envs.action_space.shape == (6,)

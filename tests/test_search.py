@@ -6,9 +6,10 @@ import pytest
 
 import pool_env  # noqa: F401  (registers the envs)
 from agents import GameGhostBallAgent, SearchAgent
-from agents.search import Decoded, balls_of, decode, game_state, head_to_head, wilson
+from agents.search import balls_of, decode, game_state, head_to_head
+from agents.stats import wilson
 from pool_env import rules
-from pool_env.games import game_observation
+from pool_env.game import GameView, game_observation
 from pool_env.physics import BALL_RADIUS, Balls, Table
 
 TABLE = Table.eight_foot()
@@ -96,7 +97,7 @@ def test_decoding_round_trips_a_known_state():
 
 def test_balls_the_observation_rounding_made_overlap_are_pushed_apart():
     xy = np.array([[0.5, 0.5], [0.5 + 2 * BALL_RADIUS - 1e-9, 0.5], [1.0, 0.3]])
-    balls = balls_of(Decoded(xy, np.ones(3, dtype=bool), frozenset()))  # Balls raises on an overlap
+    balls = balls_of(GameView(xy, np.ones(3, dtype=bool), frozenset()))  # Balls raises on an overlap
     gap = np.hypot(*(balls.xy[1] - balls.xy[0])) - 2 * BALL_RADIUS
     assert 0.0 <= gap < 1e-8 and np.array_equal(balls.xy[2], xy[2])
 

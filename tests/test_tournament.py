@@ -115,8 +115,8 @@ def test_unavailable_players_are_skipped():
 
 
 def test_a_player_that_raises_forfeits():
-    from agents.base import RandomAgent
-    from pool_env.games import PoolGameEnv
+    from pool_env.envs.game_env import PoolGameEnv
+    from pool_env.players.base import RandomAgent
 
     class Broken(RandomAgent):
         def act(self, observation):

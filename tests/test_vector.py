@@ -11,9 +11,10 @@ import pytest
 from gymnasium.vector import AutoresetMode, VectorEnv
 
 import pool_env
-from pool_env.env import PoolBreakEnv, decode_observation
+from pool_env.envs.break_env import PoolBreakEnv
+from pool_env.envs.vector import PoolVectorEnv
+from pool_env.game import decode_observation
 from pool_env.physics import Balls, SimulationError, Table, simulate, simulate_batch
-from pool_env.vector import PoolVectorEnv
 
 IDS = ("PoolBreak-v0", "PoolBreakRun-v0")
 MODES = (AutoresetMode.NEXT_STEP, AutoresetMode.SAME_STEP)
@@ -192,7 +193,7 @@ def test_a_bad_action_changes_nothing():
     obs, _ = envs.reset(seed=0)
     with pytest.raises(ValueError):
         envs.step(np.array([[1.0, 0.0], [np.inf, 0.0]], np.float32))
-    assert [e._shots for e in envs.envs] == [0, 0]
+    assert [e.shots for e in envs.envs] == [0, 0]
     ref = PoolVectorEnv(num_envs=2, max_shots=30)
     ref.reset(seed=0)
     assert_same(envs.step(np.array([[1.0, 0.0], [1.0, 0.1]], np.float32)),
@@ -287,7 +288,7 @@ def test_threads_do_not_change_results():
 
 
 def test_a_failed_shot_truncates_only_its_sub_env(monkeypatch):
-    import pool_env.vector as vector_module
+    import pool_env.game.core as game_core
 
     def second_fails(balls_list, *args, **kwargs):
         out = simulate_batch(balls_list, *args, **kwargs)
@@ -300,7 +301,7 @@ def test_a_failed_shot_truncates_only_its_sub_env(monkeypatch):
     ref.reset(seed=0)
     actions = np.array([[1.0, 0.0], [1.0, 0.0], [0.3, 0.2]], np.float32)
     ref_out = ref.step(actions)
-    monkeypatch.setattr(vector_module, "simulate_batch", second_fails)
+    monkeypatch.setattr(game_core, "simulate_batch", second_fails)
     with pytest.warns(UserWarning, match="event cap"):
         obs, rewards, terminations, truncations, infos = envs.step(actions)
     assert (rewards[1], terminations[1], truncations[1]) == (0.0, False, True)
@@ -353,7 +354,8 @@ def _cue_force_numpy(action, spin):
     """cue_force as it was written with numpy arrays (before the vector env made it lean)."""
     import math
 
-    from pool_env.env import MAX_FORCE, MAX_TIP_OFFSET, MIN_MAGNITUDE
+    from pool_env.game import MAX_FORCE, MAX_TIP_OFFSET
+    from pool_env.game.actions import MIN_MAGNITUDE
 
     a = np.clip(np.asarray(action, dtype=np.float64), -1.0, 1.0)
     d = a[:2]
@@ -375,7 +377,7 @@ def _cue_force_numpy(action, spin):
 
 @pytest.mark.parametrize("spin", [False, True])
 def test_cue_force_is_bit_identical_to_the_numpy_version(spin):
-    from pool_env.env import cue_force
+    from pool_env.game import cue_force
 
     rng = np.random.default_rng(0)
     actions = np.concatenate([rng.uniform(-s, s, (500, 4)) for s in (1e-3, 0.015, 0.03, 1.0, 3.0)])
@@ -440,5 +442,5 @@ def test_infos_gathered_at_once_equal_gymnasiums_add_info():
             entries.append((k, info))
         expected = {}
         for k, info in entries:
-            expected = envs._add_info(expected, info, k)
-        assert_same(envs._gather_infos(entries), expected, f"trial {trial}")
+            expected = envs._add_info(expected, info, k)  # noqa: SLF001 (Gymnasium's own, the reference)
+        assert_same(envs.gather_infos(entries), expected, f"trial {trial}")

@@ -5,13 +5,13 @@ import numpy as np
 import pytest
 
 import pool_env
-from pool_env.env import PoolBreakEnv
-from pool_env.games import overlay as games_overlay
-from pool_env.overlay import overlay
-from pool_env.playback import frame_times
-from pool_env.saved import load_game, replay
-from pool_env.video import HOLD_SECONDS, video_frames
-from pool_env.video_overlay import CARD_SECONDS, CUE_SECONDS
+from pool_env.envs.break_env import PoolBreakEnv
+from pool_env.records.saved import load_game, replay
+from pool_env.records.video import HOLD_SECONDS, video_frames
+from pool_env.records.video_overlay import CARD_SECONDS, CUE_SECONDS
+from pool_env.render.overlay import overlay
+from pool_env.render.overlay import overlay as games_overlay
+from pool_env.render.playback import frame_times
 
 SHOT = np.array([0.6, 0.02], dtype=np.float32)
 FPS = 20
@@ -60,7 +60,7 @@ def test_the_overlay_draws_text_in_its_band():
 
 
 def test_scratch_and_result_card_are_told():
-    from pool_env.video_overlay import episode_result, shot_summary
+    from pool_env.records.video_overlay import episode_result, shot_summary
 
     assert shot_summary({"pocketed": [3, 0], "scratch": True}) == "pocketed 3; cue ball pocketed (scratch)"
     assert shot_summary({"pocketed": [], "foul": "wrong_ball_first"}) == "nothing pocketed; foul: wrong ball first"
@@ -69,7 +69,7 @@ def test_scratch_and_result_card_are_told():
 
 
 def test_numbers_are_drawn_at_the_ball_centre():
-    from pool_env.render import TEXT_RGB
+    from pool_env.render.table import TEXT_RGB
 
     renderer = PoolBreakEnv().playback.renderer  # the default table at 640 x 360
     xy = np.array([[0.2 + 0.14 * k, 0.6] for k in range(16)])

@@ -1,4 +1,4 @@
-"""render_mode="human" with no display: an offscreen window, one warning, no real-time waits (pool_env.window)."""
+"""render_mode="human" without a display: an offscreen window, one warning, no real-time waits (render/window.py)."""
 
 import json
 import os
@@ -18,8 +18,8 @@ except ImportError:
     pytest.skip("pygame is not installed (pip install -e '.[play]'); POOL_ENV_REQUIRE_PYGAME=1 makes this fail",
                 allow_module_level=True)
 
-from pool_env import window as window_module  # noqa: E402
-from pool_env.window import DISPLAY_HINT, Window, open_display  # noqa: E402
+from pool_env.render import window as window_module  # noqa: E402
+from pool_env.render.window import DISPLAY_HINT, Window, open_display  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]  # this checkout, so the subprocess imports its pool_env
 linux_only = pytest.mark.skipif(not sys.platform.startswith("linux"),
@@ -111,11 +111,11 @@ def test_play_waits_a_frame_only_on_a_driver_that_shows_it(monkeypatch, driver, 
     window = Window("test")
     assert window.show(frames(1)[0])  # opened on conftest's dummy driver
     monkeypatch.setattr(window.pygame.display, "get_driver", lambda: driver)
-    window._clock = FakeClock()
+    window.clock = FakeClock()
     assert window.realtime is (ticks > 0)
     shown = frames(5)
     assert window.play(shown, 30)
-    assert window._clock.ticks == [30.0] * ticks  # one tick a frame, at the fps asked for, or none
+    assert window.clock.ticks == [30.0] * ticks  # one tick a frame, at the fps asked for, or none
     assert np.array_equal(window.frame(), shown[-1])  # every frame still drawn, the last one showing
     window.close()
 

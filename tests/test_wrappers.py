@@ -10,8 +10,9 @@ from gymnasium import spaces
 
 import pool_env  # noqa: F401  (registers the envs)
 from agents import GameGhostBallAgent
+from pool_env.envs.wrappers import GhostBallAction, GhostBallActionAgent
+from pool_env.game import decode_game_observation
 from pool_env.physics import Balls
-from pool_env.wrappers import GhostBallAction, GhostBallActionAgent
 
 
 def layout(n, on):
@@ -62,8 +63,9 @@ def test_pocket_choice_and_corrections_map_to_the_planner_exactly():
     env = wrapped(opponent=None)
     # The 1 in the middle of the table: several pockets are on.
     obs, _ = env.reset(seed=0, options={"balls": layout(10, {0: (0.9, 0.5), 1: (1.3, 0.6), 9: (0.25, 1.0)})})
-    xy, on_table, legal, _ = env.player.decode(obs)
-    shots = env.shots(xy, on_table, legal)[1]
+    view = decode_game_observation(obs, "nine_ball", env.player.table)
+    xy, on_table, legal = view.xy, view.on_table, view.legal_mask
+    shots = env.map.shots(xy, on_table, legal)[1]
     assert len(shots) >= 2
     worst = min(shots, key=lambda s: s.score)
     a = np.zeros(13)
@@ -126,7 +128,7 @@ def test_tournament_plays_a_model_trained_through_the_wrapper(tmp_path):
     from stable_baselines3 import PPO
 
     from agents.tournament import make_player
-    from pool_env.games import PoolGameEnv
+    from pool_env.envs.game_env import PoolGameEnv
 
     PPO("MlpPolicy", wrapped(opponent=None), n_steps=8, batch_size=8, device="cpu").save(tmp_path / "model.zip")
     env = PoolGameEnv("nine_ball", opponent=None)

@@ -2,14 +2,15 @@
 
 from __future__ import annotations
 
-import dataclasses
-
 import gymnasium as gym
 import numpy as np
-from gymnasium.utils import EzPickle
+from gymnasium.utils import EzPickle, seeding
 from pettingzoo import AECEnv
 
-from ..games import SHAPING_BALL, SHAPING_FOUL, PoolGameEnv, game_observation
+from ..envs.game_env import SHAPING_BALL, SHAPING_FOUL, PoolGameEnv, captioned, record_info, shot_caption
+from ..game import GAME_BALLS, Game, game_observation, game_observation_size
+from ..render.overlay import overlay
+from ..render.playback import ShotPlayback
 
 AGENTS = ("player_0", "player_1")
 RESET_OPTIONS = ("balls", "ball_in_hand", "breaker")
@@ -32,10 +33,9 @@ class PoolGameAEC(AECEnv, EzPickle):
         env.step(action)
     ```
 
-    The machinery is `PoolGameEnv`'s: the env holds one in practice mode (`opponent=None`, in
-    `self.game_env`) and plays each shot through its `_shot_of` (ball in hand, the called
-    pocket, the noise), `_simulate` and `_advance` (the rules' judgement, spotting). Arguments,
-    spaces and observation layout are PoolGameEnv's (`help(pool_env.PoolGameEnv)`):
+    The game is a `pool_env.game.Game` (`env.unwrapped.game`: ball in hand, the called pocket,
+    the noise, the rules' judgement and spotting all happen in its `play`). Arguments, spaces
+    and observation layout are PoolGameEnv's (`help(pool_env.PoolGameEnv)`):
 
     | argument | default | meaning |
     | --- | --- | --- |
@@ -49,7 +49,7 @@ class PoolGameAEC(AECEnv, EzPickle):
       8-ball (force, tip offset, cue-ball placement used with ball in hand, 8-ball: the pocket
       called for the 8). Every action is legal (no masks): values outside [-1, 1] are clipped
       as PoolGameEnv clips them; a wrong shape or a non-finite entry raises ValueError.
-    - **Observations** `observe(agent)`: `pool_env.games.game_observation` from that agent's
+    - **Observations** `observe(agent)`: `pool_env.game.game_observation` from that agent's
       side (PoolGameEnv's layout: his consecutive fouls first, his group, ball in hand only
       while he is to shoot); the last entry counts the shots of both players against `max_shots`.
     - **Rewards**: +1 to the winner and -1 to the loser on the shot that ends the game (both
@@ -68,8 +68,8 @@ class PoolGameAEC(AECEnv, EzPickle):
     - **render()**: as PoolGameEnv: "rgb_array" the table now, "rgb_array_list" the frames of
       the last shot.
 
-    The game is in `self.game_env.state` (`rules.GameState`; player k is `player_k`) and the
-    balls in `self.game_env.balls`.
+    The game is `env.unwrapped.game` (`pool_env.game.Game`; player k is `player_k`), its
+    `state` (`rules.GameState`) and `balls`; `last_record` is the last shot's `ShotRecord`.
     """
 
     metadata = {"name": "pool_game_v0", "render_modes": ["rgb_array", "rgb_array_list"], "is_parallelizable": False,
@@ -81,16 +81,26 @@ class PoolGameAEC(AECEnv, EzPickle):
                           max_shots=max_shots, rule_options=rule_options, table=table, physics=physics,
                           render_size=render_size)
         super().__init__()
-        # The inner env checks the arguments; practice mode: its _advance never plays an opponent.
-        self.game_env = PoolGameEnv(game=game, opponent=None, render_mode=render_mode, table=table, physics=physics,
-                                    noise=noise, shaping=False, max_shots=max_shots, rule_options=rule_options,
-                                    render_size=render_size)
-        self.game, self.render_mode, self.max_shots = game, render_mode, self.game_env.max_shots
-        self.shaping = bool(shaping)
+        if game not in GAME_BALLS:
+            raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
+        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
+            raise ValueError(f"render_mode must be None or one of {self.metadata['render_modes']}, got {render_mode!r}")
+        if int(max_shots) != max_shots or max_shots < 1:
+            raise ValueError(f"max_shots must be an integer >= 1, got {max_shots!r}")
+        self.game = Game(game, table, physics, noise, **dict(rule_options or {}))
+        self.table, self.physics = self.game.table, self.game.physics
+        self.render_mode, self.max_shots, self.shaping = render_mode, int(max_shots), bool(shaping)
+        self.render_size = (int(render_size[0]), int(render_size[1]))
+        self.playback = ShotPlayback(self.table, self.render_size, self.metadata["render_fps"],
+                                     deferred=render_mode is not None)
         self.possible_agents = list(AGENTS)
-        self.observation_spaces = dict.fromkeys(AGENTS, self.game_env.observation_space)
-        self.action_spaces = dict.fromkeys(AGENTS, self.game_env.action_space)
+        space = gym.spaces.Box(-1.0, 1.0, (self.game.layout.size,), np.float32)
+        self.observation_spaces = dict.fromkeys(AGENTS, gym.spaces.Box(-1.0, 1.0, (game_observation_size(game),),
+                                                                        np.float32))
+        self.action_spaces = dict.fromkeys(AGENTS, space)
         self.agents = []
+        self.np_random, self.np_random_seed = None, None
+        self.shots, self.last_record, self._started = 0, None, False
 
     # --- spaces ------------------------------------------------------------------------------
     def observation_space(self, agent):
@@ -108,76 +118,96 @@ class PoolGameAEC(AECEnv, EzPickle):
     # --- AEC API -----------------------------------------------------------------------------
     def reset(self, seed=None, options=None):
         options = self._check_options(options)
-        breaker = options.pop("breaker", 0)
-        inner = self.game_env
-        balls, state, quaternions, _ = inner._draw_start(seed, options)
-        state = dataclasses.replace(state, shooter=breaker)
-        inner._balls, inner.state, inner._quaternions = balls, state, quaternions
-        inner._shots, inner._done, inner._end_reason = 0, False, None
-        inner.playback.reset(balls, quaternions)
-        inner._begin_step()
+        if seed is not None or self.np_random is None:
+            self.np_random, self.np_random_seed = seeding.np_random(seed)
+        self.game.reset(rng=self.np_random, balls=options.get("balls"), breaker=options["breaker"],
+                        ball_in_hand=bool(options.get("ball_in_hand", False)))
+        quaternions = self.np_random.normal(size=(self.game.n_balls, 4))
+        self.np_random.integers(2**63 - 1)  # the single-agent env's opponent seed: the same stream of draws
+        self.playback.reset(self.game.balls, quaternions)
+        self.shots, self.last_record, self._started = 0, None, True
         self.agents = list(AGENTS)
         self.rewards = dict.fromkeys(AGENTS, 0.0)
         self._cumulative_rewards = dict.fromkeys(AGENTS, 0.0)
         self.terminations = dict.fromkeys(AGENTS, False)
         self.truncations = dict.fromkeys(AGENTS, False)
         self.infos = {agent: {} for agent in AGENTS}
-        self.agent_selection = AGENTS[state.shooter]
+        self.agent_selection = AGENTS[self.game.shooter]
 
     def step(self, action):
         if not self.agents:
-            raise RuntimeError("call reset() before step()" if self.game_env.balls is None
+            raise RuntimeError("call reset() before step()" if not self._started
                                else "every agent is done; call reset()")
         agent = self.agent_selection
         if self.terminations[agent] or self.truncations[agent]:
             self._was_dead_step(action)
             return
-        inner = self.game_env
-        inner._begin_step()
-        # The inner env counts every shot as its agent's (shooter=0): its _shots is then the
-        # shots of both players and its _agent_info this shot's full info. The rules judge the
-        # shot for state.shooter, the agent stepping now.
-        struck = inner._shot_of(action, shooter=0)  # ValueError for a bad action, before any change
-        inner._advance(inner._simulate(struck))
-        state = inner.state
+        game = self.game
+        record = game.play(action)  # ValueError for a bad action, before any change
+        self._follow(record)
         self._cumulative_rewards[agent] = 0.0
         self.rewards = dict.fromkeys(AGENTS, 0.0)
-        winner = None if state.winner is None else AGENTS[state.winner]
-        if inner._agent_info is not None:
-            info = dict(inner._agent_info)
-            foul, legal = info["foul"], len(info["pocketed"]) if info["foul"] is None else 0
+        winner = None if game.winner is None else AGENTS[game.winner]
+        if record.error is None:
+            info = record_info(record)
             if self.shaping:
-                self.rewards[agent] += SHAPING_BALL * legal - (SHAPING_FOUL if foul is not None else 0.0)
-        else:  # the shot could not be struck (inner._error says why)
-            info = {"foul": None, "pocketed": [], "ball_in_hand": state.ball_in_hand, "turn_passed": False,
+                legal = len(info["pocketed"]) if info["foul"] is None else 0
+                self.rewards[agent] += SHAPING_BALL * legal - (SHAPING_FOUL if info["foul"] is not None else 0.0)
+        else:
+            info = {"foul": None, "pocketed": [], "ball_in_hand": game.ball_in_hand, "turn_passed": False,
                     "messages": []}
-        info.update(shooter=agent, winner=winner, end_reason=inner._end_reason if winner is not None else None,
-                    shots=inner._shots)
-        if inner._error is not None:
-            info["error"] = inner._error
+        end_reason = record.ruling.end_reason if winner is not None and record.ruling is not None else None
+        info.update(shooter=agent, winner=winner, end_reason=end_reason, shots=self.shots)
+        if record.error is not None:
+            info["error"] = record.error
         if winner is not None:
             for other in AGENTS:
                 self.rewards[other] += 1.0 if other == winner else -1.0
                 self.terminations[other] = True
-        elif inner._error is not None or inner._shots >= self.max_shots:
+        elif record.error is not None or self.shots >= self.max_shots:
             self.truncations = dict.fromkeys(AGENTS, True)
-        inner._done = winner is not None or inner._error is not None or inner._shots >= self.max_shots
         self.infos = {other: dict(info) for other in AGENTS}
-        self.agent_selection = AGENTS[state.shooter]
+        self.agent_selection = AGENTS[game.shooter]
         self._accumulate_rewards()
 
+    def _follow(self, record):
+        """The playback follows the shot; the shot counter and the last record are noted."""
+        if record.ball_in_hand is not None:
+            self.playback.place(record.balls_before)
+        if record.error is not None:
+            gym.logger.warn(f"PoolGameAEC: a shot could not be simulated and the game is truncated ({record.error})")
+            return
+        self.playback.shot(record.result)
+        self.playback.place(record.balls_after)
+        self.shots += 1
+        self.last_record = record
+
     def observe(self, agent):
-        if self.game_env.balls is None:
+        if not self._started:
             raise RuntimeError("call reset() before observe()")
         viewer = AGENTS.index(self._check_agent(agent))
-        inner = self.game_env
-        return game_observation(inner.balls, inner.state, viewer, inner._shots, self.max_shots, inner.table)
+        return game_observation(self.game.balls, self.game.state, viewer, self.shots, self.max_shots, self.table)
 
     def render(self):
-        return self.game_env.render()
+        if self.render_mode is None:
+            gym.logger.warn("render() called without a render_mode; pass render_mode='rgb_array' to the env")
+            return None
+        if not self._started:
+            raise RuntimeError("call reset() before render()")
+        game = self.game
+        if self.render_mode == "rgb_array" or self.last_record is None:
+            frame = self.playback.frame()
+            if game.winner is not None:
+                line = f"{game.label}: {AGENTS[game.winner]} wins"
+            else:
+                line = f"{game.label}: {AGENTS[game.shooter]} to shoot"
+            return overlay(frame, [line]) if self.render_mode == "rgb_array" else [overlay(frame, [line])]
+        record = self.last_record
+        caption = shot_caption(game, record, AGENTS[record.shooter])
+        return captioned([self.playback.shot_frames()], [(caption, list(record.ruling.messages))])
 
     def close(self):
-        self.game_env.close()
+        self.playback.close()
 
     def __str__(self):
         return self.metadata["name"]
@@ -186,7 +216,7 @@ class PoolGameAEC(AECEnv, EzPickle):
     @staticmethod
     def _check_options(options) -> dict:
         if options is None:
-            return {}
+            return {"breaker": 0}
         if not isinstance(options, dict):
             raise TypeError(f"options must be a dict or None, got {type(options).__name__}")
         unknown = [key for key in options if key not in RESET_OPTIONS]
@@ -196,7 +226,7 @@ class PoolGameAEC(AECEnv, EzPickle):
         options = {key: value for key, value in options.items() if key in RESET_OPTIONS}
         breaker = options.get("breaker", 0)
         if breaker in AGENTS:
-            options["breaker"] = breaker = AGENTS.index(breaker)
+            breaker = AGENTS.index(breaker)
         if breaker not in (0, 1) or isinstance(breaker, (bool, np.bool_)):
             raise ValueError(f"options['breaker'] must be 0, 1, 'player_0' or 'player_1', got {breaker!r}")
         options["breaker"] = int(breaker)

@@ -25,7 +25,7 @@ class SB3VecEnv(VecEnv):
 
     ```python
     from stable_baselines3 import PPO
-    from pool_env.sb3 import SB3VecEnv
+    from .sb3 import SB3VecEnv
 
     envs = SB3VecEnv("PoolBreak-v0", num_envs=8)
     model = PPO("MlpPolicy", envs, n_steps=64, batch_size=64).learn(512)

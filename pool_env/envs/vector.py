@@ -12,8 +12,9 @@ import numpy as np
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
-from .env import PoolBreakEnv, observations
-from .physics import simulate_batch
+from ..game import break_observations, simulate_struck_batch
+from .break_env import PoolBreakEnv
+from .game_env import PoolGameEnv
 
 
 class PoolVectorEnv(VectorEnv):
@@ -130,12 +131,11 @@ class PoolVectorEnv(VectorEnv):
         reset = range(n) if mask is None else np.flatnonzero(mask).tolist()
         entries = []
         for k in reset:
-            env = self.envs[k]
-            env._start(env._draw_start(seeds[k], options))
-            entries.append((k, {}))  # what PoolBreakEnv.reset returns as info
+            _, info = self.envs[k].reset(seed=seeds[k], options=options)
+            entries.append((k, info))
             self._autoreset_envs[k] = False
             self._elapsed[k] = 0
-        return self._observe(), self._gather_infos(entries)
+        return self._observe(), self.gather_infos(entries)
 
     def step(self, actions):
         """Step every sub-env: (observations (num_envs, 49), rewards, terminations, truncations,
@@ -152,22 +152,22 @@ class PoolVectorEnv(VectorEnv):
                                    "(autoreset_mode DISABLED)")
             shots = list(range(n))
 
-        # (a) every action checked and every shot struck before anything changes
-        struck = [envs[k]._strike_or_error(actions[k]) for k in shots]
+        # (a) every action checked (decoded) before anything changes
+        decoded = [envs[k].game.decode(actions[k]) for k in shots]
         # (b) all the shots of the step at once (a game's step takes more rounds: the opponent's)
-        outcomes = self._play(shots, struck)
-        # (c) each sub-env finishes its step (or, NEXT_STEP, resets), in order
+        outcomes = self._play(shots, decoded)
+        # (c) the sub-envs whose episodes ended last step start anew (NEXT_STEP)
         rewards, terminations, truncations = [0.0] * n, [False] * n, [False] * n
         elapsed, limit = self._elapsed, self.max_episode_steps
-        if len(shots) < n:  # NEXT_STEP: the sub-envs whose episodes ended last step start anew
+        if len(shots) < n:
             for k in np.flatnonzero(self._autoreset_envs).tolist():
-                envs[k]._start(envs[k]._draw_start())
+                envs[k].reset()
                 elapsed[k] = 0
         same_step = self.autoreset_mode == AutoresetMode.SAME_STEP
         entries, finals, final_balls = [], [], []
         for k in shots:
             env = envs[k]
-            _, rewards[k], terminated, truncated, info = env._finish(outcomes[k], observe=False)
+            _, rewards[k], terminated, truncated, info = outcomes[k]
             elapsed[k] += 1
             if limit is not None and elapsed[k] >= limit:
                 truncated = True
@@ -176,8 +176,8 @@ class PoolVectorEnv(VectorEnv):
                 final = {"final_obs": None, "final_info": info}  # final_obs filled in below, all at once
                 entries.append((k, final))  # then the info of reset: empty
                 finals.append(final)
-                final_balls.append(env._obs_state())
-                env._start(env._draw_start())
+                final_balls.append(self._state_of(env))
+                env.reset()
                 elapsed[k] = 0
             else:
                 entries.append((k, info))
@@ -188,41 +188,49 @@ class PoolVectorEnv(VectorEnv):
         truncations = np.array(truncations, dtype=np.bool_)
         self._autoreset_envs = terminations | truncations
         return (self._observe(), np.array(rewards, dtype=np.float64), terminations, truncations,
-                self._gather_infos(entries))
+                self.gather_infos(entries))
 
     # --- helpers ------------------------------------------------------------------------------
-    def _play(self, shots, struck):
-        """Simulate the struck balls of sub-envs `shots` in one simulate_batch call per round:
-        each outcome goes to its sub-env's `_advance`, which returns the next shot of the same
-        step (a game's opponent) or None; {sub-env: the outcome of its step's last shot}."""
-        outcomes, pending = {}, dict(zip(shots, struck))
+    def _play(self, shots, decoded):
+        """Step sub-envs `shots` with their decoded actions, through their `step_shots`
+        generators: every round's shots (the agents', then the opponents' round by round) in one
+        `simulate_batch` call. {sub-env: its step's (None, reward, terminated, truncated, info)}."""
+        steps = {k: self.envs[k].step_shots(shot, observe=False) for k, shot in zip(shots, decoded)}
+        pending, done = {}, {}
+        for k, step in steps.items():
+            try:
+                pending[k] = next(step)
+            except StopIteration as stop:  # a step without a shot (its game ended at reset)
+                done[k] = stop.value
         while pending:
-            playable = [k for k, s in pending.items() if not isinstance(s, Exception)]
-            results = dict(zip(playable, simulate_batch([pending[k] for k in playable], self.table, self.physics,
-                                                        threads=self.threads)))
+            keys = list(pending)
+            outcomes = simulate_struck_batch([pending[k] for k in keys], self.table, self.physics, self.threads)
             following = {}
-            for k, shot in pending.items():
-                outcome = shot if isinstance(shot, Exception) else results[k]
-                more = self.envs[k]._advance(outcome)
-                if more is None:
-                    outcomes[k] = outcome
-                else:
-                    following[k] = more
+            for k, outcome in zip(keys, outcomes):
+                try:
+                    following[k] = steps[k].send(outcome)
+                except StopIteration as stop:
+                    done[k] = stop.value
             pending = following
-        return outcomes
+        return done
+
+    @staticmethod
+    def _state_of(env):
+        """What `_observe` builds a sub-env's observation from."""
+        return env.balls, env.shots, env.max_shots
 
     def _observe(self, states=None):
         """Observations (m, 49) of m states (balls, shots taken, max_shots), all at once; by
         default the sub-envs' now."""
         if states is None:
-            states = [env._obs_state() for env in self.envs]
+            states = [self._state_of(env) for env in self.envs]
         out = np.empty((len(states), self._obs_size), dtype=np.float32)
         balls, shots, max_shots = zip(*states)
-        observations(np.array([b.xy for b in balls]), np.array([b.pocketed for b in balls]), np.array(shots),
-                     np.array(max_shots), self.table, out)
+        break_observations(np.array([b.xy for b in balls]), np.array([b.pocketed for b in balls]), np.array(shots),
+                           np.array(max_shots), self.table, out)
         return out
 
-    def _gather_infos(self, entries):
+    def gather_infos(self, entries):
         """`VectorEnv._add_info` of the (sub-env index, info) entries in order, key by key at
         once: the same arrays, dtypes, masks and key order."""
         n = self.num_envs
@@ -238,7 +246,7 @@ class PoolVectorEnv(VectorEnv):
         for key, (ks, values) in columns.items():
             first = values[0]
             if isinstance(first, dict) and key != "final_obs":
-                array = self._gather_infos(list(zip(ks, values)))
+                array = self.gather_infos(list(zip(ks, values)))
             elif key != "final_obs" and (type(first) in (int, float, bool) or isinstance(first, np.number)):
                 if len(ks) == n:  # every sub-env has it: ks is 0, 1, ..., n - 1
                     array = np.array(values, dtype=type(first))
@@ -314,14 +322,14 @@ class PoolGameVectorEnv(PoolVectorEnv):
     results as `gymnasium.make_vec(id, num_envs, vectorization_mode="sync")`; the observations
     are the sub-envs' own (`PoolGameEnv` documents them)."""
 
-    @property
-    def env_class(self):
-        from .games import PoolGameEnv
+    env_class = PoolGameEnv
 
-        return PoolGameEnv
+    @staticmethod
+    def _state_of(env):
+        return env.observation()
 
     def _observe(self, states=None):
         """Observations (m, size) of m sub-env states (each its own observation), stacked."""
         if states is None:
-            states = [env._obs_state() for env in self.envs]
+            states = [self._state_of(env) for env in self.envs]
         return np.stack(states).astype(np.float32, copy=False)

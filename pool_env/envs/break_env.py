@@ -1,4 +1,4 @@
-"""`PoolBreakEnv`: the Gymnasium environment (one shot per step, simulated exactly until every ball rests)."""
+"""`PoolBreakEnv`: the break and the run-out as a Gymnasium env (a step: one shot, simulated until all rest)."""
 
 from __future__ import annotations
 
@@ -8,44 +8,28 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import logger, spaces
 
-from .physics import (
-    BALL_MASS,
-    BALL_RADIUS,
-    Balls,
-    Physics,
-    SimulationError,
-    Table,
-    rack,
-    simulate,
-    strike,
-)
-from .physics.cue import MISCUE_LIMIT
-from .physics.kinds import BALL_BALL, BALL_BALL_SETTLE, BALL_CUSHION, BALL_POCKET
-from .physics.simulate import check_on_table
-from .playback import ShotPlayback
-from .window import HumanWindow
+from ..game import N_BALLS, Game, StruckShot, break_observation, simulate_struck
+from ..physics import Balls, Table
+from ..physics.kinds import BALL_BALL, BALL_BALL_SETTLE, BALL_CUSHION, BALL_POCKET
+from ..render.playback import ShotPlayback
+from ..render.window import HumanWindow
 
-N_BALLS = 16
-CONTACT_TIME = 0.005  # s, the seed report's cue contact time
-MAX_SPEED = 12.0  # m/s, cue-ball speed at |a| = 1: a strong break
-MAX_FORCE = MAX_SPEED * BALL_MASS / CONTACT_TIME  # N (about 408 N)
-MIN_MAGNITUDE = 0.02  # weaker actions are raised to this (0.24 m/s)
-MAX_TIP_OFFSET = MISCUE_LIMIT  # in ball radii: the tip reaches the miscue limit, 0.5 R
 SHAPING_CONTACT = 0.1  # shaping: + for hitting an object ball, - for missing them all
 SHAPING_SPREAD = 0.5  # shaping: weight of the spread gain on a table with pockets
 RESET_OPTIONS = ("balls",)  # the keys reset(options=...) accepts
 NO_EVENTS = np.zeros(0, dtype=np.int64)  # the event arrays of a shot that could not be simulated
 
 
-def simulate_or_error(struck, table: Table, physics: Physics):
-    """A step's shot: its Result, or the SimulationError or ValueError it raised; an error
-    passed in as `struck` (striking failed) is passed on. Both env kinds' phase (b)."""
-    if isinstance(struck, Exception):
-        return struck
-    try:
-        return simulate(struck, table, physics)
-    except (SimulationError, ValueError) as exc:
-        return exc
+def run_step(shots, table: Table, physics):
+    """Drive a step's generator of shots (an env's `step_shots`): simulate each `StruckShot` it
+    yields, send the outcome back, and return what it returns (the step's 5-tuple)."""
+    outcome = None
+    while True:
+        try:
+            struck = shots.send(outcome)  # the first send (None) starts the generator
+        except StopIteration as stop:
+            return stop.value
+        outcome = simulate_struck(struck, table, physics)
 
 
 def check_reset_options(options, accepted) -> dict:
@@ -61,37 +45,6 @@ def check_reset_options(options, accepted) -> dict:
     return options
 
 
-def decode_observation(obs, table: Table):
-    """Invert the observation: (xy (16, 2) in metres, on_table (16,) bool). Pocketed balls get xy = NaN."""
-    obs = np.asarray(obs, dtype=np.float64)
-    balls = obs[: 3 * N_BALLS].reshape(N_BALLS, 3)
-    on_table = balls[:, 2] > 0
-    xy = np.empty((N_BALLS, 2))
-    xy[:, 0] = (balls[:, 0] + 1.0) * 0.5 * table.length
-    xy[:, 1] = (balls[:, 1] + 1.0) * 0.5 * table.width
-    xy[~on_table] = np.nan
-    return xy, on_table
-
-
-def observations(xy, pocketed, shots, max_shots, table: Table, out):
-    """Write the observations (see PoolBreakEnv) of n envs into `out` (n, 49) float32,
-    C-contiguous, from the balls' positions xy (n, 16, 2), their pocketed flags (n, 16) and the
-    shots taken (n,) of `max_shots` (n,). One env's is `PoolBreakEnv._observation`; a vector env
-    builds all of its sub-envs' at once."""
-    if not out.flags.c_contiguous:
-        raise ValueError("out must be C-contiguous (its per-ball view must not be a copy)")
-    per_ball = out[:, :-1].reshape(out.shape[0], N_BALLS, 3)
-    # Centres on the cloth map into (-1, 1); a ball hanging in a pocket's mouth has its centre
-    # up to a few cm past the nose line, clipped to the edge (decode_observation puts it on
-    # the nose line).
-    per_ball[:, :, 0:2] = xy * (2.0 / table.length, 2.0 / table.width) - 1.0
-    np.clip(per_ball[:, :, 0:2], -1.0, 1.0, out=per_ball[:, :, 0:2])
-    per_ball[:, :, 2] = 1.0
-    per_ball[pocketed] = (0.0, 0.0, -1.0)
-    out[:, -1] = 2.0 * shots / max_shots - 1.0
-    return out
-
-
 def spread(xy, on_table, table: Table) -> float:
     """Mean nearest-neighbour distance of the object balls on the table, in units of
     sqrt(L W / 15) (the spacing of 15 balls on a square grid covering the table); 0 with fewer than two."""
@@ -101,36 +54,6 @@ def spread(xy, on_table, table: Table) -> float:
     d = np.hypot(p[:, None, 0] - p[None, :, 0], p[:, None, 1] - p[None, :, 1])
     np.fill_diagonal(d, np.inf)
     return float(d.min(axis=1).mean() / math.sqrt(table.length * table.width / (N_BALLS - 1)))
-
-
-def cue_force(action, spin: bool):
-    """Map an action to (force (2,) in N, tip offset (2,) in ball radii); see PoolBreakEnv."""
-    a = np.asarray(action, dtype=np.float64)
-    size = 4 if spin else 2
-    if a.shape != (size,):  # not reshaped: a (1, 2) batch is a mistake of the caller's, not an action
-        raise ValueError(f"action must have shape ({size},) ({size} entries, the action space's shape), "
-                         f"got shape {a.shape}")
-    values = a.tolist()  # Python floats: the same IEEE arithmetic as numpy's, without its per-call cost
-    if not all(math.isfinite(v) for v in values):
-        raise ValueError(f"action must be finite, got {values}")
-    values = [min(max(v, -1.0), 1.0) for v in values]  # np.clip(a, -1, 1)
-    dx, dy = values[0], values[1]
-    magnitude = math.hypot(dx, dy)
-    if magnitude == 0.0:
-        dx, dy = MIN_MAGNITUDE, 0.0
-    elif magnitude > 1.0:
-        dx, dy = dx / magnitude, dy / magnitude
-    elif magnitude < MIN_MAGNITUDE:
-        scale = MIN_MAGNITUDE / magnitude
-        dx, dy = dx * scale, dy * scale
-    side = top = 0.0
-    if spin:
-        side, top = MAX_TIP_OFFSET * values[2], MAX_TIP_OFFSET * values[3]
-        length = math.hypot(side, top)
-        if length > MAX_TIP_OFFSET:
-            scale = MAX_TIP_OFFSET / length
-            side, top = side * scale, top * scale
-    return np.array((MAX_FORCE * dx, MAX_FORCE * dy)), np.array((side, top))
 
 
 def spread_gain(before: Balls, after: Balls, table: Table) -> float:
@@ -155,7 +78,7 @@ def shot_info(result, after: Balls, error: str | None = None) -> dict:
         "scratch": bool(after.pocketed[0]),
         "events": int(kind.size),
         "shot_duration": 0.0 if result is None else result.duration,
-        "balls_left": int(N_BALLS - 1 - np.count_nonzero(after.pocketed[1:])),
+        "balls_left": int(len(after) - 1 - np.count_nonzero(after.pocketed[1:])),
     }
     if error is not None:
         info["error"] = error
@@ -222,7 +145,7 @@ class PoolBreakEnv(HumanWindow, gym.Env):
     | 48 | shots taken: 2 shots / max_shots - 1 | -1 after reset, +1 after the last shot | |
 
     L x W is the playing area inside the cushion noses (2.24 x 1.12 m by default), origin at a
-    corner. `pool_env.env.decode_observation(obs, table)` returns positions in metres and the
+    corner. `pool_env.game.decode_observation(obs, table)` returns positions in metres and the
     on-table flags.
 
     ## Rewards
@@ -322,7 +245,7 @@ class PoolBreakEnv(HumanWindow, gym.Env):
     ```
 
     A vector env of these stepping many shots at once (one `simulate_batch` per step) is
-    `pool_env.vector.PoolVectorEnv`: `gymnasium.make_vec(id, num_envs=N,
+    `pool_env.envs.vector.PoolVectorEnv`: `gymnasium.make_vec(id, num_envs=N,
     vectorization_mode="vector_entry_point")`.
 
     ```python
@@ -344,11 +267,11 @@ class PoolBreakEnv(HumanWindow, gym.Env):
     trajectory at `metadata["render_fps"]`, first frame (the shot's start) to last (every ball
     at rest); after `reset` it is the single starting frame. `shot_frames(fps)` gives the same
     at any frame rate in every render mode; `pool_env.record_video` and
-    `pool_env.video.ShotVideoRecorder` write whole shots to .mp4 (`record_video` also to .mov,
+    `pool_env.records.video.ShotVideoRecorder` write whole shots to .mp4 (`record_video` also to .mov,
     .mkv and .avi; another extension, e.g. .gif, raises `ValueError` before anything is
     simulated). Without a render mode the rotation markers are only tracked through shots whose
     frames are asked for (it costs time), so they may jump between shots. The frames come from
-    `env.playback` (a `pool_env.playback.ShotPlayback`); `env.playback.renderer.world_to_pixel`
+    `env.playback` (a `pool_env.render.playback.ShotPlayback`); `env.playback.renderer.world_to_pixel`
     maps metres to pixels.
 
     `render_mode="human"` opens a pygame window (`pip install 'pool-env[play]'`) at the first
@@ -367,16 +290,14 @@ class PoolBreakEnv(HumanWindow, gym.Env):
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(f"render_mode must be None or one of {self.metadata['render_modes']}, got {render_mode!r}")
         self.render_mode = render_mode
-        self.table = Table.eight_foot() if table is None else table
-        if not isinstance(self.table, Table):
-            raise TypeError(f"table must be pool_env.physics.Table, got {type(self.table).__name__}")
-        self.physics = Physics.standard() if physics is None else physics
-        if not isinstance(self.physics, Physics):
-            raise TypeError(f"physics must be pool_env.physics.Physics, got {type(self.physics).__name__}")
         if int(max_shots) != max_shots or max_shots < 1:
             raise ValueError(f"max_shots must be an integer >= 1, got {max_shots!r}")
         self.max_shots = int(max_shots)
         self.spin = bool(spin)
+        # The game: the break alone, or a run of shots until a scratch or the last ball.
+        self.game = Game("break" if self.max_shots == 1 else "run", table, physics,
+                         layout="cue_spin" if self.spin else "cue", randomize_cue=randomize_cue)
+        self.table, self.physics = self.game.table, self.game.physics
         self.randomize_cue = bool(randomize_cue)
         self.shaping = bool(shaping)
         self.scratch_penalty = float(scratch_penalty)
@@ -390,10 +311,10 @@ class PoolBreakEnv(HumanWindow, gym.Env):
         self.action_space = spaces.Box(-1.0, 1.0, (4 if self.spin else 2,), np.float32)
         self.observation_space = spaces.Box(-1.0, 1.0, (3 * N_BALLS + 1,), np.float32)
 
-        self._balls = None
+        self._started = False
         self._shots = 0
         self._done = True
-        self._window = None  # render_mode="human": a pool_env.window.Window, opened at the first frame
+        self._window = None  # render_mode="human": a pool_env.render.window.Window, opened at the first frame
         self._window_title = f"pool_env: {type(self).__name__}"
         # With a render mode the balls' rotation is carried through every shot (lazily); without
         # one only through the shots whose frames are asked for.
@@ -402,15 +323,21 @@ class PoolBreakEnv(HumanWindow, gym.Env):
 
     # --- Gymnasium API ----------------------------------------------------------------------
     def reset(self, *, seed=None, options=None):
-        self._start(self._draw_start(seed, options))
+        options = check_reset_options(options, RESET_OPTIONS)
+        super().reset(seed=seed)
+        try:
+            self.game.reset(rng=self.np_random, balls=options.get("balls"))
+        except ValueError as exc:
+            raise ValueError(f"options['balls']: {exc}") from None
+        quaternions = self.np_random.normal(size=(N_BALLS, 4))  # random orientations, made matrices when drawn
+        self._started, self._shots, self._done = True, 0, False
+        self.playback.reset(self.game.balls, quaternions)
         if self.render_mode == "human":
             self._show([self.playback.frame()])
-        return self._observation(), {}
+        return self.observation(), {}
 
     def step(self, action):
-        struck = self._strike_or_error(action)  # (a) the action checked, the struck balls
-        outcome = self._simulate(struck)  # (b) the shot's Result, or the error it raised
-        out = self._finish(outcome)  # (c) observation, reward, terminated, truncated, info
+        out = run_step(self.step_shots(action), self.table, self.physics)
         if self.render_mode == "human":
             self._show(self.shot_frames())
         return out
@@ -419,7 +346,7 @@ class PoolBreakEnv(HumanWindow, gym.Env):
         if self.render_mode is None:
             gym.logger.warn("render() called without a render_mode; pass render_mode='rgb_array' to the env")
             return None
-        if self._balls is None:
+        if not self._started:
             raise RuntimeError("call reset() before render()")
         if self.render_mode == "human":
             return self._show([self.playback.frame()])
@@ -431,133 +358,67 @@ class PoolBreakEnv(HumanWindow, gym.Env):
         """The frames of the last shot sampled from the exact trajectory at `fps` (default
         `metadata["render_fps"]`), from its start to every ball at rest; after `reset` the
         single starting frame. Works in every render mode."""
-        if self._balls is None:
+        if not self._started:
             raise RuntimeError("call reset() before shot_frames()")
         return self.playback.shot_frames(fps)
 
-    # --- state for planners -----------------------------------------------------------------
+    # --- state for planners and vector envs ---------------------------------------------------
     @property
     def balls(self) -> Balls | None:
         """The balls now (`pool_env.physics.Balls`, read-only arrays, all at rest): where the
         last shot left them, or the starting layout after `reset`; None before the first reset."""
-        return self._balls
+        return self.game.balls if self._started else None
+
+    @property
+    def shots(self) -> int:
+        """The shots of this episode so far (failed ones included)."""
+        return self._shots
 
     def strike(self, action) -> Balls:
         """The struck `Balls` that `step(action)` would simulate from the balls now: the cue
         ball moving (and spinning) as the action says, the others as they are. Changes nothing;
         `simulate(env.strike(action), env.table, env.physics)` is the shot `step` plays.
         Raises ValueError for an action `step` refuses, RuntimeError before `reset`."""
-        if self._balls is None:
+        if not self._started:
             raise RuntimeError("call reset() before strike()")
-        force, offset = cue_force(action, self.spin)
-        return strike(self._balls, force, offset, CONTACT_TIME)
+        struck = self.game.strike(self.game.decode(action))
+        if isinstance(struck.balls, Exception):
+            raise struck.balls
+        return struck.balls
 
-    # --- the phases of a step (a vector env runs (b) for many envs at once) ---------------------
-    def _strike_or_error(self, action):
-        """Phase (a): check that a shot may be played and the action (raising as `step` does),
-        and strike: the struck Balls, or the ValueError striking raised (a failed shot, as if the
-        simulator had raised it)."""
-        if self._balls is None:
+    def observation(self) -> np.ndarray:
+        """The observation now (see the class)."""
+        return break_observation(self.game.balls, self._shots, self.max_shots, self.table)
+
+    def step_shots(self, action, observe=True):
+        """`step` as a generator, for vector envs that simulate many envs' shots at once: it
+        yields the step's `StruckShot` (`pool_env.game.Game.strike`), is sent its outcome (the
+        `Result`, or the SimulationError or ValueError it raised) and returns the step's
+        (observation, reward, terminated, truncated, info); the observation is None with
+        `observe=False`. `action` may also be a `pool_env.game.Shot`."""
+        if not self._started:
             raise RuntimeError("call reset() before step()")
         if self._done:
             raise RuntimeError("the episode is over; call reset()")
-        force, offset = cue_force(action, self.spin)
-        try:
-            return strike(self._balls, force, offset, CONTACT_TIME)
-        except ValueError as exc:
-            return exc
+        struck: StruckShot = self.game.strike(action)
+        record = self.game.resolve(struck, (yield struck))
+        return self._finish(record, observe)
 
-    def _simulate(self, struck):
-        """Phase (b): the shot's Result, or the SimulationError or ValueError it raised (phase
-        (a)'s error passed on); `simulate_batch` gives the same for many shots."""
-        return simulate_or_error(struck, self.table, self.physics)
-
-    def _advance(self, outcome):
-        """After phase (b): a break env's step is one shot, so nothing follows it (a game env
-        returns its opponent's next struck balls here). See PoolVectorEnv._play."""
-        return None
-
-    def _obs_state(self):
-        """What `observations` builds this env's observation from (a vector env, all at once)."""
-        return self._balls, self._shots, self.max_shots
-
-    def _finish(self, outcome, observe=True):
-        """Phase (c): the step's (observation, reward, terminated, truncated, info) from the
-        shot's Result, or its SimulationError or ValueError (the shot failed: the balls stay
-        put and the episode is truncated); any other exception is raised. With observe=False
-        the observation is None (a vector env builds all of them at once)."""
-        if isinstance(outcome, Exception):
-            if not isinstance(outcome, (SimulationError, ValueError)):
-                raise outcome
-            result, error = None, f"{type(outcome).__name__}: {outcome}"
-            logger.warn(f"PoolBreakEnv: the shot could not be simulated and the episode is truncated ({error})")
-        else:
-            result, error = outcome, None
-        before = self._balls
+    def _finish(self, record, observe):
+        """The step's (observation, reward, terminated, truncated, info) from the shot's record:
+        a shot that could not be simulated leaves the balls put and truncates the episode."""
+        before = record.balls_before
         self._shots += 1
-        after = before if result is None else result.final
-        info = shot_info(result, after, error)
-        if result is None:  # the balls stay put, and the episode must be reset
+        if record.error is not None:
+            logger.warn(f"PoolBreakEnv: the shot could not be simulated and the episode is truncated ({record.error})")
+            info = shot_info(None, before, record.error)
             reward, terminated, truncated = 0.0, False, True
         else:
+            after = record.balls_after
+            info = shot_info(record.result, after)
             reward = shot_reward(info, before, after, self.table, self.scratch_penalty, self.shaping)
-            terminated = self.max_shots == 1 or info["scratch"] or (not self.pocketless and info["balls_left"] == 0)
+            terminated = record.over
             truncated = not terminated and self._shots >= self.max_shots
-        self._balls = after
         self._done = terminated or truncated
-        self.playback.shot(result)
-        return self._observation() if observe else None, reward, bool(terminated), bool(truncated), info
-
-    # --- the phases of a reset (a vector env builds the observations of all sub-envs at once) ---
-    def _draw_start(self, seed=None, options=None):
-        """The options checked, the seed applied and the next episode's start drawn from
-        `np_random` (the rack, or the given balls, and the balls' orientations); the episode
-        under way is untouched. What `reset` draws, in the same order."""
-        options = self._check_options(options)
-        super().reset(seed=seed)
-        rng = self.np_random
-        cue_xy = self._cue_start(rng) if self.randomize_cue else None
-        rack_seed = int(rng.integers(2**63 - 1))
-        quaternions = rng.normal(size=(N_BALLS, 4))  # random orientations, made matrices when drawn
-        balls = options.get("balls")
-        balls = rack(self.table, seed=rack_seed, cue_xy=cue_xy) if balls is None else self._check_balls(balls)
-        return balls, quaternions
-
-    def _start(self, start):
-        """Begin the episode drawn by `_draw_start` (`reset` then returns the observation and
-        an empty info)."""
-        self._balls, quaternions = start
-        self._shots = 0
-        self._done = False
-        self.playback.reset(self._balls, quaternions)
-
-    # --- helpers ------------------------------------------------------------------------------
-    def _observation(self):
-        obs = np.empty(3 * N_BALLS + 1, dtype=np.float32)
-        balls = self._balls
-        observations(balls.xy[None], balls.pocketed[None], self._shots, self.max_shots, self.table, obs[None])
-        return obs
-
-    @staticmethod
-    def _check_options(options) -> dict:
-        return check_reset_options(options, RESET_OPTIONS)
-
-    def _check_balls(self, balls):
-        if not isinstance(balls, Balls) or len(balls) != N_BALLS:
-            raise ValueError(f"options['balls'] must be pool_env.physics.Balls with {N_BALLS} balls, got {balls!r}")
-        if np.any(balls.v) or np.any(balls.w):
-            raise ValueError("options['balls'] must be at rest (zero velocities and spins)")
-        if balls.pocketed[0]:
-            raise ValueError("options['balls']: the cue ball (ball 0) must be on the table")
-        check_on_table(balls, self.table, self.physics)
-        return balls
-
-    def _cue_start(self, rng):
-        L, W, r = self.table.length, self.table.width, BALL_RADIUS
-        pockets = self.table.pockets
-        for _ in range(1000):
-            x = rng.uniform(max(0.05 * L, r), 0.25 * L)
-            y = rng.uniform(max(0.1 * W, r), min(0.9 * W, W - r))
-            if not pockets.shape[0] or np.all(np.hypot(pockets[:, 0] - x, pockets[:, 1] - y) > pockets[:, 2] + r):
-                return (x, y)
-        return (0.25 * L, 0.5 * W)
+        self.playback.shot(record.result)
+        return self.observation() if observe else None, reward, bool(terminated), bool(truncated), info

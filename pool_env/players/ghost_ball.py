@@ -1,4 +1,4 @@
-"""Geometric baselines: a break rule and a ghost-ball potting player. No learning, no simulation."""
+"""The break envs' geometric players: a break rule (`BreakAgent`) and a ghost-ball potter (`GhostBallAgent`)."""
 
 from __future__ import annotations
 
@@ -7,19 +7,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pool_env.env import MAX_SPEED, MAX_TIP_OFFSET, decode_observation
-from pool_env.physics import BALL_RADIUS, Physics, Table
-
+from ..game import LAYOUTS, MAX_SPEED, Shot, decode_observation, encode_action
+from ..physics import BALL_RADIUS, Physics, Table
 from . import geometry as geo
-from .base import Agent
+from .base import Agent, game_of
 
 
-def _action(direction, speed: float, spin: bool, tip=(0.0, 0.0)) -> np.ndarray:
-    """The env action for a centre (or `tip` = (side, top) in ball radii) hit at `speed` m/s."""
-    force = np.asarray(direction, dtype=np.float64) * min(speed / MAX_SPEED, 1.0)
-    if not spin:
-        return force.astype(np.float32)
-    return np.concatenate([force, np.asarray(tip, dtype=np.float64) / MAX_TIP_OFFSET]).astype(np.float32)
+def cue_action(direction, speed: float, spin: bool, tip=(0.0, 0.0)) -> np.ndarray:
+    """The break envs' action for a centre (or `tip` = (side, top) in ball radii) hit at
+    `speed` m/s (at most MAX_SPEED) along `direction`."""
+    shot = Shot.aimed(direction, min(speed, MAX_SPEED), tip if spin else (0.0, 0.0))
+    return encode_action(LAYOUTS["cue_spin" if spin else "cue"], shot)
 
 
 class BreakAgent(Agent):
@@ -63,8 +61,9 @@ class BreakAgent(Agent):
 
     @classmethod
     def from_env(cls, env, **kwargs) -> BreakAgent:
-        env = env.unwrapped
-        return cls(table=env.table, spin=env.spin, **kwargs)
+        """For a break env (or its `Game`)."""
+        game = game_of(env)
+        return cls(table=game.table, spin=game.layout.spin, **kwargs)
 
     def act(self, observation) -> np.ndarray:
         xy, on_table = decode_observation(observation, self.table)
@@ -74,11 +73,11 @@ class BreakAgent(Agent):
         cue = xy[0]
         objects = np.flatnonzero(on_table[1:]) + 1
         if not on_table[0] or objects.size == 0:
-            return _action((1.0, 0.0), self.speed, self.spin, self.tip)
+            return cue_action((1.0, 0.0), self.speed, self.spin, self.tip)
         target = xy[self.target_ball(xy, objects)]
         d = geo.unit(target - cue)
         aim = target + self.offset * self.radius * np.array([-d[1], d[0]])
-        return _action(geo.unit(aim - cue), self.speed, self.spin, self.tip)
+        return cue_action(geo.unit(aim - cue), self.speed, self.spin, self.tip)
 
     def target_ball(self, xy, objects) -> int:
         """The outermost ball, on the left as seen from the cue ball, of rack row `row` (1 is
@@ -99,7 +98,7 @@ class BreakAgent(Agent):
 
 
 @dataclass(frozen=True)
-class Shot:
+class Pot:
     """A planned pot: ball `ball` into pocket `pocket`, the cue ball sent along `direction` at `speed` m/s."""
 
     ball: int
@@ -147,8 +146,9 @@ class GhostBallAgent(Agent):
 
     @classmethod
     def from_env(cls, env, **kwargs) -> GhostBallAgent:
-        env = env.unwrapped
-        return cls(table=env.table, physics=env.physics, spin=env.spin, **kwargs)
+        """For a break env (or its `Game`)."""
+        game = game_of(env)
+        return cls(table=game.table, physics=game.physics, spin=game.layout.spin, **kwargs)
 
     def act(self, observation) -> np.ndarray:
         xy, on_table = decode_observation(observation, self.table)
@@ -157,7 +157,7 @@ class GhostBallAgent(Agent):
         shot = self.best_shot(xy, on_table)
         if shot is None:
             return self.fallback(xy, on_table)
-        return _action(shot.direction, shot.speed, self.spin)
+        return cue_action(shot.direction, shot.speed, self.spin)
 
     def racked(self, xy, on_table) -> bool:
         """True while all 15 object balls are on the table, each touching (within 10 %) another: time to break."""
@@ -169,7 +169,7 @@ class GhostBallAgent(Agent):
         return bool(np.all(d.min(axis=1) < 2.2 * self.radius))
 
     # --- planning ---------------------------------------------------------------------------
-    def shots(self, xy, on_table) -> list[Shot]:
+    def shots(self, xy, on_table) -> list[Pot]:
         """Every feasible pot, unsorted."""
         if not on_table[0]:
             return []
@@ -178,16 +178,16 @@ class GhostBallAgent(Agent):
         for i in objects:
             others = xy[objects[objects != i]]
             for pocket in self.pockets:
-                shot = self._plan(xy[0], int(i), xy[i], pocket, others)
+                shot = self.plan(xy[0], int(i), xy[i], pocket, others)
                 if shot is not None:
                     out.append(shot)
         return out
 
-    def best_shot(self, xy, on_table) -> Shot | None:
+    def best_shot(self, xy, on_table) -> Pot | None:
         shots = self.shots(xy, on_table)
         return max(shots, key=lambda s: s.score) if shots else None
 
-    def _plan(self, cue, ball, obj, pocket, others) -> Shot | None:
+    def plan(self, cue, ball, obj, pocket, others) -> Pot | None:
         R, phys, table = self.radius, self.physics, self.table
         aim = geo.pocket_aim(obj, pocket, table, R, others)
         if aim is None:
@@ -223,7 +223,7 @@ class GhostBallAgent(Agent):
         path = geo.cue_path(ghost, cn * n + ct * t, roll * d, phys, table, R)
         scratch = geo.enters_pocket(path, self.pockets)
         score = dn * open_fraction / ((d1 + 0.5) * (d2 + 0.5)) * (0.1 if scratch else 1.0)
-        return Shot(ball, pocket.index, d, speed, math.acos(min(dn, 1.0)), score, scratch)
+        return Pot(ball, pocket.index, d, speed, math.acos(min(dn, 1.0)), score, scratch)
 
     def fallback(self, xy, on_table) -> np.ndarray:
         """No pot on: full into the nearest object ball with a clear path (or straight up the table)."""
@@ -232,5 +232,5 @@ class GhostBallAgent(Agent):
         for i in objects[np.argsort(np.hypot(*(xy[objects] - cue).T))]:
             others = xy[objects[objects != i]]
             if geo.path_clear(cue, xy[i], others, 2.0 * self.radius * 1.02):
-                return _action(geo.unit(xy[i] - cue), self.fallback_speed, self.spin)
-        return _action((1.0, 0.0), self.fallback_speed, self.spin)
+                return cue_action(geo.unit(xy[i] - cue), self.fallback_speed, self.spin)
+        return cue_action((1.0, 0.0), self.fallback_speed, self.spin)

@@ -6,9 +6,9 @@ import textwrap
 
 import numpy as np
 
-from .overlay import card, cue_line, font_size, overlay, pocket_mark
-from .physics.kinds import BALL_POCKET
-from .playback import frame_times
+from ..physics.kinds import BALL_POCKET
+from ..render.overlay import card, cue_line, font_size, overlay, pocket_mark
+from ..render.playback import frame_times
 
 CUE_SECONDS = 0.5  # the cue line is shown this long before each shot
 CARD_SECONDS = 1.5  # each episode ends on a card with its result, this long
@@ -29,11 +29,9 @@ def shot_summary(info: dict) -> str:
 
 def episode_result(base, episode: int, info: dict, reward: float, shots: int, balls: int, scratches: int) -> list:
     """The lines of an episode's closing card."""
-    from .games import PoolGameEnv
-
     lines = [f"episode {episode}"]
-    if isinstance(base, PoolGameEnv):
-        name = {"nine_ball": "9-ball", "eight_ball": "8-ball"}[base.game]
+    if base.game.has_rules:
+        name = base.game.label
         winner = info.get("winner")
         if winner is not None:
             reason = info.get("end_reason")
@@ -93,12 +91,12 @@ class Story:
 
     def _shots(self, info):
         """(the step's Results, an info per shot) in the order they were played."""
-        from .games import PoolGameEnv
-
-        if isinstance(self.base, PoolGameEnv):
-            results = list(self.base._step_shots)
+        if self.base.game.has_rules:
+            records = [record for record in self.base.step_records if record.error is None]
+            results = [record.result for record in records]
             others = [{**s, "_who": "opponent"} for s in info.get("opponent_shots", [])]
-            infos = ([{**info, "_who": "agent"}] + others) if self.base._agent_info is not None else others
+            agent_shot = bool(records) and records[0].shooter == 0
+            infos = ([{**info, "_who": "agent"}] + others) if agent_shot else others
             return (results, infos) if len(infos) == len(results) else ([], [])
         result = self.base.playback.last_result
         return ([result], [dict(info)]) if result is not None else ([], [])

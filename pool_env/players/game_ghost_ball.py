@@ -1,17 +1,15 @@
-"""`GameGhostBallAgent`: the rule-aware ghost-ball player of the game envs (PoolNineBall-v0, PoolEightBall-v0)."""
+"""`GameGhostBallAgent`: the rule-aware ghost-ball player of the games (the game envs' default opponent)."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from pool_env import rules
-from pool_env.env import MAX_SPEED
-from pool_env.games import GAMES, placement_area
-from pool_env.physics import BALL_RADIUS, Physics, Table
-
+from .. import rules
+from ..game import GAME_BALLS, LAYOUTS, Shot, decode_game_observation, encode_action, placement_area
+from ..physics import BALL_RADIUS, Physics, Table
 from . import geometry as geo
-from .base import Agent
-from .heuristic import GhostBallAgent
+from .base import Agent, game_of
+from .ghost_ball import GhostBallAgent
 
 BREAK_SPEED = 9.0  # m/s, full into the rack's apex ball
 SAFETY_SPEED = 3.0  # m/s: no pot on, the cue ball sent full at a legal ball (far enough for a rail)
@@ -27,15 +25,15 @@ class GameGhostBallAgent(Agent):
     observation) into any pocket, calling that pocket for the 8; with ball in hand it tries a
     grid of spots in the area and places the cue ball where the best pot scores highest; with
     no pot on, it sends the cue ball full at the nearest legal ball (a safety that at least
-    makes contact). No spin, no kicks, no combinations."""
+    makes contact). No spin, no kicks, no combinations. `decide(view)` is the `Shot` it plays."""
 
     name = "ghost_ball"
 
     def __init__(self, game: str = "nine_ball", table: Table | None = None, physics: Physics | None = None,
                  radius: float = BALL_RADIUS):
-        if game not in GAMES:
-            raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAMES)}")
-        self.game, self.n_balls = game, GAMES[game]
+        if game not in GAME_BALLS:
+            raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
+        self.game, self.n_balls = game, GAME_BALLS[game]
         self.table = Table.eight_foot() if table is None else table
         self.physics = Physics.standard() if physics is None else physics
         self.radius = radius
@@ -43,39 +41,36 @@ class GameGhostBallAgent(Agent):
 
     @classmethod
     def from_env(cls, env, **kwargs) -> GameGhostBallAgent:
-        env = env.unwrapped
-        return cls(game=env.game, table=env.table, physics=env.physics, **kwargs)
+        """For a game env, a two-player env or a `pool_env.game.Game` of 9-ball or 8-ball."""
+        game = game_of(env)
+        return cls(game=game.mode, table=game.table, physics=game.physics, **kwargs)
 
     def act(self, observation) -> np.ndarray:
-        xy, on_table, legal, in_hand = self.decode(observation)
-        place = None
-        if in_hand is not None:
-            xy, place = self._placement(xy, on_table, legal, in_hand)
-        if np.all(on_table) and in_hand == "behind_head_string":  # the break: every ball racked
-            apex = min(np.flatnonzero(legal) + 1) if legal.any() else 1
-            return self._action(geo.unit(xy[apex] - xy[0]), BREAK_SPEED, place, None)
-        shot = self._best(xy, on_table, legal)
-        if shot is not None:
-            return self._action(shot.direction, shot.speed, place, shot.pocket)
-        return self._safety(xy, on_table, legal, place)
+        view = decode_game_observation(observation, self.game, self.table)
+        return self.encode(self.decide(view), view.ball_in_hand)
 
-    # --- reading the observation -------------------------------------------------------------
-    def decode(self, observation):
-        """(xy (n, 2) m, on_table (n,), legal (n - 1,) first contacts, ball in hand or None)."""
-        obs = np.asarray(observation, dtype=np.float64)
-        n = self.n_balls
-        per_ball = obs[: 3 * n].reshape(n, 3)
-        on_table = per_ball[:, 2] > 0
-        xy = np.column_stack([(per_ball[:, 0] + 1.0) * 0.5 * self.table.length,
-                              (per_ball[:, 1] + 1.0) * 0.5 * self.table.width])
-        legal = obs[3 * n: 4 * n - 1] > 0
-        hand = obs[4 * n - 1: 4 * n + 1]
-        in_hand = "anywhere" if hand[0] > 0 else ("behind_head_string" if hand[1] > 0 else None)
-        return xy, on_table, legal, in_hand
+    def decide(self, view) -> Shot:
+        """The shot for a decoded observation (`pool_env.game.GameView`)."""
+        xy, on_table, legal = view.xy, view.on_table, view.legal_mask
+        place = None
+        if view.ball_in_hand is not None:
+            xy, place = self.placement(xy, on_table, legal, view.ball_in_hand)
+        if np.all(on_table) and view.ball_in_hand == "behind_head_string":  # the break: every ball racked
+            apex = min(np.flatnonzero(legal) + 1) if legal.any() else 1
+            return Shot.aimed(geo.unit(xy[apex] - xy[0]), BREAK_SPEED, place=place)
+        pot = self.best(xy, on_table, legal)
+        if pot is not None:
+            return Shot.aimed(pot.direction, pot.speed, place=place, pocket=pot.pocket)
+        return self.safety(xy, on_table, legal, place)
+
+    def encode(self, shot: Shot, in_hand) -> np.ndarray:
+        """The game env's action of `shot` (`pool_env.game.encode_action`)."""
+        area = None if in_hand is None else placement_area(self.table, in_hand, self.radius)
+        return encode_action(LAYOUTS[self.game], shot, area, max(self.table.pockets.shape[0], 1))
 
     # --- planning ----------------------------------------------------------------------------
-    def _best(self, xy, on_table, legal):
-        """The best-scoring pot of a legal first contact, or None."""
+    def best(self, xy, on_table, legal):
+        """The best-scoring pot (`Pot`) of a legal first contact, or None."""
         if not on_table[0]:
             return None
         objects = np.flatnonzero(on_table[1:]) + 1
@@ -85,24 +80,23 @@ class GameGhostBallAgent(Agent):
                 continue
             others = xy[objects[objects != ball]]
             for pocket in self.planner.pockets:
-                shot = self.planner._plan(xy[0], int(ball), xy[ball], pocket, others)
-                if shot is not None and (best is None or shot.score > best.score):
-                    best = shot
+                pot = self.planner.plan(xy[0], int(ball), xy[ball], pocket, others)
+                if pot is not None and (best is None or pot.score > best.score):
+                    best = pot
         return best
 
-    def _placement(self, xy, on_table, legal, in_hand):
+    def placement(self, xy, on_table, legal, in_hand):
         """Where to put the cue ball: on the break the head spot; else the spot, among straight-in
         positions behind each legal ball for each open pocket (and a coarse grid over the area
-        when none fits), whose best pot scores highest. Returns (xy with the cue ball there,
-        the placement entries of the action)."""
-        x_lo, x_hi, y_lo, y_hi = placement_area(self.table, in_hand, self.radius)
+        when none fits), whose best pot scores highest. Returns (xy with the cue ball there, the spot)."""
+        area = placement_area(self.table, in_hand, self.radius)
         if np.all(on_table) and in_hand == "behind_head_string":
             spot = np.array(rules.head_spot(self.table), dtype=np.float64)
         else:
-            spot = self._best_spot(xy, on_table, legal, (x_lo, x_hi, y_lo, y_hi))
+            spot = self._best_spot(xy, on_table, legal, area)
         xy = xy.copy()
         xy[0] = spot
-        return xy, ((spot[0] - x_lo) / (x_hi - x_lo) * 2.0 - 1.0, (spot[1] - y_lo) / (y_hi - y_lo) * 2.0 - 1.0)
+        return xy, (float(spot[0]), float(spot[1]))
 
     def _best_spot(self, xy, on_table, legal, area):
         x_lo, x_hi, y_lo, y_hi = area
@@ -134,31 +128,20 @@ class GameGhostBallAgent(Agent):
         for spot in spots:
             trial = xy.copy()
             trial[0] = spot
-            shot = self._best(trial, on, legal)
-            if shot is not None and shot.score > best:
-                best, choice = shot.score, spot
+            pot = self.best(trial, on, legal)
+            if pot is not None and pot.score > best:
+                best, choice = pot.score, spot
         return choice
 
-    def _safety(self, xy, on_table, legal, place):
+    def safety(self, xy, on_table, legal, place) -> Shot:
         """Full at the nearest legal ball with a clear path (any legal ball if none is clear)."""
         objects = [b for b in np.flatnonzero(on_table[1:]) + 1 if legal[b - 1]]
         if not objects:
-            return self._action((1.0, 0.0), SAFETY_SPEED, place, None)
+            return Shot.aimed((1.0, 0.0), SAFETY_SPEED, place=place)
         objects.sort(key=lambda b: float(np.hypot(*(xy[b] - xy[0]))))
         everything = np.flatnonzero(on_table[1:]) + 1
         for ball in objects:
             others = xy[everything[everything != ball]]
             if geo.path_clear(xy[0], xy[ball], others, 2.0 * self.radius * 1.02):
-                return self._action(geo.unit(xy[ball] - xy[0]), SAFETY_SPEED, place, None)
-        return self._action(geo.unit(xy[objects[0]] - xy[0]), SAFETY_SPEED, place, None)
-
-    def _action(self, direction, speed, place, pocket):
-        """The game env's action: force (direction, speed), a centre hit, the placement, the
-        called pocket (the middle of its bin)."""
-        d = np.asarray(direction, dtype=np.float64)
-        force = d / max(float(np.hypot(*d)), 1e-12) * min(speed / MAX_SPEED, 1.0)
-        action = [force[0], force[1], 0.0, 0.0, *(place if place is not None else (0.0, 0.0))]
-        if self.n_balls == 16:
-            n_pockets = max(self.table.pockets.shape[0], 1)
-            action.append(-1.0 + (2.0 * (pocket if pocket is not None else 0) + 1.0) / n_pockets)
-        return np.clip(np.array(action, dtype=np.float32), -1.0, 1.0)
+                return Shot.aimed(geo.unit(xy[ball] - xy[0]), SAFETY_SPEED, place=place)
+        return Shot.aimed(geo.unit(xy[objects[0]] - xy[0]), SAFETY_SPEED, place=place)

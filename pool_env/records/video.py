@@ -6,8 +6,12 @@ import os
 import sys
 
 import gymnasium as gym
+import imageio.v2 as imageio
 import numpy as np
 
+from ..envs.break_env import PoolBreakEnv
+from ..envs.game_env import PoolGameEnv
+from .saved import GameRecorder, save_game
 from .video_overlay import CARD_SECONDS, Story
 
 HOLD_SECONDS = 0.5  # without the overlay, the last frame of every episode is held this long
@@ -17,9 +21,6 @@ VIDEO_EXTENSIONS = (".mp4", ".mov", ".mkv", ".avi")
 
 
 def _base(env):
-    from .env import PoolBreakEnv
-    from .games import PoolGameEnv
-
     base = env.unwrapped
     if not isinstance(base, (PoolBreakEnv, PoolGameEnv)):
         raise TypeError(f"expected a PoolBreakEnv or PoolGameEnv (possibly wrapped), got {type(base).__name__}")
@@ -52,7 +53,6 @@ class _Writer:
     """An .mp4 writer (imageio with the ffmpeg that imageio-ffmpeg ships) that counts frames."""
 
     def __init__(self, path, fps):
-        import imageio.v2 as imageio
 
         folder = os.path.dirname(os.path.abspath(path))
         os.makedirs(folder, exist_ok=True)
@@ -98,8 +98,8 @@ def record_video(env, policy, path, episodes=1, fps=None, *, seed=None, overlay=
     each episode held HOLD_SECONDS.
 
     `save_games=folder` also saves each episode as a saved game (`pool_env.save_game`,
-    `<folder>/<video name>-episode-<k>.json`) that `pool_env.replay` / `python -m
-    pool_env.replay` plays again exactly; a game's opponent that is an agent or a callable has
+    `<folder>/<video name>-episode-<k>.json`) that `pool_env.records.replay` / `python -m
+    pool_env.records.replay` plays again exactly; a game's opponent that is an agent or a callable has
     its actions saved with it. So that every episode replays from its seed, episode k is then
     reset with seed + k (`seed` None: a random one); the env must come from `gym.make` (or be
     an id), whose spec names it.
@@ -127,8 +127,6 @@ def video_frames(env, policy, episodes=1, fps=None, *, seed=None, overlay=True, 
     """The frames `record_video` writes (a generator; arguments as there, `name` the saved
     games' file prefix): per shot, with `overlay`, CUE_SECONDS of the cue line on the shot's
     first frame, then its moving frames with the caption; per episode a CARD_SECONDS result card."""
-    from .saved import GameRecorder, save_game
-
     base = _base(env)
     fps = base.metadata["render_fps"] if fps is None else fps
     act = _policy_fn(policy, env)

@@ -103,7 +103,7 @@ class Window:
         self.pygame = None
         self.surface = None
         self.closed = False  # the user closed the window
-        self._clock = None
+        self.clock = None
 
     @property
     def is_open(self) -> bool:
@@ -120,7 +120,7 @@ class Window:
         if self.surface is None or self.surface.get_size() != (w, h):
             if self.surface is None:
                 self.pygame, self.surface = open_display((w, h), self.title, headless=True)
-                self._clock = self.pygame.time.Clock()
+                self.clock = self.pygame.time.Clock()
             else:
                 self.surface = self.pygame.display.set_mode((w, h))
         self.pygame.surfarray.blit_array(self.surface, np.ascontiguousarray(frame.transpose(1, 0, 2)))
@@ -142,7 +142,7 @@ class Window:
             if wait is None:  # asked once the window is open: the first frame opens it
                 wait = self.realtime
             if wait:
-                self._clock.tick(float(fps))
+                self.clock.tick(float(fps))
         return True
 
     def pump(self) -> bool:
@@ -177,6 +177,11 @@ class HumanWindow:
 
     _window = None
     _window_title = "pool_env"
+
+    @property
+    def window(self):
+        """The `Window` of render_mode="human" (None until the first frame is shown)."""
+        return self._window
 
     def close(self):
         self.playback.close()

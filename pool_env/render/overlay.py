@@ -6,6 +6,7 @@ import functools
 import math
 
 import numpy as np
+from PIL import Image, ImageDraw, ImageFont
 
 BAND_RGB = (0, 0, 0)
 BAND_ALPHA = 0.62  # how dark the band behind text is
@@ -24,7 +25,6 @@ def font_size(height: int) -> int:
 @functools.lru_cache(maxsize=16)
 def font(size: int):
     """PIL's scalable default font at `size` px (Pillow >= 10.1), else its fixed bitmap font."""
-    from PIL import ImageFont
 
     try:
         return ImageFont.load_default(size=size)
@@ -41,7 +41,6 @@ def overlay(frame: np.ndarray, lines, *, where: str = "top", size: int | None = 
     """The frame with `lines` of text in its top-left (`where="top"`) or bottom-left
     (`"bottom"`) corner, white on a translucent dark band (one home for every overlay: the
     games', the play window's and the videos'). Text size: `font_size(height)` unless `size`."""
-    from PIL import Image, ImageDraw
 
     lines = [line for line in (lines or []) if line]
     if not lines:
@@ -66,7 +65,6 @@ def overlay(frame: np.ndarray, lines, *, where: str = "top", size: int | None = 
 
 def card(frame: np.ndarray, lines) -> np.ndarray:
     """The frame dimmed, with `lines` centred in large text: an episode's result."""
-    from PIL import Image, ImageDraw
 
     h, w = frame.shape[:2]
     face = font(max(12, round(h / 12)))
@@ -86,7 +84,6 @@ def cue_line(frame: np.ndarray, renderer, cue_xy, velocity) -> np.ndarray:
     """The frame with the shot drawn before it is played: the cue from the cue ball at `cue_xy`
     (m) backwards, its length growing with the cue ball's `velocity` (m/s), and a dashed aim line
     forwards along the shot."""
-    from PIL import Image, ImageDraw
 
     speed = float(np.hypot(*velocity))
     if not (math.isfinite(speed) and speed > 0):
@@ -114,7 +111,6 @@ def cue_line(frame: np.ndarray, renderer, cue_xy, velocity) -> np.ndarray:
 def pocket_mark(frame: np.ndarray, renderer, pocket: int, strength: float = 1.0) -> np.ndarray:
     """The frame with a red ring on pocket `pocket` (index into the renderer's pockets), for the
     cue ball that fell in; `strength` in [0, 1] fades it."""
-    from PIL import Image, ImageDraw
 
     centre = renderer.world_to_pixel(renderer.pockets[pocket, :2])[0]
     r = renderer.pockets[pocket, 2] * renderer.scale + 2

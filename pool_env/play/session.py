@@ -9,17 +9,17 @@ from pathlib import Path
 import gymnasium as gym
 import numpy as np
 
-from . import rules
-from .env import MAX_SPEED, MAX_TIP_OFFSET
-from .games import overlay, place_cue_ball, placement_area
-from .physics import BALL_RADIUS
-from .saved import record_game, save_game
-from .window import import_pygame
+from .. import rules
+from ..game import MAX_SPEED, MAX_TIP_OFFSET, Shot, place_cue_ball, placement_area
+from ..physics import BALL_RADIUS
+from ..players import player_names
+from ..records.saved import record_game, save_game
+from ..render.overlay import overlay
+from ..render.window import import_pygame
 
 GAMES = {"break": ("PoolBreak-v0", {"spin": True}), "run": ("PoolBreakRun-v0", {"spin": True}),
          "nine_ball": ("PoolNineBall-v0", {}), "eight_ball": ("PoolEightBall-v0", {})}
 NAMES = {"break": "break", "run": "break and run", "nine_ball": "9-ball", "eight_ball": "8-ball"}
-BUILT_IN_PLAYERS = ("ghost_ball", "random", "search")
 DRAG_FULL = 0.6  # m: a drag this long (or longer) from the cue ball is full power (|a[0:2]| = 1, 12 m/s)
 MIN_DRAG = BALL_RADIUS  # m: a shorter drag is no shot (a click)
 TABLE_SIZE = (1120, 630)  # px: the table's frames
@@ -77,7 +77,8 @@ def first_hit(balls, cue_xy, direction, table):
 
 def make_env(game, opponent="ghost_ball", two_players=False, size=TABLE_SIZE, render_mode="rgb_array"):
     """The env of a played game: a break env (with spin), or a game env against `opponent` (a
-    built-in player's name or a saved SB3 model's path), or two humans taking turns (`Hotseat`)."""
+    player's name, `pool_env.make_player`'s, or a saved model's path), or two people taking
+    turns (`hotseat`)."""
     if game not in GAMES:
         raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAMES)}")
     env_id, kwargs = GAMES[game]
@@ -86,45 +87,13 @@ def make_env(game, opponent="ghost_ball", two_players=False, size=TABLE_SIZE, re
     if game in ("break", "run"):
         return gym.make(env_id, **kwargs)
     if two_players:
-        return Hotseat(gym.make(env_id, opponent=None, **kwargs))
-    try:
-        return gym.make(env_id, opponent=opponent, **kwargs)
-    except ValueError:
-        if not isinstance(opponent, str):
-            raise
-    return gym.make(env_id, opponent=resolve_player(opponent, gym.make(env_id, opponent=None)), **kwargs)
+        return gym.make(env_id, opponent=None, hotseat=True, **kwargs)
+    return gym.make(env_id, opponent=opponent, **kwargs)
 
 
-def resolve_player(name, env):
-    """An agent for `--opponent`: `search` (agents.SearchAgent) or a saved SB3 model's path."""
-    if name == "search":
-        import agents
-
-        if not hasattr(agents, "SearchAgent"):
-            raise ValueError("--opponent search needs agents.SearchAgent, which this checkout lacks")
-        return agents.SearchAgent.from_env(env)
-    path = Path(name)
-    if path.suffix == ".zip" or path.with_suffix(".zip").exists():
-        if not path.exists() and not path.with_suffix(".zip").exists():
-            raise ValueError(f"--opponent {name}: no such model file")
-        from agents import SB3Agent
-
-        return SB3Agent.load(path)
-    raise ValueError(f"unknown opponent {name!r}; choose one of {', '.join(BUILT_IN_PLAYERS)} or a saved "
-                     "model's path (runs/<name>/model.zip)")
-
-
-class Hotseat(gym.Wrapper):
-    """Two humans on one game env: a practice env (opponent=None) whose episode goes on when the
-    turn passes (the other player shoots) and ends only when the game does. Saved hotseat games
-    replay with `pool_env.saved.replay(record, env=Hotseat(gym.make(...)))`."""
-
-    def step(self, action):
-        obs, reward, terminated, truncated, info = self.env.step(action)
-        base = self.env.unwrapped
-        if terminated and base.state.winner is None:
-            base._done, terminated = False, False
-        return obs, reward, terminated, truncated, info
+def opponent_names() -> list[str]:
+    """The players `--opponent` takes by name."""
+    return player_names()
 
 
 class PlaySession:
@@ -135,7 +104,7 @@ class PlaySession:
     diagram (right panel) to set the tip offset (clamped to the 0.5 R miscue limit); when shooting
     at the 8, click a pocket to call it first. Keys: R restart (a new rack), U undo the last
     shot (the game replayed without it), S slow motion, W write the game to a JSON file
-    (`pool_env.save_game`; `python -m pool_env.replay` plays it again), Esc quit."""
+    (`pool_env.save_game`; `python -m pool_env.records.replay` plays it again), Esc quit."""
 
     def __init__(self, game="nine_ball", opponent="ghost_ball", two_players=False, seed=0, size=TABLE_SIZE,
                  save_dir=".", animate=True):
@@ -274,25 +243,17 @@ class PlaySession:
     # --- actions ------------------------------------------------------------------------------
     def action(self):
         """The env action of the drag under way (None without one, or for a drag shorter than
-        MIN_DRAG): `shot_action`'s entries, then the ball-in-hand placement of the cue ball as
-        the game env maps a[4:6] (linearly onto `placement_area`), then the called pocket (the
-        centre of its bin of a[6])."""
+        MIN_DRAG): the shot `shot_action` reads from the drag, from where the cue ball is to be
+        placed (ball in hand), calling the clicked pocket, encoded by the game's layout."""
         if self.drag is None:
             return None
         head = shot_action(self.cue_xy, self.drag, self.tip)
         if head is None:
             return None
-        size = self.base.action_space.shape[0]
-        action = np.zeros(size)
-        action[:4] = head
-        if size > 4 and self.in_hand is not None:
-            x_lo, x_hi, y_lo, y_hi = placement_area(self.base.table, self.in_hand, float(self.base.balls.radii[0]))
-            action[4] = 2.0 * (self.cue_xy[0] - x_lo) / (x_hi - x_lo) - 1.0
-            action[5] = 2.0 * (self.cue_xy[1] - y_lo) / (y_hi - y_lo) - 1.0
-        if size > 6:
-            n = self.base.table.pockets.shape[0]
-            action[6] = -1.0 + (2 * (self.called or 0) + 1) / n
-        return np.clip(action, -1.0, 1.0).astype(np.float32)
+        power = float(np.hypot(head[0], head[1]))
+        place = tuple(self.cue_xy) if self.in_hand is not None else None
+        shot = Shot.aimed(head[0:2], power * MAX_SPEED, tuple(self.tip), place, self.called)
+        return self.base.game.encode(shot)
 
     def update(self):
         """Play the pending shot, if any (the human's, then the opponent's replies)."""

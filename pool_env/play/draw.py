@@ -6,8 +6,8 @@ import math
 
 import numpy as np
 
-from .env import MAX_TIP_OFFSET
-from .play_session import KEYS, TIP_RADIUS, first_hit
+from ..game import MAX_TIP_OFFSET
+from .session import KEYS, TIP_RADIUS, first_hit
 
 PANEL_RGB, TEXT_RGB, DIM_RGB = (24, 28, 34), (235, 235, 235), (150, 155, 165)
 AIM_RGB, GHOST_RGB, CUE_RGB = (255, 255, 255), (230, 230, 230), (196, 160, 100)

@@ -1,8 +1,10 @@
-"""The agent interface every player shares, and the uniformly random baseline."""
+"""The player interface (`Agent`), the uniformly random player, and `game_of` (the game an env plays)."""
 
 from __future__ import annotations
 
 import numpy as np
+
+from ..game import Game
 
 
 class Agent:
@@ -31,6 +33,11 @@ class RandomAgent(Agent):
     name = "random"
 
     def __init__(self, action_space, seed: int | None = None):
+        """`action_space` a Box, or a layout's size (int): Box(-1, 1, (size,))."""
+        if isinstance(action_space, int):
+            self.low, self.high = -np.ones(action_space, np.float32), np.ones(action_space, np.float32)
+            self.rng = np.random.default_rng(seed)
+            return
         self.low = np.asarray(action_space.low, dtype=np.float32)
         self.high = np.asarray(action_space.high, dtype=np.float32)
         self.rng = np.random.default_rng(seed)
@@ -41,3 +48,15 @@ class RandomAgent(Agent):
 
     def act(self, observation) -> np.ndarray:
         return self.rng.uniform(self.low, self.high).astype(np.float32)
+
+
+def game_of(env):
+    """The `pool_env.game.Game` an env plays (a Gymnasium env, wrapped or not, a PettingZoo env,
+    or a Game itself); TypeError for anything else."""
+    if isinstance(env, Game):
+        return env
+    for candidate in (env, getattr(env, "unwrapped", None)):
+        game = getattr(candidate, "game", None)
+        if isinstance(game, Game):
+            return game
+    raise TypeError(f"{type(env).__name__} plays no pool_env.game.Game (expected a pool_env env or a Game)")

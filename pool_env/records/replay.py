@@ -1,4 +1,4 @@
-"""`python -m pool_env.replay game.json [--video out.mp4] [--shot K]`: replay a saved game, checking every shot."""
+"""`python -m pool_env.records.replay game.json [--video out.mp4] [--shot K]`: replay a saved game, checked."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from .video import _Writer
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m pool_env.replay", description=__doc__.split("\n")[0])
+    parser = argparse.ArgumentParser(prog="python -m pool_env.records.replay", description=__doc__.split("\n")[0])
     parser.add_argument("path", help="a saved game (pool_env.save_game)")
     parser.add_argument("--video", help="write the replayed shots to this .mp4")
     parser.add_argument("--shot", type=int, help="stop after this many of the agent's shots")

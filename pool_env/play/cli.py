@@ -5,13 +5,15 @@ from __future__ import annotations
 import argparse
 import sys
 
-from .play_draw import draw_session
-from .play_session import BUILT_IN_PLAYERS, GAMES, TABLE_SIZE, PlaySession
+from ..render.window import open_display
+from .draw import draw_session
+from .session import GAMES, TABLE_SIZE, PlaySession, opponent_names
 
 EPILOG = """mouse: press on the table and drag back from the cue ball, release to shoot (a drag of 0.6 m on
 the table is full power, 12 m/s); with ball in hand drag the cue ball to place it; click the tip diagram to
 set draw, follow and English; shooting at the 8 in 8-ball, click a pocket to call it.
-keys: R restart, U undo the last shot, S slow motion, W save the game (python -m pool_env.replay plays it), Esc quit."""
+keys: R restart, U undo the last shot, S slow motion, W save the game (python -m pool_env.records.replay
+plays it), Esc quit."""
 
 
 def parse(argv=None):
@@ -19,7 +21,7 @@ def parse(argv=None):
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--game", choices=list(GAMES), default="nine_ball")
     parser.add_argument("--opponent", default="ghost_ball",
-                        help=f"a built-in player ({', '.join(BUILT_IN_PLAYERS)}) or a model (runs/<name>/model.zip)")
+                        help=f"a player ({', '.join(opponent_names())}) or a model (runs/<name>/model.zip)")
     parser.add_argument("--two-players", action="store_true", help="two humans take turns on one screen")
     parser.add_argument("--seed", type=int, default=0, help="the first rack's seed (R racks the next seed)")
     parser.add_argument("--size", type=int, nargs=2, default=list(TABLE_SIZE), metavar=("W", "H"),
@@ -62,8 +64,6 @@ def screenshot(session, surface, pygame, path):
 
 def main(argv=None) -> int:
     args = parse(argv)
-    from .window import open_display
-
     try:
         session = PlaySession(args.game, args.opponent, args.two_players, seed=args.seed, size=args.size,
                               save_dir=args.save_dir)

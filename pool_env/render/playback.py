@@ -6,9 +6,9 @@ import math
 
 import numpy as np
 
-from .physics import BALL_RADIUS
-from .physics.kinds import POCKETED
-from .render import TableRenderer, integrate_orientation
+from ..physics import BALL_RADIUS
+from ..physics.kinds import POCKETED
+from .table import TableRenderer, integrate_orientation
 
 ORIENTATION_SUBSTEPS = 4  # orientation integration steps per rendered frame
 

@@ -9,6 +9,8 @@ from pathlib import Path
 import gymnasium as gym
 import numpy as np
 
+from .. import __version__
+
 FORMAT = "pool_env.saved_game"
 VERSION = 1
 CHECKED_INFO = ("foul", "pocketed", "winner", "end_reason", "turn_passed", "scratch")  # per step, when present
@@ -48,25 +50,26 @@ class GameRecorder:
     outcome, `record()` returns the saved-game dict. The header (and the refusal of what cannot
     be saved) comes first, before `env.reset(seed=seed)`. With `record_opponent`, a game's
     opponent that is not a built-in name (an agent, a callable) has its actions recorded too
-    (`opponent_actions`; env_kwargs["opponent"] is "recorded") and replays from them.
+    (`opponent_actions`, read from the env's shot records; env_kwargs["opponent"] is
+    "recorded") and replays from them.
     `env_id`/`env_kwargs` stand in for an env made without `gym.make` (no spec)."""
 
     def __init__(self, env, seed=None, record_opponent=False, env_id=None, env_kwargs=None):
         self.env, self.actions, self.outcomes = env, [], []
-        self.base, self._wrapped = env.unwrapped, None
+        self.base = env.unwrapped
         kwargs = dict(env.spec.kwargs) if env_kwargs is None and env.spec is not None else dict(env_kwargs or {})
         opponent = kwargs.get("opponent", "the default")  # absent: the env's default, a built-in name
         unnamed = not isinstance(opponent, str) or opponent == RECORDED
-        if record_opponent and getattr(self.base, "_opponent", None) is not None and unnamed:
+        self.opponent_actions = None
+        if record_opponent and getattr(self.base, "opponent", None) is not None and unnamed:
             kwargs["opponent"] = RECORDED
-            self.opponent_actions, self._wrapped = [], self.base._opponent
-            self.base._opponent = self._opponent
+            self.opponent_actions = []
         self.header = _header(env, seed, env_id, kwargs)  # refuses what cannot be saved
 
-    def _opponent(self, observation):
-        action = self._wrapped(observation)
-        self.opponent_actions.append([float(a) for a in np.asarray(action, dtype=np.float64).ravel()])
-        return action
+    def _note_opponent(self, records):
+        """The opponent's actions of these shot records (the env's `reset_records`, `step_records`)."""
+        if self.opponent_actions is not None:
+            self.opponent_actions += [list(r.action) for r in records if r.shooter == 1 and r.action is not None]
 
     def action(self, action) -> np.ndarray:
         action = np.asarray(action, dtype=np.float32)
@@ -74,13 +77,15 @@ class GameRecorder:
         return action
 
     def stepped(self, reward, terminated, truncated, info):
+        if not self.outcomes:  # the opponent's turn inside reset (when it broke) came first
+            self._note_opponent(getattr(self.base, "reset_records", ()))
+        self._note_opponent(getattr(self.base, "step_records", ()))
         self.outcomes.append(_outcome(self.env, reward, terminated, truncated, info))
 
     def record(self) -> dict:
-        """The saved game (and the env's own opponent back in place)."""
+        """The saved game."""
         out = {**self.header, "actions": self.actions, "outcomes": self.outcomes}
-        if self._wrapped is not None:
-            self.base._opponent, self._wrapped = self._wrapped, None
+        if self.opponent_actions is not None:
             out["opponent_actions"] = self.opponent_actions
         return out
 
@@ -117,8 +122,6 @@ def _header(env, seed, env_id=None, kwargs=None) -> dict:
             raise ValueError(f"env kwarg {key}={value!r} cannot be saved: only names and numbers replay "
                              "(an opponent must be a built-in player's name, or record its actions: "
                              "record_opponent=True)")
-    from . import __version__
-
     env_id = env_id if env_id is not None else (spec.id if spec else None)
     return {"format": FORMAT, "version": VERSION, "pool_env": __version__, "env_id": env_id,
             "env_kwargs": json.loads(json.dumps(kwargs)), "seed": seed, "table": describe_table(base.table),

@@ -1,0 +1,429 @@
+"""`PoolGameEnv`: 9-ball and 8-ball by the WPA rules against an opponent (PoolNineBall-v0, PoolEightBall-v0)."""
+
+from __future__ import annotations
+
+import gymnasium as gym
+import numpy as np
+from gymnasium import logger, spaces
+
+from .. import rules
+from ..game import GAME_BALLS, Game, game_observation, game_observation_size
+from ..physics import Balls
+from ..players import make_player
+from ..render.overlay import overlay
+from ..render.playback import ShotPlayback
+from ..render.window import HumanWindow
+from .break_env import check_reset_options, run_step, shot_info
+
+SHAPING_BALL, SHAPING_FOUL = 0.1, 0.1  # shaping: + per ball the agent pockets legally, - per foul
+RESET_OPTIONS = ("balls", "ball_in_hand", "agent_breaks")
+OPPONENT = 1  # the opponent is player 1 of the game, the agent player 0
+
+
+def rules_info(record) -> dict:
+    """The rules' part of a shot's info: `foul`, `pocketed`, `ball_in_hand` (the next
+    shooter's), `turn_passed`, `messages`."""
+    ruling = record.ruling
+    return {"foul": ruling.foul, "pocketed": list(record.pocketed), "ball_in_hand": ruling.ball_in_hand,
+            "turn_passed": bool(ruling.turn_passed), "messages": list(ruling.messages)}
+
+
+def record_info(record) -> dict:
+    """A shot's whole info: `PoolBreakEnv`'s per-shot entries, the rules' (`rules_info`), and
+    `balls_left` (object balls on the table)."""
+    return {**shot_info(record.result, record.balls_after), **rules_info(record),
+            "balls_left": len(record.state_after.on_table)}
+
+
+def shot_caption(game, record, who: str) -> str:
+    """The overlay's first line for a shot of `who`: the game, the shot's number, ball in hand,
+    the 8's called pocket."""
+    hand = record.ball_in_hand
+    hand = f", ball in hand ({hand.replace('_', ' ')})" if hand else ""
+    shoots_eight = game.mode == "eight_ball" and 8 in rules.legal_targets(record.state_before)
+    called = record.called_pocket
+    called = f", 8 called in pocket {called}" if called is not None and shoots_eight else ""
+    return f"{game.label}  shot {record.state_after.shot}: {who} shoots{hand}{called}"
+
+
+def captioned(shots, captions, on: bool = True) -> list:
+    """The frames of several shots (a list of frame lists) with their (caption, messages):
+    the caption on every frame, the rules' messages added on each shot's last."""
+    frames = []
+    for shot, (caption, messages) in zip(shots, captions):
+        if not on:
+            frames += shot
+            continue
+        frames += [overlay(frame, [caption]) for frame in shot[:-1]]
+        frames.append(overlay(shot[-1], [caption, *messages]))
+    return frames
+
+
+def resolve_opponent(opponent, env):
+    """(the opponent as a callable observation -> action, the player to reseed at each reset
+    (a built-in name's), its name); (None, None, None) for practice."""
+    if opponent is None:
+        return None, None, None
+    if isinstance(opponent, str):
+        try:
+            player = make_player(opponent, env)
+        except ValueError as exc:
+            raise ValueError(str(exc).replace("unknown player", "unknown opponent", 1)) from None
+        return player.act, player, opponent
+    name = getattr(opponent, "name", type(opponent).__name__)
+    if hasattr(opponent, "act") and callable(opponent.act):
+        return opponent.act, None, name
+    if callable(opponent):
+        return opponent, None, getattr(opponent, "__name__", name)
+    raise ValueError(f"opponent must be a name, None, an agent with act(observation) or a callable, got {opponent!r}")
+
+
+class PoolGameEnv(HumanWindow, gym.Env):
+    """9-ball or 8-ball by the WPA rules (`pool_env.rules`, docs/rules.md): one step is one shot
+    of the agent; the opponent's shots are played inside `step` until the agent is to shoot
+    again or the game ends.
+
+    ```python
+    import gymnasium as gym
+    import pool_env
+
+    env = gym.make("PoolNineBall-v0")                  # the agent breaks; the ghost-ball player replies
+    obs, info = env.reset(seed=0)
+    obs, reward, terminated, truncated, info = env.step(env.action_space.sample())
+    print(info["foul"], info["pocketed"], info["opponent_shots"], info["winner"])
+    ```
+
+    ## Arguments
+
+    | argument | default | meaning |
+    | --- | --- | --- |
+    | `game` | `"nine_ball"` | `"nine_ball"` (PoolNineBall-v0: 10 balls) or `"eight_ball"` (PoolEightBall-v0: 16) |
+    | `opponent` | `"ghost_ball"` | a player's name (`pool_env.make_player`: `"ghost_ball"`, the rule-aware
+      `pool_env.players.GameGhostBallAgent`, `"random"`, `"search"`, a saved model's path), an agent with
+      `act(observation)`, a callable `observation -> action`, or None: practice (below) |
+    | `noise` | None | None, `"olympiad"` (`NOISE_PRESETS`) or a dict of standard deviations (`angle` rad,
+      `speed` m/s, `side`, `top` in R) on every executed shot, both players'; deterministic given the seed |
+    | `agent_breaks` | True | the agent breaks every game (False: the opponent does, inside `reset`) |
+    | `shaping` | False | add +0.1 per ball the agent pockets legally and -0.1 per agent foul |
+    | `max_shots` | 100 | truncate after this many agent shots (a game of misses would never end) |
+    | `rule_options` | None | the rule set's options (`NineBall(three_foul_rule=...)`, `EightBall(illegal_break=...)`) |
+    | `table`, `physics`, `render_mode`, `render_size` | as `PoolBreakEnv` | |
+    | `overlay` | True | frames carry text: the game, whose shot, ball in hand, the called pocket; at the end
+      of each shot the rules' messages (fouls, the winner) |
+    | `hotseat` | False | with `opponent=None`: two people at one table, each step the shot of whoever is to
+      shoot, the episode going on when the turn passes until the game ends (`python -m pool_env.play
+      --two-players`); observations from player 0's side |
+
+    ## Action Space
+
+    `Box(-1, 1, (6,), float32)` (9-ball) or `(7,)` (8-ball):
+
+    | index | meaning |
+    | --- | --- |
+    | 0-1 | the cue force vector, mapped as `PoolBreakEnv` maps it (at most 12 m/s) |
+    | 2-3 | the tip offset (side, top), mapped as `PoolBreakEnv(spin=True)` (within the miscue limit, 0.5 R) |
+    | 4-5 | with ball in hand, where to place the cue ball: (x, y) mapped linearly onto the area it may go
+      (`placement_area`: the cloth, or behind the head string, x at most L/4); ignored otherwise. A spot on
+      a ball or outside the area moves to the nearest free one (`place_cue_ball`) |
+    | 6 | 8-ball: the pocket called for the 8: [-1, 1] cut into six equal bins, pocket k (`Table.pockets`
+      order) in bin k; ignored unless the agent shoots at the 8 |
+
+    ## Observation Space
+
+    `Box(-1, 1, (44,), float32)` (9-ball) or `(71,)` (8-ball), from the shooter's point of view:
+
+    | entries | meaning |
+    | --- | --- |
+    | 3 per ball (ball k at 3k) | x, y scaled to [-1, 1] over the table (clipped: a ball hanging in a
+      mouth), on-table flag (+1; a pocketed ball is (0, 0, -1)) |
+    | one per object ball | +1 if it is a legal first contact now (`rules.legal_targets`), else -1 |
+    | 2 | ball in hand for the shooter: anywhere, behind the head string (+1 / -1 each) |
+    | 2 | the shooter's consecutive fouls, then the opponent's: 0, 1, 2 as -1, 0, 1 |
+    | 3 (8-ball) | the shooter's group: open, solids, stripes (one +1) |
+    | 1 | the agent's shots this episode, 2 shots / max_shots - 1 |
+
+    ## Rewards
+
+    +1 when the agent wins, -1 when it loses (on the step that ends the game), 0 otherwise;
+    `shaping=True` adds the terms above. Practice (`opponent=None`): +1 per ball the agent
+    pockets legally and +1 more for winning the rack; the episode ends as soon as the turn
+    would pass (a miss or a foul), or the game ends.
+
+    ## Episode End
+
+    Terminated when the game ends (or, in practice, when the turn passes); truncated after
+    `max_shots` agent shots, or when a shot cannot be simulated (`info["error"]`).
+
+    ## Starting State
+
+    `reset` racks (9-ball diamond, 8-ball triangle, WPA racking with seeded randomness) and the
+    agent breaks with the cue ball in hand behind the head string (the placement entries place
+    it), unless `agent_breaks=False`: then the opponent breaks inside `reset` and plays its
+    turn. A game the opponent wins in that turn (a break and run) is not racked again: `reset`
+    reports it in its info (`winner` "opponent", `end_reason`) and the next step ends the
+    episode as a loss (reward -1, `terminated`) without playing its action.
+    `reset(options={"balls": balls})` starts from a given layout (16 or 10 balls by number, at
+    rest, the cue ball on the table, pocketed balls allowed;
+    bad layouts raise ValueError): the agent to shoot on an open table, with ball in hand
+    anywhere if `options={"ball_in_hand": True}`; `options={"agent_breaks": False}` lets the
+    opponent break this game.
+
+    ## Info
+
+    After every step: `foul` (None or a foul name, `rules.FOULS`), `pocketed` (balls the
+    agent's shot pocketed), `ball_in_hand` (the next shooter's: None, "anywhere",
+    "behind_head_string"), `turn_passed`, `messages` (the rules' lines), `opponent_shots` (a
+    list of dicts with those keys, one per opponent shot), `winner` ("agent", "opponent" or
+    None), `end_reason`, and the agent's shot's `first_contact`, `cushion_hits`, `scratch`,
+    `events`, `shot_duration`, `balls_left` as `PoolBreakEnv` reports them.
+
+    The game is `env.unwrapped.game` (a `pool_env.game.Game`: its state, snapshots, `evaluate`;
+    the agent is player 0), with `state` (`rules.GameState`) and `balls` also on the env;
+    `env.unwrapped.step_records` holds the `ShotRecord`s of the last step (the agent's shot,
+    then the opponent's). Rendering as `PoolBreakEnv`: "rgb_array" the table now,
+    "rgb_array_list" (and `shot_frames(fps)`) every shot of the last step, both players';
+    "human" a pygame window (`pip install 'pool-env[play]'`) animating every shot of each step
+    (and of `reset`, when the opponent breaks) at `metadata["render_fps"]`, `render()` showing
+    the table now, `close()` closing it (no display: set `SDL_VIDEODRIVER=dummy`).
+    `python -m pool_env.play --game nine_ball --opponent ghost_ball` plays a game with the mouse.
+    """
+
+    metadata = {"render_modes": ["human", "rgb_array", "rgb_array_list"], "render_fps": 30}
+
+    def __init__(self, game="nine_ball", opponent="ghost_ball", render_mode=None, table=None, physics=None,
+                 noise=None, agent_breaks=True, shaping=False, max_shots=100, rule_options=None,
+                 render_size=(640, 360), overlay=True, hotseat=False):
+        if game not in GAME_BALLS:
+            raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
+        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
+            raise ValueError(f"render_mode must be None or one of {self.metadata['render_modes']}, got {render_mode!r}")
+        if int(max_shots) != max_shots or max_shots < 1:
+            raise ValueError(f"max_shots must be an integer >= 1, got {max_shots!r}")
+        self.render_mode, self.max_shots = render_mode, int(max_shots)
+        self.rule_options = dict(rule_options or {})
+        self.game = Game(game, table, physics, noise, **self.rule_options)
+        self.table, self.physics, self.noise = self.game.table, self.game.physics, self.game.noise
+        self.agent_breaks, self.shaping, self.hotseat = bool(agent_breaks), bool(shaping), bool(hotseat)
+        self.n_balls = self.game.n_balls
+        self.action_space = spaces.Box(-1.0, 1.0, (self.game.layout.size,), np.float32)
+        self.observation_space = spaces.Box(-1.0, 1.0, (game_observation_size(game),), np.float32)
+        self.opponent = opponent
+        self._opponent, self._opponent_player, self._opponent_name = resolve_opponent(opponent, self)
+        if self._opponent is None and not self.agent_breaks:
+            raise ValueError("practice (opponent=None) has no one to break: keep agent_breaks=True")
+        if self.hotseat and self._opponent is not None:
+            raise ValueError("hotseat is two people at one table: it takes opponent=None")
+        self.render_size = (int(render_size[0]), int(render_size[1]))
+        self.overlay = bool(overlay)
+        self.playback = ShotPlayback(self.table, self.render_size, self.metadata["render_fps"],
+                                     deferred=render_mode is not None)
+        self._started, self._done, self._shots, self._end_reason = False, True, 0, None
+        self._quaternions, self._reset_records, self._reset_error = None, (), None
+        self._window = None  # render_mode="human": a pool_env.render.window.Window
+        self._window_title = f"pool_env: {game}"
+        self._begin_step()
+
+    # --- Gymnasium API ----------------------------------------------------------------------
+    def reset(self, *, seed=None, options=None):
+        options = check_reset_options(options, RESET_OPTIONS)
+        super().reset(seed=seed)
+        given = options.get("balls")
+        agent_breaks = bool(options.get("agent_breaks", self.agent_breaks))
+        if given is None and not agent_breaks and self._opponent is None:
+            raise ValueError("practice (opponent=None) has no one to break: reset with agent_breaks True")
+        try:
+            self.game.reset(rng=self.np_random, balls=given, breaker=0 if agent_breaks or given is not None else 1,
+                            ball_in_hand=bool(options.get("ball_in_hand", False)))
+        except ValueError as exc:
+            raise ValueError(f"options['balls']: {exc}") from None
+        self._quaternions = self.np_random.normal(size=(self.n_balls, 4))
+        opponent_seed = int(self.np_random.integers(2**63 - 1))
+        if self._opponent_player is not None and hasattr(self._opponent_player, "reset"):
+            self._opponent_player.reset(seed=opponent_seed)  # a built-in opponent plays the same for the same seed
+        self._started, self._shots, self._done, self._end_reason = True, 0, False, None
+        self.playback.reset(self.game.balls, self._quaternions)
+        self._begin_step()
+        run_step(self._reset_turn(), self.table, self.physics)  # the opponent's break and turn, if it breaks
+        self._reset_records, self._reset_error = tuple(self._step_records), self._error
+        self._step_records = []
+        info = {}
+        if self.game.over or self._error is not None:  # not racked again: the game the opponent won is shown
+            info = {"winner": "opponent" if self.game.winner == OPPONENT else None, "end_reason": self._end_reason}
+            if self._error is not None:
+                info["error"] = self._error
+        if self.render_mode == "human":
+            self._show(self.shot_frames())
+        return self.observation(), info
+
+    def _reset_turn(self):
+        yield from self._opponent_turn()
+        return None
+
+    def step(self, action):
+        out = run_step(self.step_shots(action), self.table, self.physics)
+        if self.render_mode == "human":
+            self._show(self.shot_frames())
+        return out
+
+    def render(self):
+        if self.render_mode is None:
+            gym.logger.warn("render() called without a render_mode; pass render_mode='rgb_array' to the env")
+            return None
+        if not self._started:
+            raise RuntimeError("call reset() before render()")
+        if self.render_mode == "human":
+            return self._show([self._annotate(self.playback.frame())])
+        return self._annotate(self.playback.frame()) if self.render_mode == "rgb_array" else self.shot_frames()
+
+    def shot_frames(self, fps=None) -> list[np.ndarray]:
+        """Every shot of the last step (the agent's, then the opponent's) sampled at `fps`; after
+        `reset` the starting frame (and the opponent's shots, when it broke)."""
+        if not self._started:
+            raise RuntimeError("call reset() before shot_frames()")
+        records = [record for record in self._step_records if record.error is None]
+        if not records:
+            return [self._annotate(frame) for frame in self.playback.shot_frames(fps)]
+        if len(records) == 1:
+            shots = [self.playback.shot_frames(fps)]
+        else:
+            # Several shots: replayed on a playback of their own, from the step's start (the
+            # balls' markers turn through the step's shots, from the orientations drawn at reset).
+            replay = ShotPlayback(self.table, self.render_size, self.metadata["render_fps"], deferred=False)
+            replay.reset(self._step_start, self._quaternions)
+            shots = []
+            for record in records:
+                replay.shot(record.result)
+                shots.append(replay.shot_frames(fps))
+        return captioned(shots, self._captions, self.overlay)
+
+    def _annotate(self, frame):
+        """The table now with the game's state on it (when `overlay`)."""
+        if not self.overlay:
+            return frame
+        game = self.game
+        if game.winner is not None:
+            return overlay(frame, [f"{game.label}: {'agent' if game.winner == 0 else 'opponent'} wins"])
+        who = "agent" if game.shooter == 0 else "opponent"
+        hand = f", ball in hand ({game.ball_in_hand.replace('_', ' ')})" if game.ball_in_hand else ""
+        return overlay(frame, [f"{game.label}: {who} to shoot{hand}"])
+
+    # --- state --------------------------------------------------------------------------------
+    @property
+    def balls(self) -> Balls | None:
+        """The balls now (at rest), by number; None before the first reset."""
+        return self.game.balls if self._started else None
+
+    @property
+    def state(self) -> rules.GameState | None:
+        """The rules' state (the agent is player 0); None before the first reset."""
+        return self.game.state if self._started else None
+
+    @property
+    def shots(self) -> int:
+        """The agent's shots this episode."""
+        return self._shots
+
+    @property
+    def reset_records(self) -> tuple:
+        """The `ShotRecord`s of the opponent's turn inside the last `reset` (when it broke)."""
+        return self._reset_records
+
+    @property
+    def step_records(self) -> tuple:
+        """The `pool_env.game.ShotRecord`s of the last step (the agent's shot, then the
+        opponent's; a shot that could not be simulated too, with its `error`); () after a reset."""
+        return tuple(self._step_records)
+
+    def observation(self, viewer: int = 0) -> np.ndarray:
+        """The observation now from player `viewer`'s side (0: the agent's, the env's own)."""
+        return game_observation(self.game.balls, self.game.state, viewer, self._shots, self.max_shots, self.table)
+
+    # --- a step, as a generator of shots (vector envs simulate many envs' shots at once) --------
+    def step_shots(self, action, observe=True):
+        """`step` as a generator: it yields each `pool_env.game.StruckShot` of the step (the
+        agent's, then the opponent's), is sent its outcome (the `Result`, or the SimulationError
+        or ValueError it raised), and returns the step's (observation, reward, terminated,
+        truncated, info); the observation is None with `observe=False`. `action` may also be a
+        `pool_env.game.Shot`."""
+        if not self._started:
+            raise RuntimeError("call reset() before step()")
+        if self._done:
+            raise RuntimeError("the game is over; call reset()")
+        ended_at_reset, self._reset_error = self._reset_error, None
+        self._begin_step()
+        if self.game.over or ended_at_reset is not None:  # the opponent's turn at reset ended the game
+            self.game.decode(action)  # a bad action still raises
+            self._error = ended_at_reset
+            return self._finish(observe)
+        struck = self.game.strike(action)
+        self._note(self.game.resolve(struck, (yield struck)), mine=True)
+        yield from self._opponent_turn()
+        return self._finish(observe)
+
+    def _opponent_turn(self):
+        """The opponent's shots while it is to shoot (a generator of StruckShots, as step_shots)."""
+        game = self.game
+        while self._error is None and not game.over and game.shooter == OPPONENT and self._opponent is not None:
+            if len(self._opponent_infos) >= self.max_shots:
+                self._error = f"the opponent took {self.max_shots} shots in a row"
+                return
+            action = self._opponent(self.observation(OPPONENT))
+            try:
+                struck = game.strike(action)
+            except ValueError as exc:
+                raise ValueError(f"the opponent ({self._opponent_name}) played a bad action: {exc}") from None
+            self._note(game.resolve(struck, (yield struck)), mine=False)
+
+    def _begin_step(self):
+        self._captions, self._step_records = [], []
+        self._step_start = self.game.balls if self._started else None
+        self._reward, self._error, self._agent_info, self._opponent_infos = 0.0, None, None, []
+
+    def _note(self, record, mine: bool):
+        """A shot just played (`mine`: the stepping player's): the playback follows it, its
+        caption, reward and info are noted."""
+        if record.ball_in_hand is not None:
+            self.playback.place(record.balls_before)
+        self._step_records.append(record)
+        if record.error is not None:
+            self._error = record.error
+            logger.warn(f"PoolGameEnv: a shot could not be simulated and the episode is truncated ({self._error})")
+            return
+        self.playback.shot(record.result)
+        self.playback.place(record.balls_after)
+        who = f"player {record.shooter + 1}" if self.hotseat else ("agent" if mine else "opponent")
+        self._captions.append((shot_caption(self.game, record, who), list(record.ruling.messages)))
+        self._end_reason = record.ruling.end_reason
+        if mine:
+            self._shots += 1
+            self._agent_info = record_info(record)
+            self._reward += self._shot_reward(record)
+        else:
+            self._opponent_infos.append(rules_info(record))
+
+    def _shot_reward(self, record) -> float:
+        ruling = record.ruling
+        legal = len(record.pocketed) if ruling.foul is None else 0
+        if self._opponent is None:  # practice: a ball a point, a run-out one more
+            return float(legal) + (1.0 if ruling.winner == record.shooter else 0.0)
+        if not self.shaping:
+            return 0.0
+        return SHAPING_BALL * legal - (SHAPING_FOUL if ruling.foul is not None else 0.0)
+
+    def _finish(self, observe=True):
+        """The step's (observation, reward, terminated, truncated, info), every shot applied."""
+        game, practice = self.game, self._opponent is None
+        terminated = game.over or (practice and not self.hotseat and game.shooter != 0)
+        truncated = not terminated and (self._error is not None or self._shots >= self.max_shots)
+        reward = self._reward
+        if not practice and game.winner is not None:
+            reward += 1.0 if game.winner == 0 else -1.0
+        self._done = terminated or truncated
+        info = self._agent_info or {**shot_info(None, game.balls, self._error), "foul": None, "pocketed": [],
+                                    "ball_in_hand": game.ball_in_hand, "turn_passed": False, "messages": []}
+        info = {**info, "opponent_shots": self._opponent_infos,
+                "winner": None if game.winner is None else ("agent" if game.winner == 0 else "opponent"),
+                "end_reason": self._end_reason if game.winner is not None else None}
+        if self._error is not None:
+            info["error"] = self._error
+        return self.observation() if observe else None, float(reward), bool(terminated), bool(truncated), info

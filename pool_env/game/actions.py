@@ -1,0 +1,112 @@
+"""The env action layouts: one decoder (action vector to `Shot`) and one encoder (`Shot` to action vector) each."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .shot import MAX_FORCE, MAX_SPEED, MAX_TIP_OFFSET, Shot
+
+MIN_MAGNITUDE = 0.02  # weaker cue-force entries are raised to this (0.24 m/s)
+
+
+@dataclass(frozen=True)
+class ActionLayout:
+    """An action vector's layout: `size` entries in [-1, 1]; `spin` has the tip entries (2-3);
+    `placement` the ball-in-hand entries (4-5); `called_pocket` the pocket entry (6)."""
+
+    name: str
+    size: int
+    spin: bool
+    placement: bool = False
+    called_pocket: bool = False
+
+
+LAYOUTS = {
+    "cue": ActionLayout("cue", 2, spin=False),
+    "cue_spin": ActionLayout("cue_spin", 4, spin=True),
+    "nine_ball": ActionLayout("nine_ball", 6, spin=True, placement=True),
+    "eight_ball": ActionLayout("eight_ball", 7, spin=True, placement=True, called_pocket=True),
+}
+
+
+def cue_force(action, spin: bool):
+    """(force (2,) N, tip offset (2,) R) of the cue entries: a[0:2] the force as a fraction of
+    MAX_FORCE (clipped to [-1, 1], scaled to length 1 if longer, raised to MIN_MAGNITUDE if
+    shorter; the zero action strikes along +x), a[2:4] with `spin` the tip (side, top) as a
+    fraction of MAX_TIP_OFFSET (scaled back onto it if longer). ValueError for another shape
+    than (2,) / (4,) or a non-finite entry."""
+    a = np.asarray(action, dtype=np.float64)
+    size = 4 if spin else 2
+    if a.shape != (size,):  # not reshaped: a (1, 2) batch is a mistake of the caller's, not an action
+        raise ValueError(f"action must have shape ({size},) ({size} entries, the action space's shape), "
+                         f"got shape {a.shape}")
+    values = a.tolist()  # Python floats: the same IEEE arithmetic as numpy's, without its per-call cost
+    if not all(math.isfinite(v) for v in values):
+        raise ValueError(f"action must be finite, got {values}")
+    values = [min(max(v, -1.0), 1.0) for v in values]  # np.clip(a, -1, 1)
+    dx, dy = values[0], values[1]
+    magnitude = math.hypot(dx, dy)
+    if magnitude == 0.0:
+        dx, dy = MIN_MAGNITUDE, 0.0
+    elif magnitude > 1.0:
+        dx, dy = dx / magnitude, dy / magnitude
+    elif magnitude < MIN_MAGNITUDE:
+        scale = MIN_MAGNITUDE / magnitude
+        dx, dy = dx * scale, dy * scale
+    side = top = 0.0
+    if spin:
+        side, top = MAX_TIP_OFFSET * values[2], MAX_TIP_OFFSET * values[3]
+        length = math.hypot(side, top)
+        if length > MAX_TIP_OFFSET:
+            scale = MAX_TIP_OFFSET / length
+            side, top = side * scale, top * scale
+    return np.array((MAX_FORCE * dx, MAX_FORCE * dy)), np.array((side, top))
+
+
+def decode_action(layout: ActionLayout, action, area=None, n_pockets: int = 6) -> Shot:
+    """The `Shot` an action of `layout` means. `area` (x_lo, x_hi, y_lo, y_hi) is where the
+    cue ball may be placed (ball in hand; None: it plays from where it lies, and entries 4-5
+    are ignored): entries 4-5 map linearly onto it. Entry 6 cuts [-1, 1] into `n_pockets`
+    equal bins, pocket k in bin k. ValueError for a wrong shape or a non-finite entry."""
+    if not layout.placement:
+        force, tip = cue_force(action, layout.spin)
+        return Shot(tuple(force.tolist()), tuple(tip.tolist()))
+    a = np.asarray(action, dtype=np.float64)
+    if a.shape != (layout.size,):
+        raise ValueError(f"action must have shape ({layout.size},), got shape {a.shape}")
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"action must be finite, got {a.tolist()}")
+    a = np.clip(a, -1.0, 1.0)
+    force, tip = cue_force(a[0:4], spin=True)
+    place = None
+    if area is not None:
+        x_lo, x_hi, y_lo, y_hi = area
+        place = (x_lo + 0.5 * (a[4] + 1.0) * (x_hi - x_lo), y_lo + 0.5 * (a[5] + 1.0) * (y_hi - y_lo))
+    pocket = min(int((a[6] + 1.0) * 0.5 * n_pockets), n_pockets - 1) if layout.called_pocket else None
+    return Shot(tuple(force.tolist()), tuple(tip.tolist()), place, pocket)
+
+
+def encode_action(layout: ActionLayout, shot: Shot, area=None, n_pockets: int = 6) -> np.ndarray:
+    """The action of `layout` (float32, in [-1, 1]) that `decode_action` reads back as `shot`
+    (to float32 rounding): the force as a fraction of MAX_FORCE, the tip of MAX_TIP_OFFSET, the
+    spot's place in `area` (0, 0 when `area` or the spot is None), the middle of the pocket's bin."""
+    if not isinstance(shot, Shot):
+        raise TypeError(f"shot must be a pool_env.game.Shot, got {type(shot).__name__}")
+    force = shot.direction * min(shot.speed / MAX_SPEED, 1.0)
+    entries = [force[0], force[1]]
+    if layout.spin:
+        entries += [shot.tip[0] / MAX_TIP_OFFSET, shot.tip[1] / MAX_TIP_OFFSET]
+    if layout.placement:
+        place = (0.0, 0.0)
+        if area is not None and shot.place is not None:
+            x_lo, x_hi, y_lo, y_hi = area
+            place = ((shot.place[0] - x_lo) / (x_hi - x_lo) * 2.0 - 1.0,
+                     (shot.place[1] - y_lo) / (y_hi - y_lo) * 2.0 - 1.0)
+        entries += list(place)
+    if layout.called_pocket:
+        n = max(int(n_pockets), 1)
+        entries.append(-1.0 + (2.0 * (shot.pocket if shot.pocket is not None else 0) + 1.0) / n)
+    return np.clip(np.array(entries, dtype=np.float32), -1.0, 1.0)

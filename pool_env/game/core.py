@@ -1,0 +1,511 @@
+"""`Game`: one pool game as an object (state, `play`, `snapshot`/`restore`, `evaluate`), which every client drives."""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+import functools
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import rules
+from ..physics import BALL_RADIUS, Balls, Physics, Result, SimulationError, Table, simulate, simulate_batch, strike
+from ..physics.simulate import check_on_table
+from .actions import LAYOUTS, ActionLayout, decode_action, encode_action
+from .modes import Mode, mode_of
+from .placement import place_cue_ball, placement_area
+from .shot import CONTACT_TIME, Shot, noise_of, noisy_shot
+
+SHOT_ERRORS = (SimulationError, ValueError)  # a shot that cannot be struck or simulated: recorded, not raised
+CUE_AREA = ((0.05, 0.25), (0.1, 0.9))  # randomize_cue: the cue ball's start, as fractions of L and W
+CUE_TRIES = 1000  # draws of a random cue spot before falling back to the head spot
+
+
+@dataclass(frozen=True)
+class StruckShot:
+    """A shot ready to simulate (`Game.strike`): who shoots, what he meant (`shot`, and the
+    `action` it was read from, if any), his ball in hand, the called pocket, the balls at rest
+    with the cue ball placed (`placed`), the cue's force and tip as executed (noise included),
+    and `balls`, the struck balls to simulate, or the ValueError striking raised."""
+
+    shot: Shot
+    shooter: int
+    ball_in_hand: str | None
+    called_pocket: int | None
+    placed: Balls
+    force: tuple
+    tip: tuple
+    balls: Balls | Exception
+    action: tuple | None = None
+
+
+@dataclass(frozen=True, eq=False)
+class ShotRecord:
+    """What one shot did (`Game.play`, `Game.evaluate`).
+
+    `shooter`, `shot`, `action`, `ball_in_hand`, `called_pocket`, `force` and `tip` (executed)
+    as in `StruckShot`; `balls_before` the balls at rest before the strike (the cue ball
+    placed) and `state_before` the rules' state then, `balls_after` at rest after it
+    (spotted balls back on the table); `result` the
+    physics `Result` (events, trajectories, stats); `ruling` the rules' `Ruling` and
+    `state_after` the next `rules.GameState` (None in the break and run modes); `over` the
+    game ended with this shot; `error` why the shot could not be simulated (then `result` is
+    None, the game did not change and the balls are `balls_before`)."""
+
+    shooter: int
+    shot: Shot
+    action: tuple | None
+    ball_in_hand: str | None
+    called_pocket: int | None
+    force: tuple
+    tip: tuple
+    balls_before: Balls
+    state_before: rules.GameState | None
+    balls_after: Balls
+    result: Result | None
+    ruling: rules.Ruling | None
+    state_after: rules.GameState | None
+    over: bool
+    error: str | None = None
+    judged: rules.ShotOutcome | None = None
+
+    @functools.cached_property
+    def outcome(self) -> rules.ShotOutcome | None:
+        """What the rules see of the shot (`rules.ShotOutcome`); None for a failed shot."""
+        if self.judged is not None or self.result is None:
+            return self.judged
+        return rules.outcome_from_result(self.result)
+
+    @property
+    def pocketed(self) -> tuple:
+        """The object balls that dropped, in the order they dropped."""
+        return () if self.outcome is None else self.outcome.pocketed
+
+    @property
+    def scratch(self) -> bool:
+        """The cue ball dropped."""
+        return bool(self.result is not None and self.result.final.pocketed[0])
+
+    @property
+    def foul(self) -> str | None:
+        return None if self.ruling is None else self.ruling.foul
+
+    @property
+    def events(self) -> list:
+        return [] if self.result is None else self.result.events
+
+
+@dataclass(frozen=True)
+class GameSnapshot:
+    """A game's whole state (`Game.snapshot`), the noise generator's included; `Game.restore`
+    puts it back exactly. `key` names the game it belongs to (mode, table, physics, noise, rules)."""
+
+    key: tuple
+    balls: Balls
+    state: rules.GameState | None
+    shots: int
+    over: bool
+    rng_state: dict
+
+
+def table_key(table: Table) -> tuple:
+    """What makes two tables the same table."""
+    return (table.length, table.width, table.pocket_entries.tobytes(), table.cushion_height,
+            table.corner_pocket, table.side_pocket)
+
+
+class Game:
+    """One pool game: "break" (the break shot alone), "run" (the shooter plays on until a
+    scratch or the last ball), "nine_ball" or "eight_ball" (the WPA rules of `pool_env.rules`).
+
+    ```python
+    from pool_env.game import Game, Shot
+
+    game = Game("nine_ball", seed=0)                        # racked, player 0 to break
+    record = game.play(Shot.aimed((1.0, 0.0), 9.0, place=(0.5, 0.56)))
+    print(record.pocketed, record.foul, game.shooter, game.ball_in_hand)
+    ```
+
+    State (read-only): `balls`, `state` (the rules' `GameState`; None without rules),
+    `shooter` (0 or 1), `ball_in_hand`, `legal_targets`, `shots` (played), `winner`, `over`.
+    `rng` is the noise generator (assignable, like an env's `np_random`).
+
+    - `play(shot)`: one shot, all of it: ball-in-hand placement, the called pocket, the noise,
+      the strike, the simulation, the rules' judgement and spotting. `shot` is a `Shot` or an
+      action vector of the game's layout (`layout`, `decode`/`encode`). Returns a `ShotRecord`;
+      a shot the simulator cannot finish is recorded with its `error` and changes nothing.
+    - `snapshot()` / `restore(snapshot)`: the whole state, the noise generator's included:
+      restore, then play the same shot, and the record is bit-identical.
+    - `evaluate(shots, draws=M, seed=...)`: K shots x M noise draws from the current state in
+      one batched simulation, without changing the game: the K x M records in order (shot
+      major), each equal to restoring a snapshot and playing that shot (see `evaluate`).
+    - `strike(shot)` and `resolve(struck, result)`: `play`'s two halves, for callers that
+      simulate many games' shots at once (`play_batch`).
+
+    Options: `noise` None, "olympiad" or a dict of standard deviations (`shot.NOISE_PRESETS`);
+    `layout` the action layout (`actions.LAYOUTS`; default the mode's: "cue" for break and run,
+    "cue_spin" adds the tip); `randomize_cue` (break and run) starts the cue ball anywhere in
+    x in [0.05 L, 0.25 L], y in [0.1 W, 0.9 W]; other keywords are the rule set's options
+    (`NineBall(three_foul_rule=...)`, `EightBall(illegal_break=...)`).
+    """
+
+    def __init__(self, mode: str = "nine_ball", table: Table | None = None, physics: Physics | None = None,
+                 noise=None, seed=None, layout: str | None = None, randomize_cue: bool = False, **rule_options):
+        self._mode: Mode = mode_of(mode)
+        self.table = Table.eight_foot() if table is None else table
+        if not isinstance(self.table, Table):
+            raise TypeError(f"table must be pool_env.physics.Table, got {type(self.table).__name__}")
+        self.physics = Physics.standard() if physics is None else physics
+        if not isinstance(self.physics, Physics):
+            raise TypeError(f"physics must be pool_env.physics.Physics, got {type(self.physics).__name__}")
+        self.noise = noise_of(noise)
+        layout = self._mode.layout if layout is None else layout
+        if layout not in LAYOUTS:
+            raise ValueError(f"unknown action layout {layout!r}; choose one of {', '.join(LAYOUTS)}")
+        self.layout: ActionLayout = LAYOUTS[layout]
+        if self.layout.placement != (self._mode.rules is not None):
+            raise ValueError(f"layout {layout!r} does not fit the {mode} mode")
+        if randomize_cue and self._mode.rules is not None:
+            raise ValueError("randomize_cue is for the break and run modes (the rules place the cue ball)")
+        if rule_options and self._mode.rules is None:
+            raise TypeError(f"the {mode} mode has no rules to take options {sorted(rule_options)}")
+        self.randomize_cue = bool(randomize_cue)
+        self.rule_options = dict(rule_options)
+        if self._mode.rules is not None:
+            rules.new_game(self._mode.rules, **self.rule_options)  # bad options raise here
+        self.rng = np.random.default_rng(seed)
+        self._balls, self._state, self._shots, self._over = None, None, 0, False
+        self.reset()
+
+    # --- read-only state ----------------------------------------------------------------------
+    @property
+    def mode(self) -> str:
+        return self._mode.name
+
+    @property
+    def label(self) -> str:
+        """The mode's name for people ("9-ball")."""
+        return self._mode.label
+
+    @property
+    def n_balls(self) -> int:
+        return self._mode.balls
+
+    @property
+    def has_rules(self) -> bool:
+        return self._mode.rules is not None
+
+    @property
+    def balls(self) -> Balls:
+        """The balls now, at rest (read-only arrays), ball k is number k."""
+        return self._balls
+
+    @property
+    def state(self) -> rules.GameState | None:
+        """The rules' state (`rules.GameState`, immutable); None in the break and run modes."""
+        return self._state
+
+    @property
+    def shooter(self) -> int:
+        return 0 if self._state is None else self._state.shooter
+
+    @property
+    def ball_in_hand(self) -> str | None:
+        """None (the cue ball plays from where it lies), "anywhere" or "behind_head_string"."""
+        return None if self._state is None or self._state.winner is not None else self._state.ball_in_hand
+
+    @property
+    def legal_targets(self) -> frozenset:
+        """The object balls the shooter may hit first (without rules: any on the table)."""
+        if self._state is None:
+            return frozenset(int(b) for b in np.flatnonzero(~self._balls.pocketed[1:]) + 1)
+        return frozenset() if self._state.winner is not None else rules.legal_targets(self._state)
+
+    @property
+    def shots(self) -> int:
+        """Shots played (a shot the simulator could not finish does not count)."""
+        return self._shots
+
+    @property
+    def winner(self) -> int | None:
+        return None if self._state is None else self._state.winner
+
+    @property
+    def over(self) -> bool:
+        """The game has ended: a winner, or (without rules) the break played, a scratch, or the
+        last object ball down on a table with pockets."""
+        return self._over
+
+    def placement_area(self, where: str | None = None):
+        """(x_lo, x_hi, y_lo, y_hi) of the cue ball's centre with ball in hand `where` (default:
+        the shooter's now); None when he has none."""
+        where = self.ball_in_hand if where is None else where
+        return None if where is None else placement_area(self.table, where, float(self._balls.radii[0]))
+
+    # --- actions --------------------------------------------------------------------------------
+    def decode(self, action) -> Shot:
+        """The `Shot` an action vector of the game's layout means now (the ball-in-hand entries
+        map onto the shooter's placement area). ValueError for a wrong shape or a non-finite entry."""
+        return decode_action(self.layout, action, self.placement_area(), self.table.pockets.shape[0])
+
+    def encode(self, shot: Shot) -> np.ndarray:
+        """The action vector (float32) of the game's layout that `decode` reads back as `shot` now."""
+        return encode_action(self.layout, shot, self.placement_area(), self.table.pockets.shape[0])
+
+    # --- starting -------------------------------------------------------------------------------
+    def reset(self, seed=None, *, rng=None, balls: Balls | None = None, breaker: int = 0,
+              ball_in_hand: bool = False, state: rules.GameState | None = None) -> Game:
+        """A new game: `seed` reseeds the noise generator (or `rng` replaces it); a rack drawn
+        from it (the cue ball's random start first, with `randomize_cue`, then the rack's seed,
+        drawn even when `balls` is given), `breaker` (0 or 1) to break. `balls` starts from a
+        layout instead (`n_balls` balls at rest by number, the cue ball on the table; with rules
+        an open table, the last ball on it, `ball_in_hand` anywhere if asked), `breaker` to
+        shoot; or, with `state` (a `rules.GameState` of this game's rules whose `on_table` is
+        the layout's), from that position of a game (a planner's)."""
+        if rng is not None:
+            self.rng = rng
+        elif seed is not None:
+            self.rng = np.random.default_rng(seed)
+        if breaker not in (0, 1) or isinstance(breaker, (bool, np.bool_)):
+            raise ValueError(f"breaker must be 0 or 1, got {breaker!r}")
+        cue_xy = self._cue_start() if self.randomize_cue else None
+        rack_seed = int(self.rng.integers(2**63 - 1))
+        if balls is None:
+            self._balls = self._mode.rack(self.table, rack_seed, cue_xy)
+            state = rules.new_game(self._mode.rules, breaker=breaker, **self.rule_options) if self.has_rules else None
+        else:
+            self._balls = self._check_layout(balls, position=state is not None)
+            if state is not None:
+                self._check_state(state, balls)
+            elif self.has_rules:
+                state = self._open_table(balls, breaker, ball_in_hand)
+        self._state, self._shots, self._over = state, 0, False
+        return self
+
+    def _check_layout(self, balls, position=False):
+        """A starting layout checked; a planner's `position` (with its state) may have the cue
+        ball in hand off the table, and its balls are checked as `simulate` checks them, when a
+        shot is played from it."""
+        n = self.n_balls
+        if not isinstance(balls, Balls) or len(balls) != n:
+            raise ValueError(f"balls must be pool_env.physics.Balls with {n} balls (ball k is number k), got {balls!r}")
+        if np.any(balls.v) or np.any(balls.w):
+            raise ValueError("balls must be at rest (zero velocities and spins)")
+        if position:
+            return balls
+        if balls.pocketed[0]:
+            raise ValueError("balls: the cue ball (ball 0) must be on the table")
+        last = {"nine_ball": 9, "eight_ball": 8}.get(self._mode.rules)
+        if last is not None and balls.pocketed[last]:
+            raise ValueError(f"balls: the {last} must be on the table (the game would be over)")
+        check_on_table(balls, self.table, self.physics)
+        return balls
+
+    def _check_state(self, state, balls):
+        if not self.has_rules:
+            raise ValueError(f"the {self.mode} mode has no rules' state")
+        if not isinstance(state, rules.GameState) or state.kind != self._mode.rules:
+            raise ValueError(f"state must be a {self._mode.rules} rules.GameState, got {state!r}")
+        on_table = frozenset(int(k) for k in np.flatnonzero(~balls.pocketed[1:]) + 1)
+        if state.on_table != on_table:
+            raise ValueError(f"state.on_table {sorted(state.on_table)} is not the layout's {sorted(on_table)}")
+
+    def _open_table(self, balls, shooter, ball_in_hand):
+        state = rules.new_game(self._mode.rules, breaker=0, **self.rule_options)
+        on_table = frozenset(int(k) for k in np.flatnonzero(~balls.pocketed[1:]) + 1)
+        return dataclasses.replace(state, on_table=on_table, is_break=False, shooter=shooter,
+                                   ball_in_hand="anywhere" if ball_in_hand else None)
+
+    def _cue_start(self):
+        (x0, x1), (y0, y1) = CUE_AREA
+        L, W, r = self.table.length, self.table.width, BALL_RADIUS
+        pockets = self.table.pockets
+        for _ in range(CUE_TRIES):
+            x = self.rng.uniform(max(x0 * L, r), x1 * L)
+            y = self.rng.uniform(max(y0 * W, r), min(y1 * W, W - r))
+            if not pockets.shape[0] or np.all(np.hypot(pockets[:, 0] - x, pockets[:, 1] - y) > pockets[:, 2] + r):
+                return (x, y)
+        return (0.25 * L, 0.5 * W)
+
+    # --- playing ------------------------------------------------------------------------------
+    def play(self, shot) -> ShotRecord:
+        """Play one shot (a `Shot` or an action vector) from the state now; see the class."""
+        struck = self.strike(shot)
+        return self.resolve(struck, simulate_struck(struck, self.table, self.physics))
+
+    def strike(self, shot, rng=None) -> StruckShot:
+        """`play`'s first half: the shot checked, the cue ball placed (ball in hand), the noise
+        drawn (from `rng`, default the game's generator) and the cue ball struck. Changes
+        nothing but the generator. RuntimeError if the game is over, ValueError for a bad shot."""
+        if self._over:
+            raise RuntimeError("the game is over; reset() it")
+        action = None
+        if not isinstance(shot, Shot):
+            action = tuple(np.asarray(shot, dtype=np.float64).ravel().tolist()) if np.ndim(shot) == 1 else None
+            shot = self.decode(shot)
+        placed, hand = self._balls, self.ball_in_hand
+        if hand is not None:
+            wanted = shot.place
+            if wanted is None:
+                x_lo, x_hi, y_lo, y_hi = self.placement_area()
+                wanted = placed.xy[0] if not placed.pocketed[0] else (0.5 * (x_lo + x_hi), 0.5 * (y_lo + y_hi))
+            placed = place_cue_ball(placed, self.table, self.physics, hand, wanted)
+        called = shot.pocket if self._mode.rules == "eight_ball" else None
+        if called is not None and called >= self.table.pockets.shape[0]:
+            raise ValueError(f"Shot.pocket {called} names no pocket (the table has {self.table.pockets.shape[0]})")
+        force, tip = noisy_shot(np.array(shot.force), np.array(shot.tip), self.noise,
+                                self.rng if rng is None else rng)
+        try:
+            struck = strike(placed, force, tip, CONTACT_TIME)
+        except ValueError as exc:
+            struck = exc
+        return StruckShot(shot, self.shooter, hand, called, placed, force, tip, struck, action)
+
+    def resolve(self, struck: StruckShot, result) -> ShotRecord:
+        """`play`'s second half: apply the simulation's `Result` (or the SimulationError or
+        ValueError it raised) of `struck` from this state, and return the record."""
+        record = self.judge(struck, result)
+        if record.error is None:
+            self._balls, self._state, self._over = record.balls_after, record.state_after, record.over
+            self._shots += 1
+        else:  # the balls stay put (the cue ball where it was placed)
+            self._balls = record.balls_before
+        return record
+
+    def judge(self, struck: StruckShot, result) -> ShotRecord:
+        """The record of `struck`'s simulation from this state, without changing the game."""
+        base = dict(shooter=struck.shooter, shot=struck.shot, action=struck.action,
+                    ball_in_hand=struck.ball_in_hand, called_pocket=struck.called_pocket,
+                    force=struck.force, tip=struck.tip, balls_before=struck.placed, state_before=self._state)
+        if isinstance(result, Exception):
+            if not isinstance(result, SHOT_ERRORS):
+                raise result
+            return ShotRecord(**base, balls_after=struck.placed, result=None, ruling=None, state_after=self._state,
+                              over=False, error=f"{type(result).__name__}: {result}")
+        if not self.has_rules:
+            final = result.final
+            cleared = self.table.pockets.shape[0] > 0 and bool(np.all(final.pocketed[1:]))
+            over = self._mode.one_shot or bool(final.pocketed[0]) or cleared
+            return ShotRecord(**base, balls_after=final, result=result, ruling=None, state_after=None, over=over)
+        outcome = rules.outcome_from_result(result)
+        state, ruling = rules.judge(self._state, outcome, struck.called_pocket)
+        balls = result.final
+        if ruling.balls_to_spot:
+            balls = rules.spot_balls(balls, self.table, ruling.balls_to_spot)
+        return ShotRecord(**base, balls_after=balls, result=result, ruling=ruling, state_after=state,
+                          over=state.winner is not None, judged=outcome)
+
+    # --- branching ------------------------------------------------------------------------------
+    @property
+    def key(self) -> tuple:
+        """What a snapshot must match to be restored here: mode, table, physics, noise, rules."""
+        noise = None if self.noise is None else tuple(sorted(self.noise.items()))
+        return (self.mode, table_key(self.table), self.physics, noise, tuple(sorted(self.rule_options.items())))
+
+    def snapshot(self) -> GameSnapshot:
+        """The whole state now, the noise generator's included."""
+        return GameSnapshot(self.key, self._balls, self._state, self._shots, self._over,
+                            copy.deepcopy(self.rng.bit_generator.state))
+
+    def restore(self, snapshot: GameSnapshot) -> Game:
+        """Put back a `snapshot` of this game (or of one made with the same mode, table, physics,
+        noise and rules); the generator's state is set in place. ValueError for another game's."""
+        if not isinstance(snapshot, GameSnapshot):
+            raise TypeError(f"restore takes a GameSnapshot, got {type(snapshot).__name__}")
+        if snapshot.key != self.key:
+            theirs, ours = snapshot.key, self.key
+            what = [name for name, a, b in zip(("mode", "table", "physics", "noise", "rule options"), theirs, ours)
+                    if a != b]
+            raise ValueError(f"the snapshot is of another game: its {', '.join(what)} differ from this game's")
+        ours = type(self.rng.bit_generator).__name__
+        if snapshot.rng_state["bit_generator"] != ours:
+            raise ValueError(f"the snapshot's noise generator is a {snapshot.rng_state['bit_generator']}, "
+                             f"this game's a {ours}")
+        self._balls, self._state, self._shots, self._over = snapshot.balls, snapshot.state, snapshot.shots, \
+            snapshot.over
+        self.rng.bit_generator.state = copy.deepcopy(snapshot.rng_state)
+        return self
+
+    def evaluate(self, shots, draws: int = 1, seed=None, threads: int | None = 1) -> list[ShotRecord]:
+        """K candidate `shots` (Shots or action vectors) x `draws` noise draws each, from the
+        state now, simulated in one `simulate_batch` call (`threads` as there); the game does not
+        change. Returns the K x draws records, shot major (record k * draws + j is draw j of
+        shot k). The noise comes from one generator, drawn in that order: `seed` an int (or
+        anything `numpy.random.default_rng` takes) seeds a new one; a `numpy.random.Generator`
+        is used (and advanced); None copies the game's own (so with draws=1, record k equals
+        `restore(snapshot)` then `play(shot k)`). Record k * draws + j equals restoring the
+        snapshot, setting `rng` to that generator as it stands after the draws before it, and
+        playing shot k. ValueError for no shots, draws < 1 or a bad shot (naming which)."""
+        shots = list(shots)
+        if not shots:
+            raise ValueError("evaluate needs at least one shot")
+        if isinstance(draws, bool) or int(draws) != draws or draws < 1:
+            raise ValueError(f"draws must be an integer >= 1, got {draws!r}")
+        if self._over:
+            raise RuntimeError("the game is over; reset() it")
+        decoded = []
+        for k, shot in enumerate(shots):
+            try:
+                decoded.append((shot if isinstance(shot, Shot) else self.decode(shot), shot))
+            except ValueError as exc:
+                raise ValueError(f"shot {k}: {exc}") from None
+        rng = self._evaluation_rng(seed)
+        struck = [self._strike_or_fail(shot if isinstance(given, Shot) else given, rng)
+                  for shot, given in decoded for _ in range(int(draws))]
+        results = simulate_struck_batch(struck, self.table, self.physics, threads)
+        return [self.judge(s, r) for s, r in zip(struck, results)]
+
+    def _strike_or_fail(self, shot, rng) -> StruckShot:
+        """`strike`, a placement that finds no free spot recorded as the shot's failure."""
+        try:
+            return self.strike(shot, rng=rng)
+        except ValueError as exc:
+            decoded = shot if isinstance(shot, Shot) else self.decode(shot)
+            zero = (0.0, 0.0)
+            return StruckShot(decoded, self.shooter, self.ball_in_hand, None, self._balls, zero, zero, exc)
+
+    def _evaluation_rng(self, seed):
+        if isinstance(seed, np.random.Generator):
+            return seed
+        if seed is not None:
+            return np.random.default_rng(seed)
+        twin = np.random.Generator(type(self.rng.bit_generator)())
+        twin.bit_generator.state = copy.deepcopy(self.rng.bit_generator.state)
+        return twin
+
+
+def simulate_struck(struck: StruckShot, table: Table, physics: Physics):
+    """The `Result` of a struck shot, or the SimulationError or ValueError it raised (a shot
+    that could not be struck passes its ValueError on)."""
+    if isinstance(struck.balls, Exception):
+        return struck.balls
+    try:
+        return simulate(struck.balls, table, physics)
+    except SHOT_ERRORS as exc:
+        return exc
+
+
+def simulate_struck_batch(struck, table: Table, physics: Physics, threads: int | None = None) -> list:
+    """`simulate_struck` of many shots on one table, the playable ones in one `simulate_batch` call."""
+    playable = [k for k, s in enumerate(struck) if not isinstance(s.balls, Exception)]
+    out = [s.balls for s in struck]
+    if playable:
+        for k, result in zip(playable, simulate_batch([struck[k].balls for k in playable], table, physics,
+                                                      threads=threads)):
+            out[k] = result
+    return out
+
+
+def play_batch(games, shots, threads: int | None = None) -> list[ShotRecord]:
+    """`games[k].play(shots[k])` for every k, the simulations in one `simulate_batch` call when
+    the games share a table and physics (else one call per game). The records, in order."""
+    games, shots = list(games), list(shots)
+    if len(games) != len(shots):
+        raise ValueError(f"play_batch needs one shot per game, got {len(games)} games and {len(shots)} shots")
+    struck = [game.strike(shot) for game, shot in zip(games, shots)]
+    if games and all(g.table is games[0].table and g.physics == games[0].physics for g in games):
+        results = simulate_struck_batch(struck, games[0].table, games[0].physics, threads)
+    else:
+        results = [simulate_struck(s, g.table, g.physics) for s, g in zip(struck, games)]
+    return [game.resolve(s, r) for game, s, r in zip(games, struck, results)]

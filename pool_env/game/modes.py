@@ -1,0 +1,46 @@
+"""The game modes `Game` plays: one registry of names, each with its balls, rack, rules and action layout."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .. import rules
+from ..physics import rack
+
+
+@dataclass(frozen=True)
+class Mode:
+    """A mode of play: `balls` in play (the cue ball included, ball k is number k), the rules'
+    kind (None: no rules, the shooter keeps the table until a scratch), `one_shot` (the game
+    is the break alone), its default action layout (`actions.LAYOUTS`) and a label for captions."""
+
+    name: str
+    balls: int
+    rules: str | None
+    one_shot: bool
+    layout: str
+    label: str
+
+    def rack(self, table, seed, cue_xy=None):
+        """The starting balls, racked with `seed` (WPA racking for the rules' games)."""
+        if self.rules == "nine_ball":
+            return rules.nine_ball_rack(table, seed=seed)
+        if self.rules == "eight_ball":
+            return rules.eight_ball_rack(table, seed=seed)
+        return rack(table, seed=seed, cue_xy=cue_xy)
+
+
+MODES = {
+    "break": Mode("break", 16, None, one_shot=True, layout="cue", label="break"),
+    "run": Mode("run", 16, None, one_shot=False, layout="cue", label="break and run"),
+    "nine_ball": Mode("nine_ball", 10, "nine_ball", one_shot=False, layout="nine_ball", label="9-ball"),
+    "eight_ball": Mode("eight_ball", 16, "eight_ball", one_shot=False, layout="eight_ball", label="8-ball"),
+}
+RULES_MODES = tuple(name for name, mode in MODES.items() if mode.rules is not None)
+
+
+def mode_of(name) -> Mode:
+    """The registered mode `name`; ValueError naming the choices."""
+    if name not in MODES:
+        raise ValueError(f"unknown game {name!r}; choose one of {', '.join(MODES)}")
+    return MODES[name]

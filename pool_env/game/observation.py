@@ -1,0 +1,125 @@
+"""The observation layouts of the break envs and of the games: one encoder and one decoder each."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import rules
+from ..physics import Balls, Table
+
+N_BALLS = 16  # the break envs' balls: the cue ball and 15 object balls
+GAME_BALLS = {"nine_ball": 10, "eight_ball": 16}  # balls in play, the cue ball included
+
+
+# --- the break envs (PoolBreak-v0, PoolBreakRun-v0) ---------------------------------------------
+def break_observations(xy, pocketed, shots, max_shots, table: Table, out):
+    """Write the observations (see PoolBreakEnv) of n envs into `out` (n, 49) float32,
+    C-contiguous, from the balls' positions xy (n, 16, 2), their pocketed flags (n, 16) and the
+    shots taken (n,) of `max_shots` (n,)."""
+    if not out.flags.c_contiguous:
+        raise ValueError("out must be C-contiguous (its per-ball view must not be a copy)")
+    per_ball = out[:, :-1].reshape(out.shape[0], N_BALLS, 3)
+    # Centres on the cloth map into (-1, 1); a ball hanging in a pocket's mouth has its centre
+    # up to a few cm past the nose line, clipped to the edge (the decoder puts it on the nose line).
+    per_ball[:, :, 0:2] = xy * (2.0 / table.length, 2.0 / table.width) - 1.0
+    np.clip(per_ball[:, :, 0:2], -1.0, 1.0, out=per_ball[:, :, 0:2])
+    per_ball[:, :, 2] = 1.0
+    per_ball[pocketed] = (0.0, 0.0, -1.0)
+    out[:, -1] = 2.0 * shots / max_shots - 1.0
+    return out
+
+
+def break_observation(balls: Balls, shots: int, max_shots: int, table: Table) -> np.ndarray:
+    """One break env's observation (49,) float32."""
+    obs = np.empty(3 * N_BALLS + 1, dtype=np.float32)
+    break_observations(balls.xy[None], balls.pocketed[None], shots, max_shots, table, obs[None])
+    return obs
+
+
+def decode_observation(obs, table: Table):
+    """A break env's observation read back: (xy (16, 2) in metres, on_table (16,) bool).
+    Pocketed balls get xy = NaN."""
+    obs = np.asarray(obs, dtype=np.float64)
+    balls = obs[: 3 * N_BALLS].reshape(N_BALLS, 3)
+    on_table = balls[:, 2] > 0
+    xy = np.empty((N_BALLS, 2))
+    xy[:, 0] = (balls[:, 0] + 1.0) * 0.5 * table.length
+    xy[:, 1] = (balls[:, 1] + 1.0) * 0.5 * table.width
+    xy[~on_table] = np.nan
+    return xy, on_table
+
+
+# --- the games (PoolNineBall-v0, PoolEightBall-v0, the two-player envs) -------------------------
+def game_observation_size(game: str) -> int:
+    n = GAME_BALLS[game]
+    return 3 * n + (n - 1) + 4 + (3 if game == "eight_ball" else 0) + 1
+
+
+def game_observation(balls: Balls, state, viewer: int, shots: int, max_shots: int, table: Table) -> np.ndarray:
+    """The observation of `viewer` (0 or 1) as PoolGameEnv documents it, float32 in [-1, 1]."""
+    n = len(balls)
+    per_ball = np.empty((n, 3), dtype=np.float32)
+    per_ball[:, 0:2] = np.clip(balls.xy * (2.0 / table.length, 2.0 / table.width) - 1.0, -1.0, 1.0)
+    per_ball[:, 2] = 1.0
+    per_ball[balls.pocketed] = (0.0, 0.0, -1.0)
+    legal = np.full(n - 1, -1.0, dtype=np.float32)
+    if state.winner is None:
+        for ball in rules.legal_targets(state):
+            legal[ball - 1] = 1.0
+    in_hand = state.ball_in_hand if state.shooter == viewer else None
+    hand = [1.0 if in_hand == "anywhere" else -1.0, 1.0 if in_hand == "behind_head_string" else -1.0]
+    fouls = [min(state.fouls[viewer], 2) - 1.0, min(state.fouls[1 - viewer], 2) - 1.0]  # a third ends the game
+    extra = []
+    if state.kind == "eight_ball":
+        group = state.groups[viewer]
+        extra = [1.0 if group is None else -1.0, 1.0 if group == "solids" else -1.0,
+                 1.0 if group == "stripes" else -1.0]
+    counter = [2.0 * min(shots, max_shots) / max_shots - 1.0]
+    return np.concatenate([per_ball.ravel(), legal, np.array(hand + fouls + extra + counter, dtype=np.float32)])
+
+
+@dataclass(frozen=True)
+class GameView:
+    """A game observation read back (`decode_game_observation`), from the viewer's side:
+    positions (n, 2) in metres (a pocketed ball's are meaningless), on-table flags (n,), the
+    legal first contacts (object balls), ball in hand for the viewer (None, "anywhere",
+    "behind_head_string"), consecutive fouls (viewer, opponent; 2 means two or more), the
+    viewer's 8-ball group (None while open, and in 9-ball) and the shot counter entry."""
+
+    xy: np.ndarray
+    on_table: np.ndarray
+    legal: frozenset
+    ball_in_hand: str | None = None
+    fouls: tuple = (0, 0)
+    group: str | None = None
+    counter: float = -1.0
+
+    @property
+    def legal_mask(self) -> np.ndarray:
+        """(n - 1,) bool: object ball k + 1 is a legal first contact."""
+        mask = np.zeros(len(self.on_table) - 1, dtype=bool)
+        for ball in self.legal:
+            mask[ball - 1] = True
+        return mask
+
+
+def decode_game_observation(obs, game: str, table: Table) -> GameView:
+    """The `GameView` of a game observation of `game` ("nine_ball", "eight_ball")."""
+    n = GAME_BALLS[game]
+    obs = np.asarray(obs, dtype=np.float64)
+    if obs.shape != (game_observation_size(game),):
+        raise ValueError(f"a {game} observation has shape ({game_observation_size(game)},), got {obs.shape}")
+    per_ball = obs[: 3 * n].reshape(n, 3)
+    on_table = per_ball[:, 2] > 0
+    xy = np.column_stack([(per_ball[:, 0] + 1.0) * 0.5 * table.length, (per_ball[:, 1] + 1.0) * 0.5 * table.width])
+    legal = frozenset(int(b) + 1 for b in np.flatnonzero(obs[3 * n: 4 * n - 1] > 0))
+    hand = obs[4 * n - 1: 4 * n + 1]
+    in_hand = "anywhere" if hand[0] > 0 else ("behind_head_string" if hand[1] > 0 else None)
+    fouls = tuple(int(round(f + 1.0)) for f in obs[4 * n + 1: 4 * n + 3])
+    group = None
+    if game == "eight_ball":
+        flags = obs[4 * n + 3: 4 * n + 6]
+        group = "solids" if flags[1] > 0 else ("stripes" if flags[2] > 0 else None)
+    return GameView(xy, on_table, legal, in_hand, fouls, group, float(obs[-1]))

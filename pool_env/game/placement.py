@@ -1,0 +1,54 @@
+"""Ball in hand: the area the cue ball may be placed in, and the free spot nearest a wanted one."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .. import rules
+from ..physics import BALL_RADIUS, Balls, Physics, Table
+from ..physics.simulate import check_on_table
+
+PLACE_MARGIN = 1e-4  # m: a placed cue ball clears rails and balls by this much
+PLACE_STEP, PLACE_RINGS, PLACE_ANGLES = 2e-3, 600, 32  # the search for the nearest legal spot
+
+
+def placement_area(table: Table, where: str, radius: float = BALL_RADIUS):
+    """(x_lo, x_hi, y_lo, y_hi) of the cue ball's centre with ball in hand: anywhere on the
+    cloth, or behind the head string (the centre at most L/4 from the head rail: the kitchen)."""
+    r = radius + PLACE_MARGIN
+    x_hi = rules.head_string_x(table) if where == "behind_head_string" else table.length - r
+    return r, x_hi, r, table.width - r
+
+
+def place_cue_ball(balls: Balls, table: Table, physics: Physics, where: str, wanted) -> Balls:
+    """The balls with the cue ball (pocketed or not) placed as near `wanted` (m) as it may be:
+    inside the area (`placement_area`), overlapping no ball, passing `check_on_table`. The
+    search walks rings of PLACE_STEP around the wanted spot; ValueError if none is free."""
+    x_lo, x_hi, y_lo, y_hi = placement_area(table, where, float(balls.radii[0]))
+    on = ~balls.pocketed
+    on[0] = False
+    others = balls.xy[on]
+    reach = float(balls.radii[0]) * 2.0 + PLACE_MARGIN
+    wx, wy = min(max(float(wanted[0]), x_lo), x_hi), min(max(float(wanted[1]), y_lo), y_hi)
+    angles = np.linspace(0.0, 2.0 * math.pi, PLACE_ANGLES, endpoint=False)
+    for ring in range(PLACE_RINGS):
+        if ring == 0:
+            spots = np.array([[wx, wy]])
+        else:
+            spots = np.column_stack([wx + ring * PLACE_STEP * np.cos(angles), wy + ring * PLACE_STEP * np.sin(angles)])
+        inside = (spots[:, 0] >= x_lo) & (spots[:, 0] <= x_hi) & (spots[:, 1] >= y_lo) & (spots[:, 1] <= y_hi)
+        if others.size:
+            gap = np.hypot(spots[:, None, 0] - others[None, :, 0], spots[:, None, 1] - others[None, :, 1])
+            inside &= gap.min(axis=1) >= reach
+        for spot in spots[inside]:
+            xy, pocketed = balls.xy.copy(), balls.pocketed.copy()
+            xy[0], pocketed[0] = spot, False
+            placed = Balls(xy, radius=balls.radius, mass=balls.mass, pocketed=pocketed)
+            try:
+                check_on_table(placed, table, physics)
+            except ValueError:
+                continue
+            return placed
+    raise ValueError("no free spot for the cue ball")

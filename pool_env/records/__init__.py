@@ -1,0 +1,1 @@
+"""pool_env.records: saved games (`record_game`, `save_game`, `load_game`, `replay`) and videos (`record_video`)."""
