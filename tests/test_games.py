@@ -219,3 +219,22 @@ def test_the_opponent_can_break():
     state = env.unwrapped.state
     assert state.shooter == 0 and not state.is_break and state.winner is None
     assert state.shot >= 1
+
+
+def test_a_game_the_opponent_wins_before_the_agent_shoots_is_reported_not_racked_again():
+    """With the opponent to shoot first, its win in that turn ends the episode as the agent's loss:
+    reset says so (info winner/end_reason), the next step plays nothing and returns -1, terminated."""
+    def pot_the_nine(obs):  # the 9 alone, 0.12 m from corner pocket 0 on the diagonal, the cue ball behind it
+        return action(vx=-1.5 / math.sqrt(2.0), vy=-1.5 / math.sqrt(2.0), top=-0.4)
+
+    d = np.array([1.0, 1.0]) / math.sqrt(2.0)
+    balls = layout(10, {0: tuple(0.37 * d), 9: tuple(0.25 * d)})
+    env = gym.make("PoolNineBall-v0", opponent=pot_the_nine)
+    obs, info = env.reset(seed=0, options={"balls": balls, "agent_breaks": False})
+    assert info == {"winner": "opponent", "end_reason": "nine_pocketed"}
+    assert env.unwrapped.reset_records[0].pocketed == (9,)
+    with pytest.raises(ValueError, match="shape"):
+        env.step(np.zeros(3, np.float32))  # a bad action is still refused
+    obs, reward, terminated, truncated, info = env.step(action(vx=1.0))
+    assert (reward, terminated, truncated, info["winner"]) == (-1.0, True, False, "opponent")
+    assert env.unwrapped.step_records == () and info["events"] == 0  # the agent's action was not played

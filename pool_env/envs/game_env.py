@@ -163,10 +163,10 @@ class PoolGameEnv(HumanWindow, gym.Env):
     reports it in its info (`winner` "opponent", `end_reason`) and the next step ends the
     episode as a loss (reward -1, `terminated`) without playing its action.
     `reset(options={"balls": balls})` starts from a given layout (16 or 10 balls by number, at
-    rest, the cue ball on the table, pocketed balls allowed;
-    bad layouts raise ValueError): the agent to shoot on an open table, with ball in hand
-    anywhere if `options={"ball_in_hand": True}`; `options={"agent_breaks": False}` lets the
-    opponent break this game.
+    rest, the cue ball on the table, pocketed balls allowed; bad layouts raise ValueError): the
+    agent to shoot on an open table, with ball in hand anywhere if
+    `options={"ball_in_hand": True}`. `options={"agent_breaks": False}` lets the opponent break
+    this game (or, with a layout, shoot first).
 
     ## Info
 
@@ -229,10 +229,10 @@ class PoolGameEnv(HumanWindow, gym.Env):
         super().reset(seed=seed)
         given = options.get("balls")
         agent_breaks = bool(options.get("agent_breaks", self.agent_breaks))
-        if given is None and not agent_breaks and self._opponent is None:
+        if not agent_breaks and self._opponent is None:
             raise ValueError("practice (opponent=None) has no one to break: reset with agent_breaks True")
         try:
-            self.game.reset(rng=self.np_random, balls=given, breaker=0 if agent_breaks or given is not None else 1,
+            self.game.reset(rng=self.np_random, balls=given, breaker=0 if agent_breaks else 1,
                             ball_in_hand=bool(options.get("ball_in_hand", False)))
         except ValueError as exc:
             raise ValueError(f"options['balls']: {exc}") from None
