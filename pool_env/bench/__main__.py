@@ -10,6 +10,7 @@ BENCHES = {
     "stability": "random-scene sweep checking the invariants after every event",
     "vector": "shots/s of the native vector env beside SB3's and Gymnasium's, and of simulate_batch",
     "pockets": "our pocket model beside pooltool 0.6: pot/no-pot on a grid of straight and cut shots",
+    "game": "Game.evaluate against restore + play, the run vector env's shots/s, 9-ball steps/s",
 }
 
 
