@@ -6,6 +6,7 @@ import gymnasium as gym
 import numpy as np
 from gymnasium.utils import EzPickle, seeding
 from pettingzoo import AECEnv
+from pettingzoo.utils import wrappers
 
 from ..envs.game_env import SHAPING_BALL, SHAPING_FOUL, PoolGameEnv, captioned, record_info, shot_caption
 from ..game import GAME_BALLS, Game, game_observation, game_observation_size
@@ -231,3 +232,31 @@ class PoolGameAEC(AECEnv, EzPickle):
             raise ValueError(f"options['breaker'] must be 0, 1, 'player_0' or 'player_1', got {breaker!r}")
         options["breaker"] = int(breaker)
         return options
+
+
+def aec_module(game: str, name: str):
+    """(env, raw_env) of a module such as `nine_ball_v0` (PettingZoo's convention): `raw_env` is
+    `PoolGameAEC` with `game` fixed, `env` wraps it as PettingZoo's classic envs are
+    (`OrderEnforcingWrapper`: reset before step, no stepping a finished game). PettingZoo's
+    action wrappers do not apply: every action is legal (no `TerminateIllegalWrapper`), the
+    space is a Box (no `AssertOutOfBoundsWrapper`), and the env clips out-of-range entries
+    itself as PoolGameEnv does, so `ClipOutOfBoundsWrapper` would only warn on float64 actions."""
+
+    class raw_env(PoolGameAEC):
+        metadata = {**PoolGameAEC.metadata, "name": name}
+
+        def __init__(self, render_mode=None, **kwargs):
+            if "game" in kwargs:
+                raise TypeError(f"{name} plays {game}; got game={kwargs['game']!r} "
+                                "(use pool_env.multiagent.PoolGameAEC)")
+            super().__init__(game=game, render_mode=render_mode, **kwargs)
+            EzPickle.__init__(self, render_mode=render_mode, **kwargs)  # pickles rebuild this class, without game
+
+    raw_env.__doc__ = f"`PoolGameAEC` with `game={game!r}`; keyword arguments as PoolGameAEC's."
+    raw_env.__module__, raw_env.__qualname__ = f"pool_env.multiagent.{name}", "raw_env"  # pickle finds it there
+
+    def env(render_mode=None, **kwargs):
+        return wrappers.OrderEnforcingWrapper(raw_env(render_mode=render_mode, **kwargs))
+
+    env.__doc__ = aec_module.__doc__.split("\n\n")[0].replace("(env, raw_env) of a module such as `nine_ball_v0`", name)
+    return env, raw_env
