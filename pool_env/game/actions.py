@@ -77,9 +77,10 @@ def decode_action(layout: ActionLayout, action, area=None, n_pockets: int = 6) -
     a = np.asarray(action, dtype=np.float64)
     if a.shape != (layout.size,):
         raise ValueError(f"action must have shape ({layout.size},), got shape {a.shape}")
-    if not np.all(np.isfinite(a)):
-        raise ValueError(f"action must be finite, got {a.tolist()}")
-    a = np.clip(a, -1.0, 1.0)
+    values = a.tolist()  # Python floats: the same IEEE arithmetic as numpy's, without its per-call cost
+    if not all(math.isfinite(v) for v in values):
+        raise ValueError(f"action must be finite, got {values}")
+    a = [min(max(v, -1.0), 1.0) for v in values]  # np.clip(a, -1, 1)
     force, tip = cue_force(a[0:4], spin=True)
     place = None
     if area is not None:

@@ -22,12 +22,13 @@ CUE_AREA = ((0.05, 0.25), (0.1, 0.9))  # randomize_cue: the cue ball's start, as
 CUE_TRIES = 1000  # draws of a random cue spot before falling back to the head spot
 
 
-@dataclass(frozen=True)
+@dataclass(eq=False)
 class StruckShot:
     """A shot ready to simulate (`Game.strike`): who shoots, what he meant (`shot`, and the
     `action` it was read from, if any), his ball in hand, the called pocket, the balls at rest
     with the cue ball placed (`placed`), the cue's force and tip as executed (noise included),
-    and `balls`, the struck balls to simulate, or the ValueError striking raised."""
+    and `balls`, the struck balls to simulate, or the ValueError striking raised. Read-only by
+    convention (not frozen: it is made for every shot, and a frozen dataclass is slow to make)."""
 
     shot: Shot
     shooter: int
@@ -40,7 +41,7 @@ class StruckShot:
     action: tuple | None = None
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(eq=False)
 class ShotRecord:
     """What one shot did (`Game.play`, `Game.evaluate`).
 
@@ -51,7 +52,7 @@ class ShotRecord:
     physics `Result` (events, trajectories, stats); `ruling` the rules' `Ruling` and
     `state_after` the next `rules.GameState` (None in the break and run modes); `over` the
     game ended with this shot; `error` why the shot could not be simulated (then `result` is
-    None, the game did not change and the balls are `balls_before`)."""
+    None, the game did not change and the balls are `balls_before`). Read-only by convention."""
 
     shooter: int
     shot: Shot
@@ -354,8 +355,9 @@ class Game:
         called = shot.pocket if self._mode.rules == "eight_ball" else None
         if called is not None and called >= self.table.pockets.shape[0]:
             raise ValueError(f"Shot.pocket {called} names no pocket (the table has {self.table.pockets.shape[0]})")
-        force, tip = noisy_shot(np.array(shot.force), np.array(shot.tip), self.noise,
-                                self.rng if rng is None else rng)
+        force, tip = shot.force, shot.tip
+        if self.noise is not None:
+            force, tip = noisy_shot(force, tip, self.noise, self.rng if rng is None else rng)
         try:
             struck = strike(placed, force, tip, CONTACT_TIME)
         except ValueError as exc:
@@ -373,28 +375,31 @@ class Game:
             self._balls = record.balls_before
         return record
 
-    def judge(self, struck: StruckShot, result) -> ShotRecord:
-        """The record of `struck`'s simulation from this state, without changing the game."""
-        base = dict(shooter=struck.shooter, shot=struck.shot, action=struck.action,
-                    ball_in_hand=struck.ball_in_hand, called_pocket=struck.called_pocket,
-                    force=struck.force, tip=struck.tip, balls_before=struck.placed, state_before=self._state)
+    def judge(self, struck: StruckShot, result, rulings: dict | None = None) -> ShotRecord:
+        """The record of `struck`'s simulation from this state, without changing the game
+        (`rulings`: a cache of the rules' judgements from this state, by outcome and called pocket)."""
+        head = (struck.shooter, struck.shot, struck.action, struck.ball_in_hand, struck.called_pocket, struck.force,
+                struck.tip, struck.placed, self._state)
         if isinstance(result, Exception):
             if not isinstance(result, SHOT_ERRORS):
                 raise result
-            return ShotRecord(**base, balls_after=struck.placed, result=None, ruling=None, state_after=self._state,
-                              over=False, error=f"{type(result).__name__}: {result}")
+            error = f"{type(result).__name__}: {result}"
+            return ShotRecord(*head, struck.placed, None, None, self._state, False, error)
+        final = result.final
         if not self.has_rules:
-            final = result.final
             cleared = self.table.pockets.shape[0] > 0 and bool(np.all(final.pocketed[1:]))
             over = self._mode.one_shot or bool(final.pocketed[0]) or cleared
-            return ShotRecord(**base, balls_after=final, result=result, ruling=None, state_after=None, over=over)
+            return ShotRecord(*head, final, result, None, None, over)
         outcome = rules.outcome_from_result(result)
-        state, ruling = rules.judge(self._state, outcome, struck.called_pocket)
-        balls = result.final
-        if ruling.balls_to_spot:
-            balls = rules.spot_balls(balls, self.table, ruling.balls_to_spot)
-        return ShotRecord(**base, balls_after=balls, result=result, ruling=ruling, state_after=state,
-                          over=state.winner is not None, judged=outcome)
+        key = (outcome, struck.called_pocket)
+        judged = None if rulings is None else rulings.get(key)
+        if judged is None:
+            judged = rules.judge(self._state, outcome, struck.called_pocket)
+            if rulings is not None:
+                rulings[key] = judged
+        state, ruling = judged
+        balls = rules.spot_balls(final, self.table, ruling.balls_to_spot) if ruling.balls_to_spot else final
+        return ShotRecord(*head, balls, result, ruling, state, state.winner is not None, judged=outcome)
 
     # --- branching ------------------------------------------------------------------------------
     @property
@@ -454,7 +459,8 @@ class Game:
         struck = [self._strike_or_fail(shot if isinstance(given, Shot) else given, rng)
                   for shot, given in decoded for _ in range(int(draws))]
         results = simulate_struck_batch(struck, self.table, self.physics, threads)
-        return [self.judge(s, r) for s, r in zip(struck, results)]
+        rulings: dict = {}  # candidate shots often end alike: the rules judge each outcome once
+        return [self.judge(s, r, rulings) for s, r in zip(struck, results)]
 
     def _strike_or_fail(self, shot, rng) -> StruckShot:
         """`strike`, a placement that finds no free spot recorded as the shot's failure."""

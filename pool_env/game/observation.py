@@ -60,24 +60,25 @@ def game_observation_size(game: str) -> int:
 def game_observation(balls: Balls, state, viewer: int, shots: int, max_shots: int, table: Table) -> np.ndarray:
     """The observation of `viewer` (0 or 1) as PoolGameEnv documents it, float32 in [-1, 1]."""
     n = len(balls)
-    per_ball = np.empty((n, 3), dtype=np.float32)
+    out = np.empty(game_observation_size(state.kind), dtype=np.float32)
+    per_ball = out[: 3 * n].reshape(n, 3)
     per_ball[:, 0:2] = np.clip(balls.xy * (2.0 / table.length, 2.0 / table.width) - 1.0, -1.0, 1.0)
     per_ball[:, 2] = 1.0
     per_ball[balls.pocketed] = (0.0, 0.0, -1.0)
-    legal = np.full(n - 1, -1.0, dtype=np.float32)
+    legal = out[3 * n: 4 * n - 1]
+    legal[:] = -1.0
     if state.winner is None:
-        for ball in rules.legal_targets(state):
-            legal[ball - 1] = 1.0
+        legal[[ball - 1 for ball in rules.legal_targets(state)]] = 1.0
     in_hand = state.ball_in_hand if state.shooter == viewer else None
-    hand = [1.0 if in_hand == "anywhere" else -1.0, 1.0 if in_hand == "behind_head_string" else -1.0]
-    fouls = [min(state.fouls[viewer], 2) - 1.0, min(state.fouls[1 - viewer], 2) - 1.0]  # a third ends the game
-    extra = []
+    tail = [1.0 if in_hand == "anywhere" else -1.0, 1.0 if in_hand == "behind_head_string" else -1.0,
+            min(state.fouls[viewer], 2) - 1.0, min(state.fouls[1 - viewer], 2) - 1.0]  # a third foul ends the game
     if state.kind == "eight_ball":
         group = state.groups[viewer]
-        extra = [1.0 if group is None else -1.0, 1.0 if group == "solids" else -1.0,
+        tail += [1.0 if group is None else -1.0, 1.0 if group == "solids" else -1.0,
                  1.0 if group == "stripes" else -1.0]
-    counter = [2.0 * min(shots, max_shots) / max_shots - 1.0]
-    return np.concatenate([per_ball.ravel(), legal, np.array(hand + fouls + extra + counter, dtype=np.float32)])
+    tail.append(2.0 * min(shots, max_shots) / max_shots - 1.0)
+    out[4 * n - 1:] = tail
+    return out
 
 
 @dataclass(frozen=True)

@@ -12,6 +12,8 @@ from ..physics.simulate import check_on_table
 
 PLACE_MARGIN = 1e-4  # m: a placed cue ball clears rails and balls by this much
 PLACE_STEP, PLACE_RINGS, PLACE_ANGLES = 2e-3, 600, 32  # the search for the nearest legal spot
+RING_ANGLES = np.linspace(0.0, 2.0 * math.pi, PLACE_ANGLES, endpoint=False)
+RING_COS, RING_SIN = np.cos(RING_ANGLES), np.sin(RING_ANGLES)
 
 
 def placement_area(table: Table, where: str, radius: float = BALL_RADIUS):
@@ -32,23 +34,28 @@ def place_cue_ball(balls: Balls, table: Table, physics: Physics, where: str, wan
     others = balls.xy[on]
     reach = float(balls.radii[0]) * 2.0 + PLACE_MARGIN
     wx, wy = min(max(float(wanted[0]), x_lo), x_hi), min(max(float(wanted[1]), y_lo), y_hi)
-    angles = np.linspace(0.0, 2.0 * math.pi, PLACE_ANGLES, endpoint=False)
-    for ring in range(PLACE_RINGS):
-        if ring == 0:
-            spots = np.array([[wx, wy]])
-        else:
-            spots = np.column_stack([wx + ring * PLACE_STEP * np.cos(angles), wy + ring * PLACE_STEP * np.sin(angles)])
+    if not others.size or float(np.min(np.hypot(others[:, 0] - wx, others[:, 1] - wy))) >= reach:
+        placed = _placed(balls, (wx, wy), table, physics)  # the spot asked for is free: the common case
+        if placed is not None:
+            return placed
+    for ring in range(1, PLACE_RINGS):
+        spots = np.column_stack([wx + ring * PLACE_STEP * RING_COS, wy + ring * PLACE_STEP * RING_SIN])
         inside = (spots[:, 0] >= x_lo) & (spots[:, 0] <= x_hi) & (spots[:, 1] >= y_lo) & (spots[:, 1] <= y_hi)
         if others.size:
             gap = np.hypot(spots[:, None, 0] - others[None, :, 0], spots[:, None, 1] - others[None, :, 1])
             inside &= gap.min(axis=1) >= reach
         for spot in spots[inside]:
-            xy, pocketed = balls.xy.copy(), balls.pocketed.copy()
-            xy[0], pocketed[0] = spot, False
-            placed = Balls(xy, radius=balls.radius, mass=balls.mass, pocketed=pocketed)
-            try:
-                check_on_table(placed, table, physics)
-            except ValueError:
-                continue
-            return placed
+            placed = _placed(balls, spot, table, physics)
+            if placed is not None:
+                return placed
     raise ValueError("no free spot for the cue ball")
+
+
+def _placed(balls, spot, table, physics):
+    """The balls with the cue ball at `spot`, or None if the spot is off the table's cloth."""
+    placed = balls.with_ball_at(0, spot)
+    try:
+        check_on_table(placed, table, physics)
+    except ValueError:
+        return None
+    return placed

@@ -29,7 +29,8 @@ MIN_NOISY_SPEED = 0.01  # m/s: the noise never turns a shot round (a speed below
 
 def _pair(value, what) -> tuple[float, float]:
     try:
-        a, b = (float(v) for v in value)
+        a, b = value
+        a, b = float(a), float(b)
     except (TypeError, ValueError):
         raise ValueError(f"{what} must be two numbers, got {value!r}") from None
     if not (math.isfinite(a) and math.isfinite(b)):

@@ -122,6 +122,24 @@ class Balls:
         """Mass of every ball, shape (N,)."""
         return self._masses
 
+    def with_ball_at(self, k: int, xy) -> Balls:
+        """These balls (at rest) with ball `k` on the table at `xy` (m), the others as they are:
+        what placing the cue ball in hand does. Checks only ball k (finite, overlapping no
+        ball on the table beyond the contact tolerance), so it costs O(N); ValueError otherwise."""
+        x, y = float(xy[0]), float(xy[1])
+        if not (math.isfinite(x) and math.isfinite(y)):
+            raise ValueError(f"ball {k}'s position must be finite, got {(x, y)}")
+        on = ~self.pocketed
+        on[k] = False
+        gap = np.hypot(self.xy[on, 0] - x, self.xy[on, 1] - y) - self._radii[on] - self._radii[k]
+        if gap.size and gap.min() < -CONTACT_TOLERANCE:
+            other = int(np.flatnonzero(on)[int(np.argmin(gap))])
+            i, j = sorted((k, other))
+            raise ValueError(f"balls {i} and {j} overlap by {-gap.min() * 1000:.3g} mm")
+        xy_new, pocketed = self.xy.copy(), self.pocketed.copy()
+        xy_new[k], pocketed[k] = (x, y), False
+        return Balls._trusted(xy_new, self.v, self.w, pocketed, self)
+
     def energy(self) -> float:
         """Kinetic energy (translation and rotation) of the balls on the table (J)."""
         return float(np.sum(kinetic_energy(self.v, self.w, self._radii, self._masses)[~self.pocketed]))

@@ -34,10 +34,11 @@ class RandomAgent(Agent):
 
     def __init__(self, action_space, seed: int | None = None):
         """`action_space` a Box, or a layout's size (int): Box(-1, 1, (size,))."""
-        if isinstance(action_space, int):
-            self.low, self.high = -np.ones(action_space, np.float32), np.ones(action_space, np.float32)
+        if isinstance(action_space, int):  # uniform on [-1, 1] in every entry: one call, no bound arrays
+            self.low, self.high, self.shape = -1.0, 1.0, (action_space,)
             self.rng = np.random.default_rng(seed)
             return
+        self.shape = None
         self.low = np.asarray(action_space.low, dtype=np.float32)
         self.high = np.asarray(action_space.high, dtype=np.float32)
         self.rng = np.random.default_rng(seed)
@@ -47,7 +48,7 @@ class RandomAgent(Agent):
             self.rng = np.random.default_rng(seed)
 
     def act(self, observation) -> np.ndarray:
-        return self.rng.uniform(self.low, self.high).astype(np.float32)
+        return self.rng.uniform(self.low, self.high, self.shape).astype(np.float32)
 
 
 def game_of(env):

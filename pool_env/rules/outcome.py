@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from ..physics.kinds import BALL_BALL_KINDS, BALL_CUSHION, BALL_POCKET, EVENT_KINDS
+
 CUE = 0  # the cue ball's number
 
 
@@ -94,22 +96,24 @@ def outcome_from_result(result) -> ShotOutcome:
     Contacts are the "ball_ball" kinds (a pressed "ball_ball_settle" contact included); a
     cushion contact is a "ball_cushion" event (rails, facings and jaw tips alike); a drop is a
     "ball_pocket" event (j the pocket index). Motion transitions are ignored."""
-    first = None
-    contact_seen = rail_after = cue_pocketed = False
-    pocketed, pocket_of, to_rail = [], {}, set()
-    for event in result.events:
-        kind, i, j = event.kind, int(event.i), int(event.j)
-        if kind.startswith("ball_ball"):
+    arrays = getattr(result, "event_arrays", None)
+    if arrays is not None:  # a physics Result: its arrays as lists, without an Event object per event
+        kinds, i_s, j_s = (a.tolist() for a in arrays[1:])
+    else:
+        kinds = [EVENT_KINDS.index(event.kind) for event in result.events]
+        i_s, j_s = [int(event.i) for event in result.events], [int(event.j) for event in result.events]
+    first, contact_seen, rail_after = None, False, False
+    to_rail, dropped, pockets = set(), [], []
+    for kind, i, j in zip(kinds, i_s, j_s):
+        if kind in BALL_BALL_KINDS:
             if not contact_seen and CUE in (i, j):
                 first, contact_seen = (j if i == CUE else i), True
-        elif kind == "ball_cushion":
+        elif kind == BALL_CUSHION:
             rail_after = rail_after or contact_seen
             if i != CUE:
                 to_rail.add(i)
-        elif kind == "ball_pocket":
-            pocket_of[i] = j
-            if i == CUE:
-                cue_pocketed = True
-            else:
-                pocketed.append(i)
-    return ShotOutcome(first, tuple(pocketed), pocket_of, cue_pocketed, rail_after, frozenset(to_rail))
+        elif kind == BALL_POCKET:
+            dropped.append(i)
+            pockets.append(j)
+    pocketed = tuple(b for b in dropped if b != CUE)
+    return ShotOutcome(first, pocketed, dict(zip(dropped, pockets)), CUE in dropped, rail_after, frozenset(to_rail))

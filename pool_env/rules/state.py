@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 from .outcome import CUE, ShotOutcome
 
@@ -172,9 +172,9 @@ def advance(state, ruling, on_table, fouls, groups=None):
     """The GameState after a shot ruled `ruling`: the next shooter, ball in hand, fouls,
     groups and the balls left (`on_table`, spotted balls included)."""
     shooter = 1 - state.shooter if ruling.turn_passed else state.shooter
-    return replace(state, on_table=frozenset(on_table), shooter=shooter, ball_in_hand=ruling.ball_in_hand,
-                   fouls=tuple(fouls), groups=state.groups if groups is None else tuple(groups), is_break=False,
-                   shot=state.shot + 1, winner=ruling.winner)
+    # Built directly (dataclasses.replace costs several times as much, and a game judges every shot).
+    return GameState(state.rules, frozenset(on_table), shooter, ruling.ball_in_hand, tuple(fouls),
+                     state.groups if groups is None else tuple(groups), False, state.shot + 1, ruling.winner)
 
 
 def turn_messages(new, turn_passed, warn_two_fouls) -> list:
@@ -191,4 +191,5 @@ def turn_messages(new, turn_passed, warn_two_fouls) -> list:
 
 def with_messages(ruling, messages):
     """`ruling` with its messages."""
-    return replace(ruling, messages=tuple(messages))
+    return Ruling(ruling.foul, ruling.fouls, ruling.turn_passed, ruling.ball_in_hand, ruling.balls_to_spot,
+                  ruling.winner, ruling.end_reason, tuple(messages))
