@@ -465,8 +465,8 @@ def trained_agent(args: Args, run: Run, model):
 def play_games(agent, args: Args, run: Run, seeds) -> dict:
     """`agent` against args.opponent, one game per seed, the agent breaking the even-numbered ones:
     game_summary of the records, which it keeps under "per_episode". As in agents.tournament, the
-    breaker is the env's agent and the other player its opponent: the env re-racks a game its
-    opponent wins before the agent's first shot, which would favour the player who did not break."""
+    breaker is the env's agent and the other player its opponent, so the breaker's turn is always a
+    step of the env (never played inside its reset) and its break-and-runs count as they happen."""
 
     from agents import RandomAgent
     from pool_env.players.game_ghost_ball import GameGhostBallAgent

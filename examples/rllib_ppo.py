@@ -10,7 +10,7 @@ them one after the other (Gymnasium's SyncVectorEnv); `--vectorize vector_entry_
     python examples/rllib_ppo.py --iterations 40                   # 80,000 breaks: mean return -0.4 -> ~0.6
     python examples/rllib_ppo.py --address auto --num-env-runners 16   # an existing cluster (`ray start`)
 
-ray[rllib] 2.60 pins gymnasium==1.2.2, so this runs in its own virtualenv (see README.md,
+ray[rllib] 2.60 pins gymnasium==1.2.2, so this runs in its own virtualenv (see docs/env.md,
 "Scaling out"). It prints one line per training iteration and a final summary line.
 """
 

@@ -1,6 +1,6 @@
 """examples/rllib_ppo.py: Ray RLlib's PPO trains on PoolBreak-v0, the env unchanged.
 
-ray[rllib] pins gymnasium==1.2.2, so it lives in its own virtualenv (README.md, "Scaling out"),
+ray[rllib] pins gymnasium==1.2.2, so it lives in its own virtualenv (docs/env.md, "Scaling out"),
 where .ci/run runs this file. In an environment without ray[rllib] the tests are skipped, unless
 POOL_ENV_REQUIRE_RLLIB=1 (as .ci/run sets in the rllib venv): then a missing ray fails them.
 """
@@ -27,7 +27,7 @@ if importlib.util.find_spec("ray") is None or importlib.util.find_spec("ray.rlli
     if os.environ.get("POOL_ENV_REQUIRE_RLLIB") == "1":
         raise ImportError("POOL_ENV_REQUIRE_RLLIB=1 but ray[rllib] is not importable in this environment")
     pytest.skip("ray[rllib] is not installed: it pins gymnasium==1.2.2, so it has its own venv "
-                "(README.md, 'Scaling out'; .ci/run runs this file there)", allow_module_level=True)
+                "(docs/env.md, 'Scaling out'; .ci/run runs this file there)", allow_module_level=True)
 
 
 def ray_env(tmp):

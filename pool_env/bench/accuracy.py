@@ -311,7 +311,7 @@ def table_rows(records, dts, names=tuple(m for m, _ in METHODS)):
 
 
 def headline(records, dts):
-    """The numbers of the README sentence, from the break records."""
+    """The numbers of the summary sentence, from the break records."""
     brk = [r for r in records if r["scene"] == "break"]
     exact = aggregate([r for r in brk if r["method"] == "exact"])
     report = aggregate([r for r in brk if r["method"] == REPORT_METHOD and r["dt"] == dts[0]])
@@ -327,7 +327,7 @@ def headline(records, dts):
 
 
 def headline_sentence(records, dts):
-    """The README sentence: the report's 60 fps on the break, and what getting within 1 mm costs."""
+    """The summary sentence: the report's 60 fps on the break, and what getting within 1 mm costs."""
     exact, report, within = headline(records, dts)
     smallest = dt_label(dts[-1])
     text = (f"With the report's collision detection alone (a priori, one ball-ball collision per frame, 60 fps; "
@@ -379,7 +379,7 @@ def _mm(metres):
 
 
 def seed_sentence(seed_records, dts):
-    """The README sentence on the report's own loop: its error on its own model at its 60 fps,
+    """The summary sentence on the report's own loop: its error on its own model at its 60 fps,
     beside its detection with exact motion, and its time."""
     rows, within = seed_figures(seed_records, dts)
     (_, lone, lone_fixed, _), (_, simple, simple_fixed, _), (_, brk, brk_fixed, brk_exact) = rows

@@ -1,4 +1,4 @@
-"""`python -m pool_env.bench speed`: simulator speed against the targets of the engine-shape issue.
+"""`python -m pool_env.bench speed`: simulator speed against its targets.
 
 Every figure is measured in fresh interpreters through the public API only (`simulate`,
 `Physics`, `Table`, `rack`, `strike` and this module's `break_shot` / `two_ball_shot`), so
@@ -24,7 +24,7 @@ import time
 from pathlib import Path
 from typing import NamedTuple
 
-# Targets of the engine-shape issue (seconds), one core, after warm-up unless stated.
+# The speed targets (seconds), one core, after warm-up unless stated.
 TARGETS = {
     "break": 0.40e-3,
     "two_ball": 20e-6,
@@ -93,7 +93,7 @@ class Version(NamedTuple):
 
 
 def break_shot(seed):
-    """The 16-ball break of the issue: cue ball at 8 m/s, centre hit on the head ball."""
+    """The benchmark's 16-ball break: cue ball at 8 m/s, centre hit on the head ball."""
     from pool_env.physics import BALL_MASS, Table, rack, strike
 
     table = Table.eight_foot()
@@ -512,5 +512,5 @@ def main(argv=None) -> int:
         print_pooltool(peer, {"break": (ours["break"], ours["events"]),
                               "two_ball": (ours["two_ball"], ours["two_ball_events"])})
     elif not args.quick:
-        print("\npooltool: not importable here, no side-by-side figures (see README, 'Comparing with pooltool').")
+        print("\npooltool: not importable here, no side-by-side figures (see docs/pooltool.md).")
     return 0

@@ -3,7 +3,7 @@
 A "shot" is a step that simulates one (an autoreset step that only resets does not count:
 under Gymnasium's NEXT_STEP mode the step after an episode ends is such a step for that
 sub-env). Random actions, all in one run, so the ratios compare like with like on a noisy
-machine. Targets (2 cores) from the issue "Many shots at once".
+machine. Targets for 2 cores.
 """
 
 from __future__ import annotations

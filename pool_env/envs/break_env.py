@@ -280,7 +280,7 @@ class PoolBreakEnv(HumanWindow, gym.Env):
     now (returning None). Closing the window stops the drawing (the env plays on); `close()`
     closes it. Without pygame, or on a machine without a display, the first frame raises an
     error naming the fix (`SDL_VIDEODRIVER=dummy` runs it headless, as the tests do).
-    `python -m pool_env.play` plays with the mouse (README.md, "Play").
+    `python -m pool_env.play` plays with the mouse (docs/play.md).
     """
 
     metadata = {"render_modes": ["human", "rgb_array", "rgb_array_list"], "render_fps": 30}

@@ -343,8 +343,9 @@ class Game:
             raise RuntimeError("the game is over; reset() it")
         action = None
         if not isinstance(shot, Shot):
-            action = tuple(np.asarray(shot, dtype=np.float64).ravel().tolist()) if np.ndim(shot) == 1 else None
-            shot = self.decode(shot)
+            a = np.asarray(shot, dtype=np.float64)
+            action = tuple(a.tolist()) if a.ndim == 1 else None
+            shot = self.decode(a)
         placed, hand = self._balls, self.ball_in_hand
         if hand is not None:
             wanted = shot.place
@@ -387,7 +388,7 @@ class Game:
             return ShotRecord(*head, struck.placed, None, None, self._state, False, error)
         final = result.final
         if not self.has_rules:
-            cleared = self.table.pockets.shape[0] > 0 and bool(np.all(final.pocketed[1:]))
+            cleared = self.table.pockets.shape[0] > 0 and bool(final.pocketed[1:].all())
             over = self._mode.one_shot or bool(final.pocketed[0]) or cleared
             return ShotRecord(*head, final, result, None, None, over)
         outcome = rules.outcome_from_result(result)

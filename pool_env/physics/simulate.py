@@ -118,7 +118,7 @@ def _run_events(balls, table, physics, max_events):
 
 # Whether engine.run is compiled in this process (set after the first run).
 _compiled = [False]
-# The cold compile measured on a 2-core machine (README, "Speed"): what the notice promises.
+# The cold compile measured on a 2-core machine (docs/speed.md): what the notice promises.
 COLD_COMPILE_SECONDS = 20
 
 
