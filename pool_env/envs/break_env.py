@@ -10,14 +10,13 @@ from gymnasium import logger, spaces
 
 from ..game import N_BALLS, Game, StruckShot, break_observation, simulate_struck
 from ..physics import Balls, Table
-from ..physics.kinds import BALL_BALL, BALL_BALL_SETTLE, BALL_CUSHION, BALL_POCKET
+from ..physics.kinds import BALL_BALL_KINDS, BALL_CUSHION, BALL_POCKET
 from ..render.playback import ShotPlayback
 from ..render.window import HumanWindow
 
 SHAPING_CONTACT = 0.1  # shaping: + for hitting an object ball, - for missing them all
 SHAPING_SPREAD = 0.5  # shaping: weight of the spread gain on a table with pockets
 RESET_OPTIONS = ("balls",)  # the keys reset(options=...) accepts
-NO_EVENTS = np.zeros(0, dtype=np.int64)  # the event arrays of a shot that could not be simulated
 
 
 def run_step(shots, table: Table, physics):
@@ -65,20 +64,26 @@ def spread_gain(before: Balls, after: Balls, table: Table) -> float:
 def shot_info(result, after: Balls, error: str | None = None) -> dict:
     """A step's `info` (see PoolBreakEnv) from the shot's `Result` and the balls after it; for a
     shot that could not be simulated, result None, the balls as they were and the error message."""
-    if result is None:
-        kind = i = j = NO_EVENTS
-    else:
-        _, kind, i, j = result.event_arrays
-    contacts = (kind == BALL_BALL) | (kind == BALL_BALL_SETTLE)  # a settle is a (pressed) contact too
-    cue_hits = np.flatnonzero(contacts & ((i == 0) | (j == 0)))
+    pocketed, first, cushions, events = [], -1, 0, 0
+    if result is not None:
+        _, kinds, i_s, j_s = (a.tolist() for a in result.event_arrays)  # lists: a shot has tens of events
+        events = len(kinds)
+        for kind, i, j in zip(kinds, i_s, j_s):
+            if kind == BALL_POCKET:
+                pocketed.append(i)
+            elif kind == BALL_CUSHION:
+                cushions += 1
+            elif first < 0 and kind in BALL_BALL_KINDS and (i == 0 or j == 0):  # a settle is a contact too
+                first = i + j
+    on_table = after.pocketed.tolist()
     info = {
-        "pocketed": i[kind == BALL_POCKET].tolist(),
-        "first_contact": -1 if not cue_hits.size else int(i[cue_hits[0]] + j[cue_hits[0]]),
-        "cushion_hits": int(np.count_nonzero(kind == BALL_CUSHION)),
-        "scratch": bool(after.pocketed[0]),
-        "events": int(kind.size),
+        "pocketed": pocketed,
+        "first_contact": first,
+        "cushion_hits": cushions,
+        "scratch": bool(on_table[0]),
+        "events": events,
         "shot_duration": 0.0 if result is None else result.duration,
-        "balls_left": int(len(after) - 1 - np.count_nonzero(after.pocketed[1:])),
+        "balls_left": len(on_table) - 1 - sum(on_table[1:]),
     }
     if error is not None:
         info["error"] = error

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import copy
 import dataclasses
-import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -22,7 +21,7 @@ CUE_AREA = ((0.05, 0.25), (0.1, 0.9))  # randomize_cue: the cue ball's start, as
 CUE_TRIES = 1000  # draws of a random cue spot before falling back to the head spot
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True)
 class StruckShot:
     """A shot ready to simulate (`Game.strike`): who shoots, what he meant (`shot`, and the
     `action` it was read from, if any), his ball in hand, the called pocket, the balls at rest
@@ -41,7 +40,7 @@ class StruckShot:
     action: tuple | None = None
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True)
 class ShotRecord:
     """What one shot did (`Game.play`, `Game.evaluate`).
 
@@ -71,12 +70,12 @@ class ShotRecord:
     error: str | None = None
     judged: rules.ShotOutcome | None = None
 
-    @functools.cached_property
+    @property
     def outcome(self) -> rules.ShotOutcome | None:
-        """What the rules see of the shot (`rules.ShotOutcome`); None for a failed shot."""
-        if self.judged is not None or self.result is None:
-            return self.judged
-        return rules.outcome_from_result(self.result)
+        """What the rules see of the shot (`rules.ShotOutcome`, read once); None for a failed shot."""
+        if self.judged is None and self.result is not None:
+            self.judged = rules.outcome_from_result(self.result)
+        return self.judged
 
     @property
     def pocketed(self) -> tuple:

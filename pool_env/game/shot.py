@@ -38,7 +38,7 @@ def _pair(value, what) -> tuple[float, float]:
     return a, b
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class Shot:
     """One cue shot, before the table's noise.
 
