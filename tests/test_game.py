@@ -239,3 +239,16 @@ def test_the_observations_decode_to_what_was_encoded():
         assert view.ball_in_hand == ("anywhere" if viewer == 1 else None)
         assert view.fouls == (min(state.fouls[viewer], 2), min(state.fouls[1 - viewer], 2))
         assert view.group == state.groups[viewer]
+
+
+def test_the_8_is_called_when_it_is_the_ball_on_and_not_on_the_break():
+    # WPA 8-ball 1.6 / 3.4: the 8 is shot at with its pocket called; the break calls nothing.
+    game = Game("eight_ball")
+    assert not game.calls_pocket  # the break
+    solids_done = layout(16, {0: (0.5, 0.5), 8: (1.5, 0.6), 9: (1.8, 0.3)})
+    state = rules.new_game("eight_ball", breaker=0)
+    state = type(state)(state.rules, frozenset({8, 9}), groups=("solids", "stripes"), ball_in_hand=None,
+                        is_break=False, shot=9)
+    game.reset(balls=solids_done, state=state)
+    assert game.legal_targets == frozenset({8}) and game.calls_pocket
+    assert not Game("nine_ball").calls_pocket

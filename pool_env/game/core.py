@@ -223,6 +223,14 @@ class Game:
         return frozenset() if self._state.winner is not None else rules.legal_targets(self._state)
 
     @property
+    def calls_pocket(self) -> bool:
+        """The shooter must call a pocket (`Shot.pocket`) for this shot: 8-ball, shooting at
+        the 8 (WPA 1.6: the 8 is called; not on the break)."""
+        state = self._state
+        return (self._mode.rules == "eight_ball" and state.winner is None and not state.is_break
+                and self.legal_targets == frozenset({8}))
+
+    @property
     def shots(self) -> int:
         """Shots played (a shot the simulator could not finish does not count)."""
         return self._shots

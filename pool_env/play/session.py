@@ -9,7 +9,6 @@ from pathlib import Path
 import gymnasium as gym
 import numpy as np
 
-from .. import rules
 from ..game import MAX_SPEED, MAX_TIP_OFFSET, Shot, place_cue_ball, placement_area
 from ..physics import BALL_RADIUS
 from ..players import player_names
@@ -133,10 +132,8 @@ class PlaySession:
 
     @property
     def needs_call(self) -> bool:
-        """The shooter must call a pocket: 8-ball, shooting at the 8 (not on the break)."""
-        state = self.state
-        return (self.game == "eight_ball" and not self.done and not state.is_break
-                and rules.legal_targets(state) == frozenset({8}))
+        """The shooter must call a pocket (the game's `calls_pocket`: 8-ball, at the 8, not the break)."""
+        return not self.done and self.base.game.calls_pocket
 
     def restart(self, seed=None):
         """A new game (seed `seed`, default the next one)."""
