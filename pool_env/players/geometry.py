@@ -31,12 +31,15 @@ def rotate(v, angle: float) -> np.ndarray:
 
 def point_segment_distance(points, a, b) -> np.ndarray:
     """Distance from points to segments a-b; all three broadcast over leading axes (last axis: x, y)."""
-    points, a, b = (np.asarray(v, dtype=np.float64) for v in (points, a, b))
+    points, a, b = np.asarray(points, dtype=np.float64), np.asarray(a, dtype=np.float64), \
+        np.asarray(b, dtype=np.float64)
     ab = b - a
-    length2 = np.sum(ab * ab, axis=-1)
-    s = np.clip(np.sum((points - a) * ab, axis=-1) / np.where(length2 > 0, length2, 1.0), 0.0, 1.0)
-    gap = points - (a + s[..., None] * ab)
-    return np.hypot(gap[..., 0], gap[..., 1])
+    abx, aby = ab[..., 0], ab[..., 1]
+    length2 = abx * abx + aby * aby  # the sum of the two products, as np.sum(ab * ab, axis=-1) adds them
+    pa = points - a
+    s = (pa[..., 0] * abx + pa[..., 1] * aby) / np.where(length2 > 0, length2, 1.0)
+    s = np.minimum(np.maximum(s, 0.0), 1.0)  # np.clip(s, 0, 1), without its dispatch
+    return np.hypot(points[..., 0] - (a[..., 0] + s * abx), points[..., 1] - (a[..., 1] + s * aby))
 
 
 def segments_distance(a, b, c, d) -> np.ndarray:
@@ -127,17 +130,43 @@ def pockets_of(table: Table) -> list[Pocket]:
             for k, ((x, y, r), mouth) in enumerate(zip(table.pockets, table.mouths, strict=True))]
 
 
+_AIMS: dict = {}  # pocket_aim's results by its inputs: a decision asks the same ones many times
+AIM_CACHE = 20_000  # entries kept (the cache is emptied when full)
+
+
 def pocket_aim(obj, pocket: Pocket, table: Table, radius: float, obstacles, samples: int = 21):
     """Where to send a ball at `obj` into `pocket`: the middle of the widest run of points on
     the mouth chord that the ball's centre reaches without touching a jaw, a rail or another
-    ball. Returns (aim point, fraction of the mouth that is open) or None if none is."""
+    ball. Returns (aim point, fraction of the mouth that is open) or None if none is. A pure
+    function of its inputs, so its answers are kept (a player planning from several cue-ball
+    spots asks for the same object ball, pocket and obstacles again)."""
+    obj = np.asarray(obj, dtype=np.float64)
+    obstacles = np.asarray(obstacles, dtype=np.float64).reshape(-1, 2)
+    key = (obj.tobytes(), pocket.index, pocket.jaw_a.tobytes(), pocket.jaw_b.tobytes(), id(table), float(radius),
+           obstacles.tobytes(), samples)
+    found = _AIMS.get(key)
+    if found is None:
+        if len(_AIMS) >= AIM_CACHE:
+            _AIMS.clear()
+        found = _AIMS[key] = (_pocket_aim(obj, pocket, table, radius, obstacles, samples), table)
+    return found[0]
+
+
+def _rails_near(rails, obj, pocket, reach):
+    """The rails whose box, grown by `reach`, meets the box of the paths from `obj` to the
+    mouth: the others are farther than `reach` from every path, so they cannot close one."""
+    lo = np.minimum(obj, np.minimum(pocket.jaw_a, pocket.jaw_b)) - reach
+    hi = np.maximum(obj, np.maximum(pocket.jaw_a, pocket.jaw_b)) + reach
+    low, high = np.minimum(rails[:, 0:2], rails[:, 2:4]), np.maximum(rails[:, 0:2], rails[:, 2:4])
+    return rails[np.all(low <= hi, axis=1) & np.all(high >= lo, axis=1)]
+
+
+def _pocket_aim(obj, pocket, table, radius, obstacles, samples):
     lams = np.linspace(0.05, 0.95, samples)
     points = pocket.jaw_a + lams[:, None] * (pocket.jaw_b - pocket.jaw_a)
-    obj = np.asarray(obj, dtype=np.float64)
-    rails = table.rails
+    rails = _rails_near(table.rails, obj, pocket, 1.05 * radius)
     to_rails = segments_distance(obj, points[:, None, :], rails[None, :, 0:2], rails[None, :, 2:4])
     ok = to_rails.min(axis=1, initial=np.inf) >= 1.05 * radius
-    obstacles = np.asarray(obstacles, dtype=np.float64).reshape(-1, 2)
     if obstacles.shape[0] and ok.any():
         to_balls = point_segment_distance(obstacles[None, :, :], obj, points[:, None, :])
         ok &= to_balls.min(axis=1) >= 2.04 * radius
@@ -149,7 +178,9 @@ def pocket_aim(obj, pocket: Pocket, table: Table, radius: float, obstacles, samp
     starts, stops = edges[0::2], edges[1::2]
     k = int(np.argmax(stops - starts))
     middle = 0.5 * (lams[starts[k]] + lams[stops[k] - 1])
-    return pocket.jaw_a + middle * (pocket.jaw_b - pocket.jaw_a), (stops[k] - starts[k]) / samples
+    point = pocket.jaw_a + middle * (pocket.jaw_b - pocket.jaw_a)
+    point.flags.writeable = False  # kept and shared (see pocket_aim)
+    return point, (stops[k] - starts[k]) / samples
 
 
 def fold(p, lo, hi):
