@@ -4,6 +4,7 @@ Skipped when pettingzoo (the `.[multiagent]` extra) is not importable, unless
 POOL_ENV_REQUIRE_PETTINGZOO=1 (as .ci/run sets): then a missing pettingzoo fails them.
 """
 
+import copy
 import importlib.util
 import os
 import pickle
@@ -280,3 +281,24 @@ def test_self_play_example_runs():
     assert lines[0].startswith("round 1/1: 256 shots")
     assert sum(line.startswith("game ") for line in lines) == 2
     assert re.match(r"PPO \d+, ghost-ball \d+, unfinished \d+", lines[-1])
+
+
+@pytest.mark.parametrize("copier", [copy.deepcopy, lambda env: pickle.loads(pickle.dumps(env))],
+                         ids=["deepcopy", "pickle"])
+def test_a_copy_of_a_game_under_way_continues_exactly(copier):
+    env = nine_ball_v0.env(noise="olympiad")
+    env.reset(seed=2)
+    rng = np.random.default_rng(0)
+    for _ in range(3):
+        env.step(None if env.terminations[env.agent_selection] else rng.uniform(-1, 1, 6).astype(np.float32))
+    twin = copier(env)
+    assert twin.unwrapped.shots == env.unwrapped.shots == 3
+    for _ in range(4):
+        agent = env.agent_selection
+        assert twin.agent_selection == agent
+        done = env.terminations[agent] or env.truncations[agent]
+        action = None if done else rng.uniform(-1, 1, 6).astype(np.float32)
+        env.step(action)
+        twin.step(action)
+        assert np.array_equal(env.observe("player_0"), twin.observe("player_0"))
+        assert env.rewards == twin.rewards and env.infos == twin.infos

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import gymnasium as gym
 import numpy as np
-from gymnasium.utils import EzPickle, seeding
+from gymnasium.utils import seeding
 from pettingzoo import AECEnv
 from pettingzoo.utils import wrappers
 
@@ -17,7 +17,7 @@ AGENTS = ("player_0", "player_1")
 RESET_OPTIONS = ("balls", "ball_in_hand", "breaker")
 
 
-class PoolGameAEC(AECEnv, EzPickle):
+class PoolGameAEC(AECEnv):
     """9-ball or 8-ball by the WPA rules (`pool_env.rules`, docs/rules.md) between two agents,
     `player_0` and `player_1`, in PettingZoo's AEC API: one `step` is one shot of
     `agent_selection`, who keeps the table while he pockets legally (the rules pass the turn on
@@ -78,9 +78,6 @@ class PoolGameAEC(AECEnv, EzPickle):
 
     def __init__(self, game="nine_ball", render_mode=None, noise=None, shaping=False, max_shots=200,
                  rule_options=None, table=None, physics=None, render_size=(640, 360)):
-        EzPickle.__init__(self, game=game, render_mode=render_mode, noise=noise, shaping=shaping,
-                          max_shots=max_shots, rule_options=rule_options, table=table, physics=physics,
-                          render_size=render_size)
         super().__init__()
         if game not in GAME_BALLS:
             raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
@@ -210,6 +207,14 @@ class PoolGameAEC(AECEnv, EzPickle):
     def close(self):
         self.playback.close()
 
+    # A copy continues the game where it stands (a planner copies the env to search ahead):
+    # EzPickle's rebuild from the constructor's arguments would give a fresh, unreset env.
+    def __getstate__(self):
+        return dict(self.__dict__)
+
+    def __setstate__(self, state):
+        self.__dict__.update(state)
+
     def __str__(self):
         return self.metadata["name"]
 
@@ -250,7 +255,6 @@ def aec_module(game: str, name: str):
                 raise TypeError(f"{name} plays {game}; got game={kwargs['game']!r} "
                                 "(use pool_env.multiagent.PoolGameAEC)")
             super().__init__(game=game, render_mode=render_mode, **kwargs)
-            EzPickle.__init__(self, render_mode=render_mode, **kwargs)  # pickles rebuild this class, without game
 
     raw_env.__doc__ = f"`PoolGameAEC` with `game={game!r}`; keyword arguments as PoolGameAEC's."
     raw_env.__module__, raw_env.__qualname__ = f"pool_env.multiagent.{name}", "raw_env"  # pickle finds it there
