@@ -118,3 +118,15 @@ def test_accuracy_quick_run_writes_its_page_and_plot_and_leaves_the_docs_alone(t
     assert "## The report's own loop" in page and "| report's loop | 1/60 |" in page
     assert "The report's own loop" in capsys.readouterr().out
     assert {name: (docs / name).stat().st_mtime_ns for name in before} == before
+
+
+@pytest.mark.slow
+def test_game_bench_prints_every_figure_beside_its_target(capsys):
+    from pool_env.bench import game
+
+    assert game.main(["--seconds", "0.2", "--repeats", "1"]) == 0
+    out = capsys.readouterr().out
+    for label in ("Game.evaluate of 256 shots", "PoolBreakRun-v0 native vector env", "against the random player",
+                  "PoolNineBall-v0 against the ghost-ball player", "PoolEightBall-v0 against the ghost-ball player"):
+        assert label in out
+    assert out.count(">= ") == 5

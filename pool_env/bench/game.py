@@ -6,7 +6,9 @@ Measured as ratios taken in one run (the machine is shared: an absolute time var
   against a loop of `restore` + `play` of the same shots (target: evaluate 3x as fast);
 - the `PoolBreakRun-v0` native vector env (256 sub-envs, every core) in shots/s (target 8,000
   on 2 cores);
-- `PoolNineBall-v0` against the random player, agent steps/s on one core (target 2,500).
+- `PoolNineBall-v0` against the random player, agent steps/s on one core (target 2,500);
+- `PoolNineBall-v0` and `PoolEightBall-v0` against the ghost-ball player, agent steps/s on one
+  core (target 1,000: the built-in opponent's planning is most of it).
 
 `--against PATH` also measures the env figures of another checkout (its own fresh processes,
 taking turns with ours) and prints ours / theirs.
@@ -22,19 +24,20 @@ import sys
 import time
 from pathlib import Path
 
-EVALUATE_TARGET, VECTOR_TARGET, GAME_TARGET = 3.0, 8000.0, 2500.0
+EVALUATE_TARGET, VECTOR_TARGET, GAME_TARGET, GHOST_BALL_TARGET = 3.0, 8000.0, 2500.0, 1000.0
 CANDIDATES = 256
 ENV_SCRIPT = r"""
 import json, sys, time
 import numpy as np, gymnasium as gym
 import pool_env
 seconds = float(sys.argv[1])
-def nine():
-    env = gym.make("PoolNineBall-v0", opponent="random")
-    env.reset(seed=0); rng = np.random.default_rng(1); env.step(rng.uniform(-1, 1, 6).astype(np.float32))
+def game(env_id, opponent):
+    env = gym.make(env_id, opponent=opponent)
+    size = env.action_space.shape[0]
+    env.reset(seed=0); rng = np.random.default_rng(1); env.step(rng.uniform(-1, 1, size).astype(np.float32))
     n, start = 0, time.process_time()
     while time.process_time() - start < seconds:
-        _, _, te, tr, _ = env.step(rng.uniform(-1, 1, 6).astype(np.float32)); n += 1
+        _, _, te, tr, _ = env.step(rng.uniform(-1, 1, size).astype(np.float32)); n += 1
         if te or tr: env.reset()
     return n / (time.process_time() - start)
 def run():
@@ -44,7 +47,9 @@ def run():
     while time.perf_counter() - start < seconds:
         envs.step(rng.uniform(-1, 1, (256, 2)).astype(np.float32)); n += 256
     return n / (time.perf_counter() - start)
-print(json.dumps({"nine_ball_vs_random": nine(), "run_vector": run()}))
+print(json.dumps({"nine_ball_vs_random": game("PoolNineBall-v0", "random"), "run_vector": run(),
+                  "nine_ball_vs_ghost_ball": game("PoolNineBall-v0", "ghost_ball"),
+                  "eight_ball_vs_ghost_ball": game("PoolEightBall-v0", "ghost_ball")}))
 """
 
 
@@ -118,7 +123,11 @@ def main(argv=None) -> int:
           f"{'yes' if e['ratio'] >= EVALUATE_TARGET else 'NO'} |{' | |' if theirs else ''}")
     rows = (("run_vector", f"PoolBreakRun-v0 native vector env, 256 sub-envs, {os.cpu_count()} cores", VECTOR_TARGET,
              "shots/s"), ("nine_ball_vs_random", "PoolNineBall-v0 against the random player, one core", GAME_TARGET,
-                          "steps/s"))
+                          "steps/s"),
+            ("nine_ball_vs_ghost_ball", "PoolNineBall-v0 against the ghost-ball player, one core", GHOST_BALL_TARGET,
+             "steps/s"),
+            ("eight_ball_vs_ghost_ball", "PoolEightBall-v0 against the ghost-ball player, one core", GHOST_BALL_TARGET,
+             "steps/s"))
     for key, label, target, unit in rows:
         extra = f" {theirs[key]:,.0f} | {ours[key] / theirs[key]:.2f} |" if theirs else ""
         print(f"| {label} | {ours[key]:,.0f} {unit} | >= {target:,.0f} | {'yes' if ours[key] >= target else 'NO'} |"
