@@ -167,19 +167,29 @@ def random_games(env_id, noise, games):
         assert terminated or truncated
 
 
-@pytest.mark.parametrize("env_id", IDS)
-def test_native_vector_env_equals_the_sync_one(env_id):
-    native = gym.make_vec(env_id, num_envs=2, vectorization_mode="vector_entry_point", opponent="random")
-    sync = gym.make_vec(env_id, num_envs=2, vectorization_mode="sync", opponent="random")
+@pytest.mark.parametrize("mode", ["NextStep", "SameStep"])
+@pytest.mark.parametrize("env_id, opponent", [(i, o) for i in IDS for o in ("random", "ghost_ball")])
+def test_native_vector_env_equals_the_sync_one(env_id, opponent, mode):
+    from gymnasium.vector import AutoresetMode
+
+    mode = AutoresetMode(mode)
+    native = gym.make_vec(env_id, num_envs=3, vectorization_mode="vector_entry_point", opponent=opponent,
+                          autoreset_mode=mode, agent_breaks=False)
+    sync = gym.make_vec(env_id, num_envs=3, vectorization_mode="sync", opponent=opponent, agent_breaks=False,
+                        vector_kwargs={"autoreset_mode": mode})
     assert type(native).__name__ == "PoolGameVectorEnv"
     a, _ = native.reset(seed=1)
     b, _ = sync.reset(seed=1)
     assert np.array_equal(a, b)
     rng = np.random.default_rng(1)
-    for _ in range(6):
+    for _ in range(8):
         act = rng.uniform(-1, 1, native.action_space.shape).astype(np.float32)
-        for x, y in zip(native.step(act)[:4], sync.step(act)[:4]):
+        ours, theirs = native.step(act), sync.step(act)
+        for x, y in zip(ours[:4], theirs[:4]):
             assert np.array_equal(x, y)
+        if mode == AutoresetMode.SAME_STEP and "final_obs" in theirs[4]:
+            for k in np.flatnonzero(theirs[4]["_final_obs"]):
+                assert np.array_equal(ours[4]["final_obs"][k], theirs[4]["final_obs"][k])
 
 
 @pytest.mark.parametrize("kwargs, match", [
