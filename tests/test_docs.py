@@ -75,7 +75,7 @@ def test_not_run_blocks_are_rare():
     assert len(not_run) <= MAX_NOT_RUN, f"too many doc examples are not run: {not_run}"
 
 
-@pytest.mark.parametrize("code", params())
+@pytest.mark.parametrize("code", list(params()))
 def test_block_runs_as_pasted(code, tmp_path):
     env = dict(os.environ, MPLBACKEND="Agg")
     try:
