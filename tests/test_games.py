@@ -248,3 +248,13 @@ def test_a_game_the_opponent_wins_before_the_agent_shoots_is_reported_not_racked
     obs, reward, terminated, truncated, info = env.step(action(vx=1.0))
     assert (reward, terminated, truncated, info["winner"]) == (-1.0, True, False, "opponent")
     assert env.unwrapped.step_records == () and info["events"] == 0  # the agent's action was not played
+
+
+def test_an_opponents_bad_action_is_reported_as_the_opponents():
+    def sloppy(obs):
+        return np.zeros(5, np.float32)  # one entry short
+
+    env = gym.make("PoolNineBall-v0", opponent=sloppy)
+    env.reset(seed=0)
+    with pytest.raises(ValueError, match=r"the opponent \(sloppy\) played a bad action: action must have shape \(6,\)"):
+        env.step(action(vx=0.3))  # a soft miss: the turn passes to the opponent
