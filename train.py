@@ -26,6 +26,7 @@ import dataclasses
 import functools
 import json
 import logging
+import os
 import sys
 import time
 from dataclasses import dataclass, field
@@ -33,6 +34,7 @@ from datetime import datetime
 from pathlib import Path
 
 log = logging.getLogger("train")  # to the console and the run folder's train.log (set up in open_run)
+PROG = "train.py"  # how errors name the command
 
 
 def option(default, help: str, **kwargs):
@@ -88,8 +90,10 @@ class Args:
     min_timesteps: int = option(25_000, "a run shorter than this makes no claim against the baselines")
 
 
-def parse_args(argv=None) -> Args:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0],
+def parse_args(argv=None) -> tuple[Args, bool]:
+    """The options, checked before anything is made (a bad one ends in one line on stderr and exit
+    status 2), and whether an error shows its traceback (--debug, or POOL_ENV_DEBUG=1)."""
+    parser = argparse.ArgumentParser(prog=PROG, description=__doc__.split("\n")[0],
                                      formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     for f in dataclasses.fields(Args):
         flag = "--" + f.name.replace("_", "-")
@@ -99,7 +103,61 @@ def parse_args(argv=None) -> Args:
         else:
             kind = {"int": int, "float": float, "str": str}.get(str(f.type).split(" ")[0], str)
             parser.add_argument(flag, default=f.default, type=kind, **meta)
-    return Args(**vars(parser.parse_args(argv)))
+    # Not an Args field: how errors are shown is no part of the run (args.json).
+    parser.add_argument("--debug", action="store_true",
+                        help="on an error, the full traceback instead of one line (also POOL_ENV_DEBUG=1)")
+    options = vars(parser.parse_args(argv))
+    debug = options.pop("debug") or os.environ.get("POOL_ENV_DEBUG", "") not in ("", "0")
+    args = Args(**options)
+    try:
+        check_args(args)
+    except ValueError as exc:
+        if debug:
+            raise
+        parser.exit(2, f"{parser.prog}: {exc}\n")
+    return args, debug
+
+
+AT_LEAST = {"timesteps": 1, "n_envs": 1, "seed": 0, "n_steps": 1, "batch_size": 2, "n_epochs": 1,
+            "eval_episodes": 1, "eval_seed": 0, "curve_points": 0, "curve_episodes": 1, "video_episodes": 0,
+            "progress_every": 0, "min_timesteps": 0}  # the least value of each numeric option (SB3: batch_size 2)
+
+
+def check_args(args: Args) -> None:
+    """ValueError naming the first bad option. Every check is made here, before the run folder:
+    a mistake found later would leave a half-made run folder behind, or fail after minutes of work."""
+    import gymnasium as gym
+
+    import pool_env  # noqa: F401  (registers the ids)
+
+    env_ids = [env_id for env_id, spec in gym.registry.items() if str(spec.entry_point).startswith("pool_env.")]
+    if args.env_id not in env_ids:
+        raise ValueError(f"--env-id {args.env_id} is not a pool_env env; choose one of {', '.join(env_ids)}")
+    for name, least in AT_LEAST.items():
+        value = getattr(args, name)
+        if value is not None and not value >= least:
+            raise ValueError(f"--{name.replace('_', '-')} must be >= {least}, got {value}")
+    if not args.learning_rate > 0:
+        raise ValueError(f"--learning-rate must be > 0, got {args.learning_rate}")
+    if not 0 <= args.gamma <= 1:
+        raise ValueError(f"--gamma must be between 0 and 1, got {args.gamma}")
+    if not all(n.strip().isdigit() and int(n) > 0 for n in args.net_arch.split(",") if n):
+        raise ValueError(f"--net-arch must be positive layer sizes separated by commas (e.g. 64,64), "
+                         f"got {args.net_arch!r}")
+
+
+def cli(argv=None) -> int:
+    """The command: the checked options, then `main`. An OSError on the way (--out not writable, a
+    full disk) ends in one line on stderr and exit status 2, unless --debug."""
+    args, debug = parse_args(argv)
+    try:
+        main(args)
+    except OSError as exc:
+        if debug:
+            raise
+        print(f"{PROG}: {exc}", file=sys.stderr)
+        return 2
+    return 0
 
 
 def main(args: Args) -> Path:
@@ -657,4 +715,4 @@ def quiet_env(env_id: str, **kwargs):
 
 
 if __name__ == "__main__":
-    main(parse_args())
+    sys.exit(cli())

@@ -6,6 +6,7 @@ import argparse
 import itertools
 import json
 import math
+import os
 import sys
 import time
 from pathlib import Path
@@ -325,8 +326,13 @@ def write(result: dict, out) -> tuple[Path, Path]:
     return out / "tournament.json", out / "tournament.md"
 
 
+PROG = "python -m agents.tournament"
+
+
 def main(argv=None) -> dict:
-    parser = argparse.ArgumentParser(prog="python -m agents.tournament", description=__doc__)
+    """The command: the options checked before any game (a bad one, or an error later, ends in one
+    line on stderr and exit status 2; --debug or POOL_ENV_DEBUG=1: the traceback); returns the result."""
+    parser = argparse.ArgumentParser(prog=PROG, description=__doc__)
     parser.add_argument("--game", default="nine_ball", choices=("nine_ball", "eight_ball"))
     parser.add_argument("--players", default="random,ghost_ball,search",
                         help="comma list: random, ghost_ball, search, or an SB3 model's path (runs/<name>/model.zip)")
@@ -337,14 +343,45 @@ def main(argv=None) -> dict:
     parser.add_argument("--save-games", metavar="DIR", help="save every game (pool_env.save_game) in "
                         "DIR/<game>/<noise>/<breaker>-vs-<other>-seed<seed>.json "
                         "(python -m pool_env.records.replay replays it)")
+    parser.add_argument("--debug", action="store_true", help="on an error, the full traceback instead of one line "
+                        "(also POOL_ENV_DEBUG=1)")
     args = parser.parse_args(argv)
     players = [p.strip() for p in args.players.split(",") if p.strip()]
     log = lambda message: print(message, file=sys.stderr, flush=True)
-    result = tournament(args.game, players, args.games, args.noise, args.seed, log, args.save_games)
-    paths = write(result, args.out)
+    try:
+        check_args(args, players)
+        result = tournament(args.game, players, args.games, args.noise, args.seed, log, args.save_games)
+        paths = write(result, args.out)
+    except (ValueError, OSError) as exc:  # a bad option or player name; --out or --save-games not writable
+        if args.debug or os.environ.get("POOL_ENV_DEBUG", "") not in ("", "0"):
+            raise
+        parser.exit(2, f"{PROG}: {exc}\n")
     print(markdown(result))
     log(f"wrote {paths[0]} and {paths[1]} in {result['wall_seconds']:.1f} s")
     return result
+
+
+def check_args(args, specs: list[str]) -> None:
+    """ValueError naming what is wrong with the options, before any game is played: a player name
+    that `pool_env.make_player` does not resolve (make_players would only skip it), fewer than two
+    players, a name given twice, --games under 1."""
+    if args.games < 1:
+        raise ValueError(f"--games must be >= 1, got {args.games}")
+    names = [display_name(spec) for spec in specs]
+    twice = sorted({name for name in names if names.count(name) > 1})
+    if twice:
+        raise ValueError(f"--players names {', '.join(twice)} more than once")
+    if len(names) < 2:
+        raise ValueError(f"--players needs at least two players, got {', '.join(names) or 'none'}")
+    env = PoolGameEnv(args.game, opponent=None)
+    for spec in specs:
+        try:
+            make_player(spec, env)  # the name resolved and the player built; its warm-up (a compile) waits
+        except ValueError as exc:
+            raise ValueError(f"--players: {exc}") from exc
+        except Exception:  # noqa: BLE001 (built but broken: make_players skips it, saying why, as before)
+            pass
+    env.close()
 
 
 if __name__ == "__main__":

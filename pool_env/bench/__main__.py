@@ -1,8 +1,10 @@
 """Dispatch `python -m pool_env.bench NAME [options]` to pool_env.bench.NAME.main(argv)."""
 
 import importlib
+import os
 import sys
 
+PROG = "python -m pool_env.bench"
 BENCHES = {
     "speed": "simulator speed against the targets (and pooltool when importable)",
     "env": "environment steps/s and rendering frames/s",
@@ -15,14 +17,31 @@ BENCHES = {
 
 
 def main(argv=None):
-    argv = sys.argv[1:] if argv is None else argv
+    """The bench's exit status; a missing or unknown NAME, or a bench's ValueError or OSError (a bad
+    option or file), ends in one line on stderr and status 2 (--debug or POOL_ENV_DEBUG=1: the traceback)."""
+    argv = sys.argv[1:] if argv is None else list(argv)
+    debug = "--debug" in argv or os.environ.get("POOL_ENV_DEBUG", "") not in ("", "0")
+    argv = [a for a in argv if a != "--debug"]  # the dispatcher's option, not the bench's
     if not argv or argv[0] in ("-h", "--help") or argv[0] not in BENCHES:
-        print("usage: python -m pool_env.bench NAME [options]\n")
+        print(f"usage: {PROG} NAME [options]\n")
         for name, what in BENCHES.items():
             print(f"  {name:<10} {what}")
-        return 0 if argv and argv[0] in ("-h", "--help") else 2
+        if argv and argv[0] in ("-h", "--help"):
+            return 0
+        problem = f"unknown bench {argv[0]!r}" if argv else "no bench given"
+        problem += f"; choose one of {', '.join(BENCHES)}"
+        if debug:
+            raise ValueError(problem)
+        print(f"{PROG}: {problem}", file=sys.stderr)
+        return 2
     module = importlib.import_module(f"pool_env.bench.{argv[0]}")
-    return module.main(argv[1:])
+    try:
+        return module.main(argv[1:])
+    except (ValueError, OSError) as exc:
+        if debug:
+            raise
+        print(f"{PROG} {argv[0]}: {exc}", file=sys.stderr)
+        return 2
 
 
 if __name__ == "__main__":

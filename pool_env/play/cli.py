@@ -3,11 +3,15 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
+from pathlib import Path
 
 from ..render.window import open_display
 from .draw import draw_session
 from .session import GAMES, TABLE_SIZE, PlaySession, opponent_names
+
+PROG = "python -m pool_env.play"
 
 EPILOG = """mouse: press on the table and drag back from the cue ball, release to shoot (a drag of 0.6 m on
 the table is full power, 12 m/s); with ball in hand drag the cue ball to place it; click the tip diagram to
@@ -17,7 +21,8 @@ plays it), Esc quit."""
 
 
 def parse(argv=None):
-    parser = argparse.ArgumentParser(prog="python -m pool_env.play", description=__doc__.split("\n")[0], epilog=EPILOG,
+    """The options, checked: a bad one ends in one line on stderr and exit status 2, before a window opens."""
+    parser = argparse.ArgumentParser(prog=PROG, description=__doc__.split("\n")[0], epilog=EPILOG,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--game", choices=list(GAMES), default="nine_ball")
     parser.add_argument("--opponent", default="ghost_ball",
@@ -29,7 +34,27 @@ def parse(argv=None):
     parser.add_argument("--save-dir", default=".", help="where W writes games")
     parser.add_argument("--screenshot", metavar="PNG", help="draw a scripted opening (headless: "
                         "SDL_VIDEODRIVER=dummy), save the window to PNG and quit")
-    return parser.parse_args(argv)
+    parser.add_argument("--debug", action="store_true", help="on an error, the full traceback instead of one line "
+                        "(also POOL_ENV_DEBUG=1)")
+    args = parser.parse_args(argv)
+    args.debug = args.debug or os.environ.get("POOL_ENV_DEBUG", "") not in ("", "0")
+    problem = check(args)
+    if problem is not None:
+        if args.debug:
+            raise ValueError(problem)
+        parser.exit(2, f"{PROG}: {problem}\n")
+    return args
+
+
+def check(args) -> str | None:
+    """What is wrong with the options that argparse lets through, or None: found now rather than
+    with the window open (the renderer refuses a bad size only at the first frame)."""
+    if min(args.size) < 1:
+        return f"--size must be two positive numbers of pixels, got {args.size[0]} {args.size[1]}"
+    folder = Path(args.screenshot).resolve().parent if args.screenshot else None
+    if folder is not None and not folder.is_dir():
+        return f"--screenshot {args.screenshot}: no folder {folder}"
+    return None
 
 
 def run(session, surface, pygame):
@@ -68,8 +93,10 @@ def main(argv=None) -> int:
         session = PlaySession(args.game, args.opponent, args.two_players, seed=args.seed, size=args.size,
                               save_dir=args.save_dir)
         pygame, surface = open_display(session.window_size, f"pool_env: {args.game}")
-    except (ImportError, RuntimeError, ValueError) as exc:
-        print(f"python -m pool_env.play: {exc}", file=sys.stderr)
+    except (ImportError, RuntimeError, ValueError, OSError) as exc:  # no pygame or display, a bad opponent or game
+        if args.debug:
+            raise
+        print(f"{PROG}: {exc}", file=sys.stderr)
         return 2
     try:
         if args.screenshot:

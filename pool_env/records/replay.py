@@ -3,18 +3,50 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
+
+import gymnasium as gym
 
 from .saved import ReplayMismatch, load_game, make_env, replay
 from .video import _Writer
 
+PROG = "python -m pool_env.records.replay"
+
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m pool_env.records.replay", description=__doc__.split("\n")[0])
+    """0: every step replayed as recorded; 1: a step replayed differently; 2: a bad argument or file
+    (one line on stderr; --debug or POOL_ENV_DEBUG=1: the traceback)."""
+    parser = argparse.ArgumentParser(prog=PROG, description=__doc__.split("\n")[0])
     parser.add_argument("path", help="a saved game (pool_env.save_game)")
     parser.add_argument("--video", help="write the replayed shots to this .mp4")
     parser.add_argument("--shot", type=int, help="stop after this many of the agent's shots")
+    parser.add_argument("--debug", action="store_true", help="on an error, the full traceback instead of one line "
+                        "(also POOL_ENV_DEBUG=1)")
     args = parser.parse_args(argv)
+    if args.shot is not None and args.shot < 0:
+        parser.exit(2, f"{PROG}: --shot must be >= 0, got {args.shot}\n")
+    try:
+        return replay_file(args)
+    except (ValueError, OSError, gym.error.Error) as exc:  # a bad file, an env id or kwargs it cannot make
+        if args.debug or os.environ.get("POOL_ENV_DEBUG", "") not in ("", "0"):
+            raise
+        print(f"{PROG}: {describe(exc, args.path)}", file=sys.stderr)
+        return 2
+
+
+def describe(exc: Exception, path: str) -> str:
+    """The error in one line, naming the file: OSError's own text ("[Errno 2] No such file or
+    directory: 'x'") puts the name last, and gymnasium's (an unknown env id) does not name it."""
+    if isinstance(exc, OSError) and exc.filename:
+        return f"cannot open {exc.filename}: {exc.strerror}"
+    if isinstance(exc, gym.error.Error):
+        return f"{path}: {exc}"
+    return str(exc)
+
+
+def replay_file(args) -> int:
+    """Load, replay and (with --video) film the saved game; a replay that differs is a result (1), not an error."""
     record = load_game(args.path)
     env = make_env(record)
     writer = None

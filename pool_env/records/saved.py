@@ -155,11 +155,16 @@ def save_game(path, record: dict) -> Path:
 
 
 def load_game(path) -> dict:
-    """Read a saved game, checking its format and version (ValueError naming what is wrong)."""
+    """Read a saved game, checking its format and version (ValueError naming what is wrong; OSError
+    when the file cannot be read)."""
     try:
-        record = json.loads(Path(path).read_text())
+        text = Path(path).read_text()
+        record = json.loads(text)
+    except UnicodeDecodeError:
+        raise ValueError(f"{path} is not a saved game: not text (a saved game is JSON)") from None
     except json.JSONDecodeError as exc:
-        raise ValueError(f"{path} is not a saved game: {exc}") from None
+        what = "the file is empty" if not text.strip() else f"not JSON ({exc})"
+        raise ValueError(f"{path} is not a saved game: {what}") from None
     if not isinstance(record, dict) or record.get("format") != FORMAT:
         raise ValueError(f"{path} is not a pool_env saved game (no format {FORMAT!r})")
     if record.get("version") != VERSION:
@@ -167,8 +172,11 @@ def load_game(path) -> dict:
                          f"this pool_env reads version {VERSION}")
     keys = ("env_id", "env_kwargs", "seed", "actions", "outcomes", "table", "physics")
     missing = [k for k in keys if k not in record]
-    if missing or len(record["actions"]) != len(record["outcomes"]):
-        raise ValueError(f"{path} is damaged: missing {missing} or the actions and outcomes differ in number")
+    if missing:
+        raise ValueError(f"{path} is damaged: missing {', '.join(missing)}")
+    if len(record["actions"]) != len(record["outcomes"]):
+        raise ValueError(f"{path} is damaged: {len(record['actions'])} actions but {len(record['outcomes'])} "
+                         "outcomes (one outcome per action)")
     return record
 
 
