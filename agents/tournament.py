@@ -143,16 +143,18 @@ def make_player(spec: str, env):
 
 
 def make_players(specs: list[str], game: str, noise) -> tuple[dict, dict]:
-    """({name: agent}, {name: why it was skipped}) for one game and noise setting."""
+    """({name: agent}, {name: why it was skipped}) for one game and noise setting. A name no
+    player answers to is an error (ValueError naming the choices); a player that is built but
+    fails its warm-up is skipped, saying why."""
     env = PoolGameEnv(game, opponent=None, noise=noise)
     players, skipped = {}, {}
     for spec in specs:
         name = display_name(spec)
+        agent = make_player(spec, env)  # an unknown name or a missing model file raises here
         try:
-            agent = make_player(spec, env)
             agent.act(env.reset(seed=0)[0])  # warm-up, untimed (compiles, caches); reset before each game
             players[name] = agent
-        except Exception as exc:  # noqa: BLE001 (a player that cannot be built is skipped, saying why)
+        except Exception as exc:  # noqa: BLE001 (a player whose warm-up fails is skipped, saying why)
             skipped[name] = f"{type(exc).__name__}: {exc}"
             print(f"tournament: skipping player {name!r} ({skipped[name]})", file=sys.stderr)
     env.close()

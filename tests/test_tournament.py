@@ -106,12 +106,11 @@ def test_deterministic_apart_from_timings(run):
     assert tour.strip_timings(json.loads(json.dumps(again))) == tour.strip_timings(run[0])
 
 
-def test_unavailable_players_are_skipped():
-    players, skipped = tour.make_players(["random", "no/such/model.zip"], "nine_ball", None)
-    assert list(players) == ["random"] and "no/such/model.zip" not in players
-    assert "such" in skipped and "unknown player" in skipped["such"]
-    with pytest.raises(ValueError, match="at least two players"):
-        tour.tournament("nine_ball", ["random", "no/such/model.zip"], games=1, noise="none")
+def test_an_unknown_player_is_an_error_naming_the_choices():
+    with pytest.raises(ValueError, match="unknown player 'no/such/model.zip'"):
+        tour.make_players(["random", "no/such/model.zip"], "nine_ball", None)
+    with pytest.raises(ValueError, match="unknown player 'serch'; choose one of ghost_ball, random, search"):
+        tour.tournament("nine_ball", ["random", "serch"], games=1, noise="none")
 
 
 def test_a_player_that_raises_forfeits():
