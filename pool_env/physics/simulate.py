@@ -118,8 +118,8 @@ def _run_events(balls, table, physics, max_events):
 
 # Whether engine.run is compiled in this process (set after the first run).
 _compiled = [False]
-# The cold compile measured on a 2-core machine (docs/speed.md): what the notice promises.
-COLD_COMPILE_SECONDS = 20
+# The cold compile measured on 2-core machines, idle to loaded (docs/speed.md): the notice's range.
+COLD_COMPILE_SECONDS = (20, 45)
 
 
 def compiled_here() -> bool:
@@ -138,10 +138,11 @@ def engine_is_cached() -> bool:
 
 def _first_run(balls, table, physics, max_events):
     """The first simulation in a process: if the engine is not in numba's cache yet, say so
-    (it compiles for about COLD_COMPILE_SECONDS, once per machine) and how long it took."""
+    (it compiles for COLD_COMPILE_SECONDS, once per machine) and how long it took."""
     cold = not engine_is_cached()
     if cold:
-        print(f"pool_env: compiling the physics engine (first use on this machine, about {COLD_COMPILE_SECONDS} s); "
+        low, high = COLD_COMPILE_SECONDS
+        print(f"pool_env: compiling the physics engine (first use on this machine: {low}-{high} s on 2 cores); "
               "later runs load it from numba's cache in under a second", file=sys.stderr, flush=True)
     start = time.perf_counter()
     _compiled[0] = True
