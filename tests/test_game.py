@@ -4,6 +4,7 @@ import math
 
 import numpy as np
 import pytest
+from scenes import layout
 
 from pool_env import rules
 from pool_env.game import (
@@ -22,19 +23,10 @@ from pool_env.game import (
     placement_area,
     play_batch,
 )
-from pool_env.physics import BALL_RADIUS, Balls, Table
+from pool_env.physics import BALL_RADIUS, Table
 
 R = BALL_RADIUS
 TABLE = Table.eight_foot()
-
-
-def layout(n, on):
-    """n balls by number: those in `on` (number -> (x, y)) on the table, the rest pocketed."""
-    xy = np.zeros((n, 2))
-    pocketed = np.ones(n, dtype=bool)
-    for k, p in on.items():
-        xy[k], pocketed[k] = p, False
-    return Balls(xy, pocketed=pocketed)
 
 
 def same_record(a, b):

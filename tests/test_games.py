@@ -7,26 +7,18 @@ import gymnasium as gym
 import numpy as np
 import pytest
 from gymnasium.utils.env_checker import check_env
+from scenes import layout
 
 import pool_env
 from pool_env import rules
 from pool_env.envs.game_env import PoolGameEnv
 from pool_env.game import place_cue_ball, placement_area
-from pool_env.physics import BALL_RADIUS, Balls, Physics, Table
+from pool_env.physics import BALL_RADIUS, Physics, Table
 from pool_env.physics.simulate import check_on_table
 
 R = BALL_RADIUS
 TABLE = Table.eight_foot()
 IDS = ("PoolNineBall-v0", "PoolEightBall-v0")
-
-
-def layout(n, on):
-    """n balls by number: those in `on` (number -> (x, y)) on the table, the rest pocketed."""
-    xy = np.zeros((n, 2))
-    pocketed = np.ones(n, dtype=bool)
-    for k, p in on.items():
-        xy[k], pocketed[k] = p, False
-    return Balls(xy, pocketed=pocketed)
 
 
 def action(vx=0.0, vy=0.0, top=0.0, place=(0.0, 0.0), n=6):

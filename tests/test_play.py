@@ -1,23 +1,17 @@
 """render_mode="human" and `python -m pool_env.play`, headless (SDL's dummy video driver; conftest sets it)."""
 
 import math
-import os
 import sys
 
 import gymnasium as gym
 import numpy as np
 import pytest
+from scenes import require_pygame
 
 import pool_env
 from pool_env.game import MAX_TIP_OFFSET, placement_area
 
-try:
-    import pygame
-except ImportError:
-    if os.environ.get("POOL_ENV_REQUIRE_PYGAME") == "1":
-        raise
-    pytest.skip("pygame is not installed (pip install -e '.[play]'); POOL_ENV_REQUIRE_PYGAME=1 makes this fail",
-                allow_module_level=True)
+pygame = require_pygame()
 
 from pool_env.play.draw import draw_session  # noqa: E402
 from pool_env.play.session import DRAG_FULL, MIN_DRAG, PlaySession, shot_action  # noqa: E402

@@ -3,6 +3,7 @@
 import gymnasium as gym
 import numpy as np
 import pytest
+from scenes import layout
 
 import pool_env  # noqa: F401  (registers the envs)
 from agents import GameGhostBallAgent, SearchAgent
@@ -10,18 +11,9 @@ from agents.search import balls_of, decode, game_state, head_to_head
 from agents.stats import wilson
 from pool_env import rules
 from pool_env.game import GameView, game_observation
-from pool_env.physics import BALL_RADIUS, Balls, Table
+from pool_env.physics import BALL_RADIUS, Table
 
 TABLE = Table.eight_foot()
-
-
-def layout(n, on):
-    """n balls by number: those in `on` (number -> (x, y)) on the table, the rest pocketed."""
-    xy = np.zeros((n, 2))
-    pocketed = np.ones(n, dtype=bool)
-    for k, p in on.items():
-        xy[k], pocketed[k] = p, False
-    return Balls(xy, pocketed=pocketed)
 
 
 @pytest.mark.parametrize("cue, ball", [((1.12, 0.30), (1.12, 0.80)), ((1.40, 0.40), (1.80, 0.80)),

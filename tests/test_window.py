@@ -9,14 +9,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from scenes import require_pygame
 
-try:
-    import pygame
-except ImportError:
-    if os.environ.get("POOL_ENV_REQUIRE_PYGAME") == "1":
-        raise
-    pytest.skip("pygame is not installed (pip install -e '.[play]'); POOL_ENV_REQUIRE_PYGAME=1 makes this fail",
-                allow_module_level=True)
+pygame = require_pygame()
 
 from pool_env.render import window as window_module  # noqa: E402
 from pool_env.render.window import DISPLAY_HINT, Window, open_display  # noqa: E402

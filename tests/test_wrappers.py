@@ -7,21 +7,12 @@ import gymnasium as gym
 import numpy as np
 import pytest
 from gymnasium import spaces
+from scenes import layout
 
 import pool_env  # noqa: F401  (registers the envs)
 from agents import GameGhostBallAgent
 from pool_env.envs.wrappers import GhostBallAction, GhostBallActionAgent
 from pool_env.game import decode_game_observation
-from pool_env.physics import Balls
-
-
-def layout(n, on):
-    """n balls by number: those in `on` (number -> (x, y)) on the table, the rest pocketed."""
-    xy = np.zeros((n, 2))
-    pocketed = np.ones(n, dtype=bool)
-    for k, p in on.items():
-        xy[k], pocketed[k] = p, False
-    return Balls(xy, pocketed=pocketed)
 
 
 def wrapped(**kwargs):

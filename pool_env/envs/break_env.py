@@ -31,6 +31,37 @@ def run_step(shots, table: Table, physics):
         outcome = simulate_struck(struck, table, physics)
 
 
+def check_env_options(render_mode, render_modes, max_shots) -> int:
+    """The options every env checks alike (ValueError naming the bad one); returns `max_shots` as an int."""
+    if render_mode is not None and render_mode not in render_modes:
+        raise ValueError(f"render_mode must be None or one of {render_modes}, got {render_mode!r}")
+    if int(max_shots) != max_shots or max_shots < 1:
+        raise ValueError(f"max_shots must be an integer >= 1, got {max_shots!r}")
+    return int(max_shots)
+
+
+def can_render(render_mode, started: bool) -> bool:
+    """render()'s preamble in every env: False (with Gymnasium's warning) without a render mode,
+    RuntimeError before the first reset."""
+    if render_mode is None:
+        gym.logger.warn("render() called without a render_mode; pass render_mode='rgb_array' to the env")
+        return False
+    if not started:
+        raise RuntimeError("call reset() before render()")
+    return True
+
+
+class StepsShots:
+    """`step` of the env kinds whose step is a generator of shots (`step_shots`): it simulates
+    them one by one and, in human mode, shows the step's frames."""
+
+    def step(self, action):
+        out = run_step(self.step_shots(action), self.table, self.physics)
+        if self.render_mode == "human":
+            self._show(self.shot_frames())
+        return out
+
+
 def check_reset_options(options, accepted) -> dict:
     """`reset`'s options checked: None (no options) or a dict whose keys are all `accepted`."""
     if options is None:
@@ -104,7 +135,7 @@ def shot_reward(info: dict, before: Balls, after: Balls, table: Table, scratch_p
     return float(reward)
 
 
-class PoolBreakEnv(HumanWindow, gym.Env):
+class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
     """
     ## Description
 
@@ -292,12 +323,8 @@ class PoolBreakEnv(HumanWindow, gym.Env):
 
     def __init__(self, render_mode=None, table=None, physics=None, max_shots=1, spin=False, randomize_cue=False,
                  shaping=False, render_size=(640, 360), scratch_penalty=1.0):
-        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
-            raise ValueError(f"render_mode must be None or one of {self.metadata['render_modes']}, got {render_mode!r}")
+        self.max_shots = check_env_options(render_mode, self.metadata["render_modes"], max_shots)
         self.render_mode = render_mode
-        if int(max_shots) != max_shots or max_shots < 1:
-            raise ValueError(f"max_shots must be an integer >= 1, got {max_shots!r}")
-        self.max_shots = int(max_shots)
         self.spin = bool(spin)
         # The game: the break alone, or a run of shots until a scratch or the last ball.
         self.game = Game("break" if self.max_shots == 1 else "run", table, physics,
@@ -341,18 +368,9 @@ class PoolBreakEnv(HumanWindow, gym.Env):
             self._show([self.playback.frame()])
         return self.observation(), {}
 
-    def step(self, action):
-        out = run_step(self.step_shots(action), self.table, self.physics)
-        if self.render_mode == "human":
-            self._show(self.shot_frames())
-        return out
-
     def render(self):
-        if self.render_mode is None:
-            gym.logger.warn("render() called without a render_mode; pass render_mode='rgb_array' to the env")
+        if not can_render(self.render_mode, self._started):
             return None
-        if not self._started:
-            raise RuntimeError("call reset() before render()")
         if self.render_mode == "human":
             return self._show([self.playback.frame()])
         if self.render_mode == "rgb_array":

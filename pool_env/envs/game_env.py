@@ -13,7 +13,7 @@ from ..players import make_player
 from ..render.overlay import overlay
 from ..render.playback import ShotPlayback
 from ..render.window import HumanWindow
-from .break_env import check_reset_options, run_step, shot_info
+from .break_env import StepsShots, can_render, check_env_options, check_reset_options, run_step, shot_info
 
 SHAPING_BALL, SHAPING_FOUL = 0.1, 0.1  # shaping: + per ball the agent pockets legally, - per foul
 RESET_OPTIONS = ("balls", "ball_in_hand", "agent_breaks")
@@ -78,7 +78,7 @@ def resolve_opponent(opponent, env):
     raise ValueError(f"opponent must be a name, None, an agent with act(observation) or a callable, got {opponent!r}")
 
 
-class PoolGameEnv(HumanWindow, gym.Env):
+class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
     """9-ball or 8-ball by the WPA rules (`pool_env.rules`, docs/rules.md): one step is one shot
     of the agent; the opponent's shots are played inside `step` until the agent is to shoot
     again or the game ends.
@@ -195,11 +195,8 @@ class PoolGameEnv(HumanWindow, gym.Env):
                  render_size=(640, 360), overlay=True, hotseat=False):
         if game not in GAME_BALLS:
             raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
-        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
-            raise ValueError(f"render_mode must be None or one of {self.metadata['render_modes']}, got {render_mode!r}")
-        if int(max_shots) != max_shots or max_shots < 1:
-            raise ValueError(f"max_shots must be an integer >= 1, got {max_shots!r}")
-        self.render_mode, self.max_shots = render_mode, int(max_shots)
+        self.render_mode = render_mode
+        self.max_shots = check_env_options(render_mode, self.metadata["render_modes"], max_shots)
         self.rule_options = dict(rule_options or {})
         self.game = Game(game, table, physics, noise, **self.rule_options)
         self.table, self.physics, self.noise = self.game.table, self.game.physics, self.game.noise
@@ -259,18 +256,9 @@ class PoolGameEnv(HumanWindow, gym.Env):
         yield from self._opponent_turn()
         return None
 
-    def step(self, action):
-        out = run_step(self.step_shots(action), self.table, self.physics)
-        if self.render_mode == "human":
-            self._show(self.shot_frames())
-        return out
-
     def render(self):
-        if self.render_mode is None:
-            gym.logger.warn("render() called without a render_mode; pass render_mode='rgb_array' to the env")
+        if not can_render(self.render_mode, self._started):
             return None
-        if not self._started:
-            raise RuntimeError("call reset() before render()")
         if self.render_mode == "human":
             return self._show([self._annotate(self.playback.frame())])
         return self._annotate(self.playback.frame()) if self.render_mode == "rgb_array" else self.shot_frames()

@@ -8,6 +8,7 @@ from gymnasium.utils import seeding
 from pettingzoo import AECEnv
 from pettingzoo.utils import wrappers
 
+from ..envs.break_env import can_render, check_env_options
 from ..envs.game_env import SHAPING_BALL, SHAPING_FOUL, PoolGameEnv, captioned, record_info, shot_caption
 from ..game import GAME_BALLS, Game, game_observation, game_observation_size
 from ..render.overlay import overlay
@@ -81,13 +82,10 @@ class PoolGameAEC(AECEnv):
         super().__init__()
         if game not in GAME_BALLS:
             raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
-        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
-            raise ValueError(f"render_mode must be None or one of {self.metadata['render_modes']}, got {render_mode!r}")
-        if int(max_shots) != max_shots or max_shots < 1:
-            raise ValueError(f"max_shots must be an integer >= 1, got {max_shots!r}")
+        self.max_shots = check_env_options(render_mode, self.metadata["render_modes"], max_shots)
         self.game = Game(game, table, physics, noise, **dict(rule_options or {}))
         self.table, self.physics = self.game.table, self.game.physics
-        self.render_mode, self.max_shots, self.shaping = render_mode, int(max_shots), bool(shaping)
+        self.render_mode, self.shaping = render_mode, bool(shaping)
         self.render_size = (int(render_size[0]), int(render_size[1]))
         self.playback = ShotPlayback(self.table, self.render_size, self.metadata["render_fps"],
                                      deferred=render_mode is not None)
@@ -187,11 +185,8 @@ class PoolGameAEC(AECEnv):
         return game_observation(self.game.balls, self.game.state, viewer, self.shots, self.max_shots, self.table)
 
     def render(self):
-        if self.render_mode is None:
-            gym.logger.warn("render() called without a render_mode; pass render_mode='rgb_array' to the env")
+        if not can_render(self.render_mode, self._started):
             return None
-        if not self._started:
-            raise RuntimeError("call reset() before render()")
         game = self.game
         if self.render_mode == "rgb_array" or self.last_record is None:
             frame = self.playback.frame()
