@@ -218,6 +218,7 @@ class SearchAgent(Agent):
     def shot_candidates(self, xy, on_table, legal) -> list[Candidate]:
         """Ghost-ball pots of the legal balls; kicks if no pot is on; safeties."""
         objects = np.flatnonzero(on_table[1:]) + 1
+        geo.pocket_aims(xy, sorted(legal), objects, self.pockets, self.table, self.radius)  # all aims at once
         pots = []
         for ball in sorted(legal):
             others = xy[objects[objects != ball]]

@@ -74,6 +74,8 @@ class GameGhostBallAgent(Agent):
         if not on_table[0]:
             return None
         objects = np.flatnonzero(on_table[1:]) + 1
+        geo.pocket_aims(xy, [b for b in objects if legal[b - 1]], objects, self.planner.pockets, self.table,
+                        self.radius)  # every ball x pocket aim at once; plan below finds them
         best = None
         for ball in objects:
             if not legal[ball - 1]:
@@ -104,6 +106,8 @@ class GameGhostBallAgent(Agent):
         free = lambda p: (x_lo <= p[0] <= x_hi and y_lo <= p[1] <= y_hi  # noqa: E731
                           and np.min(np.hypot(*(xy[objects] - p).T), initial=np.inf) >= 2.2 * self.radius)
         ranked = []
+        geo.pocket_aims(xy, [b for b in objects if legal[b - 1]], objects, self.planner.pockets, self.table,
+                        self.radius)
         for ball in objects:
             if not legal[ball - 1]:
                 continue

@@ -134,6 +134,11 @@ _AIMS: dict = {}  # pocket_aim's results by its inputs: a decision asks the same
 AIM_CACHE = 20_000  # entries kept (the cache is emptied when full)
 
 
+def forget_aims() -> None:
+    """Empty `pocket_aim`'s store of answers (they stay right: it is a pure function; for tests and memory)."""
+    _AIMS.clear()
+
+
 def pocket_aim(obj, pocket: Pocket, table: Table, radius: float, obstacles, samples: int = 21):
     """Where to send a ball at `obj` into `pocket`: the middle of the widest run of points on
     the mouth chord that the ball's centre reaches without touching a jaw, a rail or another
@@ -150,6 +155,43 @@ def pocket_aim(obj, pocket: Pocket, table: Table, radius: float, obstacles, samp
             _AIMS.clear()
         found = _AIMS[key] = (_pocket_aim(obj, pocket, table, radius, obstacles, samples), table)
     return found[0]
+
+
+def pocket_aims(xy, balls, objects, pockets: list[Pocket], table: Table, radius: float, samples: int = 21) -> None:
+    """`pocket_aim` of every ball of `balls` into every pocket of `pockets`, the obstacles of each
+    being the other balls of `objects` (object balls on the table, by number; `xy` every ball's
+    position), computed in one vectorised pass and kept, so that the planner's calls find them.
+    The same answers as one call each (every rail is measured here: a far one changes no verdict)."""
+    todo = []
+    for ball in balls:
+        obj = np.asarray(xy[ball], dtype=np.float64)
+        obstacles = np.asarray(xy[objects[objects != ball]], dtype=np.float64).reshape(-1, 2)
+        keys = [(obj.tobytes(), p.index, p.jaw_a.tobytes(), p.jaw_b.tobytes(), id(table), float(radius),
+                 obstacles.tobytes(), samples) for p in pockets]
+        if any(key not in _AIMS for key in keys):
+            todo.append((ball, obj, keys))
+    if not todo:
+        return
+    if len(_AIMS) >= AIM_CACHE - len(todo) * len(pockets):
+        _AIMS.clear()
+    lams = np.linspace(0.05, 0.95, samples)
+    ends = np.array([[p.jaw_a, p.jaw_b] for p in pockets])  # (P, 2, 2)
+    points = ends[:, None, 0] + lams[None, :, None] * (ends[:, None, 1] - ends[:, None, 0])  # (P, S, 2)
+    objs = np.array([obj for _, obj, _ in todo])  # (B, 2)
+    rails = table.rails
+    to_rails = segments_distance(objs[:, None, None, None, :], points[None, :, :, None, :],
+                                 rails[None, None, None, :, 0:2], rails[None, None, None, :, 2:4])
+    ok = to_rails.min(axis=-1, initial=np.inf) >= 1.05 * radius  # (B, P, S)
+    on = np.asarray(xy[objects], dtype=np.float64).reshape(-1, 2)
+    if on.shape[0] > 1:
+        to_balls = point_segment_distance(on[None, None, None, :, :], objs[:, None, None, None, :],
+                                          points[None, :, :, None, :])  # (B, P, S, O)
+        itself = np.array([[ball == other for other in objects] for ball, _, _ in todo])  # (B, O)
+        to_balls[np.broadcast_to(itself[:, None, None, :], to_balls.shape)] = np.inf
+        ok &= to_balls.min(axis=-1) >= 2.04 * radius
+    for b, (_, _, keys) in enumerate(todo):
+        for k, pocket in enumerate(pockets):
+            _AIMS[keys[k]] = (_widest_run(ok[b, k], lams, pocket, samples), table)
 
 
 def _rails_near(rails, obj, pocket, reach):
@@ -170,9 +212,13 @@ def _pocket_aim(obj, pocket, table, radius, obstacles, samples):
     if obstacles.shape[0] and ok.any():
         to_balls = point_segment_distance(obstacles[None, :, :], obj, points[:, None, :])
         ok &= to_balls.min(axis=1) >= 2.04 * radius
+    return _widest_run(ok, lams, pocket, samples)
+
+
+def _widest_run(ok, lams, pocket, samples):
+    """The aim at the middle of the widest run of open points on the mouth chord, or None."""
     if not ok.any():
         return None
-    # The widest run of consecutive open points.
     padded = np.concatenate([[False], ok, [False]]).astype(np.int8)
     edges = np.flatnonzero(np.diff(padded))
     starts, stops = edges[0::2], edges[1::2]
