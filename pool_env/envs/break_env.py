@@ -355,8 +355,16 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
 
     # --- Gymnasium API ----------------------------------------------------------------------
     def reset(self, *, seed=None, options=None):
+        info = self.begin(seed=seed, options=options)
+        if self.render_mode == "human":
+            self._show([self.playback.frame()])
+        return self.observation(), info
+
+    def begin(self, seed=None, options=None) -> dict:
+        """`reset` without building the observation (a vector env builds all of its sub-envs'
+        at once, `observation()` gives it) and without showing a window; returns reset's info."""
         options = check_reset_options(options, RESET_OPTIONS)
-        super().reset(seed=seed)
+        gym.Env.reset(self, seed=seed)
         try:
             self.game.reset(rng=self.np_random, balls=options.get("balls"))
         except ValueError as exc:
@@ -364,9 +372,7 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
         quaternions = self.np_random.normal(size=(N_BALLS, 4))  # random orientations, made matrices when drawn
         self._started, self._shots, self._done = True, 0, False
         self.playback.reset(self.game.balls, quaternions)
-        if self.render_mode == "human":
-            self._show([self.playback.frame()])
-        return self.observation(), {}
+        return {}
 
     def render(self):
         if not can_render(self.render_mode, self._started):

@@ -222,6 +222,14 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
 
     # --- Gymnasium API ----------------------------------------------------------------------
     def reset(self, *, seed=None, options=None):
+        info = self.begin(seed=seed, options=options)
+        if self.render_mode == "human":
+            self._show(self.shot_frames())
+        return self.observation(), info
+
+    def begin(self, seed=None, options=None) -> dict:
+        """`reset` without building the observation (a vector env builds all of its sub-envs'
+        at once) and without showing a window; returns reset's info."""
         options = check_reset_options(options, RESET_OPTIONS)
         super().reset(seed=seed)
         given = options.get("balls")
@@ -248,9 +256,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
             info = {"winner": "opponent" if self.game.winner == OPPONENT else None, "end_reason": self._end_reason}
             if self._error is not None:
                 info["error"] = self._error
-        if self.render_mode == "human":
-            self._show(self.shot_frames())
-        return self.observation(), info
+        return info
 
     def _reset_turn(self):
         yield from self._opponent_turn()

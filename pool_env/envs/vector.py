@@ -131,7 +131,7 @@ class PoolVectorEnv(VectorEnv):
         reset = range(n) if mask is None else np.flatnonzero(mask).tolist()
         entries = []
         for k in reset:
-            _, info = self.envs[k].reset(seed=seeds[k], options=options)
+            info = self.envs[k].begin(seed=seeds[k], options=options)
             entries.append((k, info))
             self._autoreset_envs[k] = False
             self._elapsed[k] = 0
@@ -161,7 +161,7 @@ class PoolVectorEnv(VectorEnv):
         elapsed, limit = self._elapsed, self.max_episode_steps
         if len(shots) < n:
             for k in np.flatnonzero(self._autoreset_envs).tolist():
-                envs[k].reset()
+                envs[k].begin()
                 elapsed[k] = 0
         same_step = self.autoreset_mode == AutoresetMode.SAME_STEP
         entries, finals, final_balls = [], [], []
@@ -177,7 +177,7 @@ class PoolVectorEnv(VectorEnv):
                 entries.append((k, final))  # then the info of reset: empty
                 finals.append(final)
                 final_balls.append(self._state_of(env))
-                env.reset()
+                env.begin()
                 elapsed[k] = 0
             else:
                 entries.append((k, info))
