@@ -21,6 +21,7 @@ import json
 import os
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -97,8 +98,11 @@ def env_figures(path: str | None, seconds: float) -> dict:
     env = dict(os.environ)
     if path is not None:
         env["PYTHONPATH"] = path + os.pathsep + env.get("PYTHONPATH", "")
-    out = subprocess.run([sys.executable, "-c", ENV_SCRIPT, str(seconds)], capture_output=True, text=True, env=env,
-                         check=True)
+    # From a neutral folder: `python -c` puts the working folder first on sys.path, where a
+    # checkout would shadow the one asked for.
+    with tempfile.TemporaryDirectory() as folder:
+        out = subprocess.run([sys.executable, "-c", ENV_SCRIPT, str(seconds)], capture_output=True, text=True,
+                             env=env, check=True, cwd=folder)
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
