@@ -2,6 +2,8 @@
 
 import math
 import sys
+import threading
+import time
 
 import gymnasium as gym
 import numpy as np
@@ -13,11 +15,13 @@ from pool_env.game import MAX_TIP_OFFSET, placement_area
 
 pygame = require_pygame()
 
-from pool_env.play.draw import draw_session  # noqa: E402
-from pool_env.play.session import DRAG_FULL, MIN_DRAG, PlaySession, shot_action  # noqa: E402
+from pool_env.play.aim import DRAG_FULL, MIN_DRAG, shot_action  # noqa: E402
+from pool_env.play.draw import CALL_RGB, draw_session  # noqa: E402
+from pool_env.play.session import PlaySession  # noqa: E402
 from pool_env.records.saved import replay  # noqa: E402
 
 SIZE = (640, 360)
+SMALL = (320, 180)  # the animation tests draw every frame of a step
 
 
 def mouse(kind, pos):
@@ -89,7 +93,8 @@ def test_a_scripted_session_places_aims_shoots_undoes_and_saves(tmp_path):
     x_lo, x_hi, y_lo, y_hi = placement_area(base.table, "behind_head_string", float(base.balls.radii[0]))
     wanted = (x_lo + 0.5 * (action[4] + 1) * (x_hi - x_lo), y_lo + 0.5 * (action[5] + 1) * (y_hi - y_lo))
     assert np.allclose(wanted, placed, atol=1e-6)
-    session.update()  # the shot, then the opponent's replies
+    session.update()  # the shot, then the opponent's replies, on the session's worker thread
+    assert session.wait(60) and not session.busy
     assert len(session.actions) == 1 and session.pending is None
     assert session.status()[0].startswith("9-ball") and session.lines
     balls_1, state_1 = base.balls, base.state
@@ -97,6 +102,7 @@ def test_a_scripted_session_places_aims_shoots_undoes_and_saves(tmp_path):
     cue = session.cue_xy
     drag(session, session.to_pixel(cue), session.to_pixel(cue + (0.1, 0.15)))
     session.update()
+    session.wait()
     assert len(session.actions) == 2
     session.handle(key(pygame.K_u))
     assert len(session.actions) == 1
@@ -123,5 +129,93 @@ def test_two_players_take_turns():
     cue = session.cue_xy
     drag(session, session.to_pixel(cue + (0.0, 0.1)), session.to_pixel(cue + (0.0, 0.12)))  # a miss: a foul
     session.update()
+    session.wait()
     assert not session.done and session.state.shooter == 1
     assert "player 2" in session.status()[0]
+
+
+def play_out(session, seconds, limit=60.0):
+    """Drive the session's loop with a fake clock until its step is over and shown: each turn
+    update, draw the frame shown, tick `seconds(turn, frames drawn so far)`. The (step frame
+    index, frame) drawn."""
+    shown, turn, start = [], 0, time.monotonic()
+    while session.busy or session.animation is not None:
+        assert time.monotonic() - start < limit, "the step never ended"
+        session.update()
+        frame = session.shot_frame()
+        if frame is not None:
+            shown.append((session.animation.index()[2], frame.copy()))
+        session.tick(seconds(turn, len(shown)))
+        turn += 1
+    return shown
+
+
+@pytest.mark.parametrize("game", ["nine_ball", "break"])
+def test_every_frame_of_a_step_is_shown_from_the_first_in_order_even_after_a_blocked_tick(game):
+    session = PlaySession(game, "ghost_ball", seed=0, size=SMALL)
+    base = session.base
+    cue = session.cue_xy
+    drag(session, session.to_pixel(cue + (-0.15, 0.0)), session.to_pixel(cue + (-0.5, 0.01)))  # the break
+    session.update()
+    assert session.busy or session.step is None  # shoot() returned: the step is the worker's
+    # 10 s "blocked" ticks right after the release, after the first frame and midway: each may
+    # move on by one frame only.
+    shown = play_out(session, lambda turn, drawn: 10.0 if turn in (0, 1) or drawn in (1, 2, 60) else 1 / 60)
+    frames = base.shot_frames(base.metadata["render_fps"])  # the env's own frames of the step
+    if game == "nine_ball":
+        shooters = [record.shooter for record in base.step_records]
+        assert shooters[0] == 0 and 1 in shooters  # the break, then the opponent's shots: all animated
+    indices = [k for k, _ in shown]
+    assert indices == sorted(indices) and sorted(set(indices)) == list(range(len(frames)))  # none skipped
+    assert np.array_equal(shown[0][1], frames[0])  # the first new picture: the break's first frame
+    first = {}
+    for k, frame in shown:
+        first.setdefault(k, frame)
+    assert all(np.array_equal(first[k], frames[k]) for k in range(len(frames)))  # the env's frames, captions too
+    assert session.shot_frame() is None and not session.busy  # over: the table again
+
+
+def test_the_window_stays_responsive_while_the_opponent_thinks():
+    thinking, go_on = threading.Event(), threading.Event()
+    player = []
+
+    def slow_opponent(observation):  # the ghost-ball player, after a wait the test ends
+        thinking.set()
+        go_on.wait(20)
+        return player[0].act(observation)
+
+    session = PlaySession("nine_ball", slow_opponent, seed=0, size=SMALL)
+    player.append(pool_env.make_player("ghost_ball", session.base))
+    action = np.zeros(session.base.action_space.shape, dtype=np.float32)
+    action[0] = -0.5  # into the head cushion, no ball hit: a foul, the opponent's turn
+    try:
+        session.shoot(action)
+        assert thinking.wait(20), "the opponent was never asked"
+        assert session.busy and "opponent thinking..." in session.status()[0]
+        # The break is animated while the opponent thinks: every frame, then it waits on the last.
+        shown, n = [], None
+        for turn in range(400):
+            session.update()
+            frame = session.shot_frame()
+            if frame is not None:
+                shown.append(session.animation.index()[2])
+                n = session.animation.available
+            session.tick(10.0 if turn == 3 else 1 / 30)
+        assert n is not None and len(session.animation.shots) == 1  # only the break is in
+        assert sorted(set(shown)) == list(range(n)) and shown[-1] == n - 1
+        surface = pygame.Surface(session.window_size)
+        draw_session(session, surface)  # the break's last frame, "opponent thinking..." over it
+        pixels = pygame.surfarray.array3d(surface)
+        assert (pixels[: SMALL[0], : SMALL[1]] == CALL_RGB).all(axis=-1).any()
+        session.handle(key(pygame.K_u))  # undo needs the env: done once the opponent's turn is over
+        assert session.note == "after the opponent's turn" and len(session.actions) == 1
+        session.handle(pygame.event.Event(pygame.QUIT))
+        assert not session.running and session.busy  # closing the window does not wait for the opponent
+    finally:
+        go_on.set()
+    assert session.wait(30) and not session.busy
+    assert not session.status()[0].endswith("thinking...")
+    records = session.base.step_records
+    session.update()  # the undo
+    assert session.actions == [] and session.note.startswith("undone")
+    assert [record.shooter for record in records][:2] == [0, 1]

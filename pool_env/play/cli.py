@@ -9,7 +9,8 @@ from pathlib import Path
 
 from ..render.window import open_display
 from .draw import draw_session
-from .session import GAMES, TABLE_SIZE, PlaySession, opponent_names
+from .games import GAMES, TABLE_SIZE, opponent_names
+from .session import PlaySession
 
 PROG = "python -m pool_env.play"
 

@@ -7,7 +7,8 @@ import math
 import numpy as np
 
 from ..game import MAX_TIP_OFFSET
-from .session import KEYS, TIP_RADIUS, first_hit
+from .aim import first_hit
+from .session import KEYS, TIP_RADIUS
 
 PANEL_RGB, TEXT_RGB, DIM_RGB = (24, 28, 34), (235, 235, 235), (150, 155, 165)
 AIM_RGB, GHOST_RGB, CUE_RGB = (255, 255, 255), (230, 230, 230), (196, 160, 100)
@@ -28,18 +29,31 @@ def blit_frame(pygame, surface, frame):
 
 
 def draw_session(session, surface):
-    """The whole window: the animation's frame while a shot plays, else the table with the aim."""
+    """The whole window: the animation's frame while a shot plays (saying so while the opponent
+    thinks), else the table with the aim."""
     pygame = session.pygame
     surface.fill(PANEL_RGB)
-    if session.frames:
-        k = min(int(session.frame_pos), len(session.frames) - 1)
-        blit_frame(pygame, surface, session.frames[k])
+    frame = session.shot_frame()
+    if frame is not None:
+        blit_frame(pygame, surface, frame)
+        if session.busy:
+            draw_thinking(session, surface)
     else:
-        blit_frame(pygame, surface, session.table_frame())
-        if not session.done:
+        blit_frame(pygame, surface, session.table_frame())  # while busy, the table before the shot, saying so
+        if not session.done and not session.busy:
             draw_pockets(session, surface)
             draw_aim(session, surface)
     draw_panel(session, surface)
+
+
+def draw_thinking(session, surface):
+    """"opponent thinking..." at the table's bottom left, over the shots shown meanwhile."""
+    pygame = session.pygame
+    text = font(pygame, 24).render(session.thinking, True, CALL_RGB)
+    box = text.get_rect(bottomleft=(0, session.size[1])).inflate(12, 8)
+    box.bottomleft = (0, session.size[1])
+    pygame.draw.rect(surface, PANEL_RGB, box)
+    surface.blit(text, text.get_rect(center=box.center))
 
 
 def draw_pockets(session, surface):
@@ -95,6 +109,7 @@ def draw_panel(session, surface):
     power = session.power()
     lines.append(f"power {power[0]:.2f}: {power[1]:.1f} m/s" if power else "drag back from the cue ball to aim")
     lines.append("slow motion on" if session.slow else "")
+    lines.append(session.thinking if session.busy else "")
     lines += wrap(session.note, 30)
     for line in lines:
         surface.blit(small.render(line, True, TEXT_RGB), (x0 + 12, y))

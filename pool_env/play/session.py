@@ -6,102 +6,32 @@ import math
 import time
 from pathlib import Path
 
-import gymnasium as gym
 import numpy as np
 
-from ..game import MAX_SPEED, MAX_TIP_OFFSET, Shot, place_cue_ball, placement_area
+from ..game import MAX_SPEED, Shot, place_cue_ball, placement_area
 from ..physics import BALL_RADIUS
-from ..players import player_names
 from ..records.saved import record_game, save_game
-from ..render.overlay import overlay
 from ..render.window import import_pygame
+from .aim import clamp_tip, shot_action
+from .animation import PendingStep, StepAnimation, banded
+from .games import NAMES, TABLE_SIZE, make_env
 
-GAMES = {"break": ("PoolBreak-v0", {"spin": True}), "run": ("PoolBreakRun-v0", {"spin": True}),
-         "nine_ball": ("PoolNineBall-v0", {}), "eight_ball": ("PoolEightBall-v0", {})}
-NAMES = {"break": "break", "run": "break and run", "nine_ball": "9-ball", "eight_ball": "8-ball"}
-DRAG_FULL = 0.6  # m: a drag this long (or longer) from the cue ball is full power (|a[0:2]| = 1, 12 m/s)
-MIN_DRAG = BALL_RADIUS  # m: a shorter drag is no shot (a click)
-TABLE_SIZE = (1120, 630)  # px: the table's frames
 PANEL = 250  # px: the panel right of the table (tip diagram, messages, keys)
 TIP_RADIUS = 70  # px: the cue ball of the tip diagram
 SLOW = 4  # slow motion: this many times slower
 KEYS = "R restart  U undo  S slow motion  W save  Esc quit"
 
 
-def shot_action(cue_xy, mouse_xy, tip=(0.0, 0.0)):
-    """The force and tip entries a[0:4] of a drag from the cue ball at `cue_xy` to `mouse_xy` (m):
-    the shot goes opposite the drag (pull back to shoot forward), with |a[0:2]| = min(drag /
-    DRAG_FULL, 1) (so the cue ball leaves at 12 m/s * that); a[2:4] = tip / MAX_TIP_OFFSET, the tip
-    (side, top) in ball radii. None for a drag shorter than MIN_DRAG."""
-    d = np.asarray(cue_xy, dtype=np.float64) - np.asarray(mouse_xy, dtype=np.float64)
-    length = math.hypot(d[0], d[1])
-    if length < MIN_DRAG:
-        return None
-    power = min(length / DRAG_FULL, 1.0)
-    return np.array([power * d[0] / length, power * d[1] / length, tip[0] / MAX_TIP_OFFSET, tip[1] / MAX_TIP_OFFSET])
-
-
-def clamp_tip(side, top):
-    """(side, top) in ball radii, scaled back onto the miscue limit (0.5 R) if beyond it."""
-    length = math.hypot(side, top)
-    if length > MAX_TIP_OFFSET:
-        side, top = side * MAX_TIP_OFFSET / length, top * MAX_TIP_OFFSET / length
-    return float(side), float(top)
-
-
-def first_hit(balls, cue_xy, direction, table):
-    """(ghost ball centre, ball hit or None) of a cue ball rolling straight from `cue_xy` along
-    the unit `direction`: where it first touches an object ball, else where it meets a cushion."""
-    c, u = np.asarray(cue_xy, dtype=np.float64), np.asarray(direction, dtype=np.float64)
-    r = float(balls.radii[0])
-    best, hit = math.inf, None
-    for k in range(1, len(balls)):
-        if balls.pocketed[k]:
-            continue
-        p = balls.xy[k] - c
-        along = float(p @ u)
-        gap2 = float(p @ p) - along * along
-        reach = r + float(balls.radii[k])
-        if along > 0 and gap2 < reach * reach:
-            t = along - math.sqrt(reach * reach - gap2)
-            if 0 <= t < best:
-                best, hit = t, k
-    for axis, size in ((0, table.length), (1, table.width)):
-        if u[axis] > 1e-12:
-            best = min(best, (size - r - c[axis]) / u[axis])
-        elif u[axis] < -1e-12:
-            best = min(best, (r - c[axis]) / u[axis])
-    return c + max(best, 0.0) * u, hit
-
-
-def make_env(game, opponent="ghost_ball", two_players=False, size=TABLE_SIZE, render_mode="rgb_array"):
-    """The env of a played game: a break env (with spin), or a game env against `opponent` (a
-    player's name, `pool_env.make_player`'s, or a saved model's path), or two people taking
-    turns (`hotseat`)."""
-    if game not in GAMES:
-        raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAMES)}")
-    env_id, kwargs = GAMES[game]
-    if render_mode is not None:  # (a saved game's env has neither: only names and numbers are saved)
-        kwargs = {**kwargs, "render_mode": render_mode, "render_size": tuple(size)}
-    if game in ("break", "run"):
-        return gym.make(env_id, **kwargs)
-    if two_players:
-        return gym.make(env_id, opponent=None, hotseat=True, **kwargs)
-    return gym.make(env_id, opponent=opponent, **kwargs)
-
-
-def opponent_names() -> list[str]:
-    """The players `--opponent` takes by name."""
-    return player_names()
-
-
 class PlaySession:
     """A game played with the mouse: feed it pygame events (`handle`), let it play pending shots
-    (`update`), draw it (`play_draw.draw_session`). Mouse: press on the table and drag back from the
-    cue ball, release to shoot (`shot_action`'s mapping; a drag shorter than a ball radius
-    cancels); with ball in hand drag the cue ball itself to place it; click or drag on the tip
-    diagram (right panel) to set the tip offset (clamped to the 0.5 R miscue limit); when shooting
-    at the 8, click a pocket to call it first. Keys: R restart (a new rack), U undo the last
+    and follow them (`update`, then `tick` the animation), draw it (`play_draw.draw_session`).
+    A shot's step (the shot, the opponent's replies) runs on a worker thread: its shots are
+    animated from their first frame while the next ones are computed, the status saying the
+    opponent is thinking; `wait` waits for it (scripts, tests). Mouse: press on the table and
+    drag back from the cue ball, release to shoot (`shot_action`'s mapping; a drag shorter than
+    a ball radius cancels); with ball in hand drag the cue ball itself to place it; click or
+    drag on the tip diagram (right panel) to set the tip offset (clamped to the 0.5 R miscue
+    limit); when shooting at the 8, click a pocket to call it first. Keys: R restart (a new rack), U undo the last
     shot (the game replayed without it), S slow motion, W write the game to a JSON file
     (`pool_env.save_game`; `python -m pool_env.records.replay` plays it again), Esc quit."""
 
@@ -114,6 +44,8 @@ class PlaySession:
         self.base = self.env.unwrapped
         self.running, self.slow, self.saved_path = True, False, None
         self.tip = (0.0, 0.0)
+        self.step = self.animation = None  # the step under way (a PendingStep), the shots shown (a StepAnimation)
+        self._queued = None  # a key (R, U, W) pressed while the step is under way: done once it is over
         self.restart(self.seed)
 
     # --- state ------------------------------------------------------------------------------
@@ -127,18 +59,30 @@ class PlaySession:
         return getattr(self.base, "state", None)
 
     @property
+    def busy(self) -> bool:
+        """A step is under way (or over but not yet applied by `update`): the env is the worker's."""
+        return self.step is not None
+
+    @property
+    def thinking(self) -> str:
+        """What the window says while a step is under way."""
+        has_opponent = self.game in ("nine_ball", "eight_ball") and not self.two_players
+        return "opponent thinking..." if has_opponent else "simulating the shot..."
+
+    @property
     def in_hand(self):
         return None if self.state is None or self.done else self.state.ball_in_hand
 
     @property
     def needs_call(self) -> bool:
         """The shooter must call a pocket (the game's `calls_pocket`: 8-ball, at the 8, not the break)."""
-        return not self.done and self.base.game.calls_pocket
+        return not self.done and not self.busy and self.base.game.calls_pocket
 
     def restart(self, seed=None):
         """A new game (seed `seed`, default the next one)."""
+        self.wait()
         self.seed = self.seed + 1 if seed is None else int(seed)
-        self.actions, self.done, self.lines, self.note = [], False, [], ""
+        self.actions, self.done, self.lines, self.note, self.animation = [], False, [], "", None
         self.env.reset(seed=self.seed)
         self._begin_turn()
 
@@ -146,7 +90,7 @@ class PlaySession:
         self.drag = self.pending = None
         self.placing = self.tipping = False
         self.called = None
-        self.frames, self.frame_pos, self._still = [], 0.0, None
+        self._still = None
         balls = self.base.balls
         self.cue_xy = balls.xy[0].copy()
         if self.in_hand is not None:
@@ -178,6 +122,9 @@ class PlaySession:
         pg = self.pygame
         if key == pg.K_ESCAPE:
             self.running = False
+        elif self.busy and key in (pg.K_r, pg.K_u, pg.K_w):  # they need the env, which is the worker's now
+            self._queued = key
+            self.note = "after the opponent's turn" if self.thinking.startswith("opponent") else "after the shot"
         elif key == pg.K_r:
             self.restart()
             self.note = f"new game (seed {self.seed})"
@@ -190,10 +137,10 @@ class PlaySession:
             self.write()
 
     def _press(self, pos):
-        if self.frames:  # a click skips the animation
-            self.frames = []
+        if self.animation is not None and not self.animation.skipped:  # a click skips the animation
+            self.animation.skip()
             return
-        if self.done:
+        if self.done or self.busy:
             return
         if self._tip_at(pos) is not None:
             self.tipping = True
@@ -253,25 +200,50 @@ class PlaySession:
         return self.base.game.encode(shot)
 
     def update(self):
-        """Play the pending shot, if any (the human's, then the opponent's replies)."""
-        if self.pending is None:
-            return
-        action, self.pending = self.pending, None
-        self.shoot(action)
+        """Follow the step under way (its shots to the animation as they are played; applied
+        once over), then do a key pressed meanwhile, then start the pending shot, if any."""
+        if self.step is not None:
+            self._follow()
+        if self.step is None and self._queued is not None:
+            key, self._queued = self._queued, None
+            self._key(key)
+        if self.step is None and self.pending is not None:
+            action, self.pending = self.pending, None
+            self.shoot(action)
 
     def shoot(self, action):
-        """Step the env with `action`; note the rules' messages and queue the frames."""
+        """Start the step of `action` (the shot, then the opponent's replies) on a worker thread
+        and return: `update` follows it (the frames, the rules' messages), `wait` waits for it."""
+        self.wait()
         action = np.asarray(action, dtype=np.float32)
         shooter = 0 if self.state is None else self.state.shooter
-        obs, reward, terminated, truncated, info = self.env.step(action)
-        self.actions.append([float(a) for a in action])
-        self.done = bool(terminated or truncated)
-        self.lines = self._shot_lines(info, shooter)
-        frames = self.base.shot_frames(self.base.metadata["render_fps"] * (SLOW if self.slow else 1))
-        self.note = ""
-        self._begin_turn()
+        self._still_frame()  # the table before the shot: shown until its first frame is in
         if self.animate:
-            self.frames = frames
+            playback, fps = self.base.playback, self.base.metadata["render_fps"] * (SLOW if self.slow else 1)
+            self.animation = StepAnimation(playback.renderer, playback.orientation, fps)
+        self.actions.append([float(a) for a in action])
+        self.note = ""
+        self.step = PendingStep(self.env, action, shooter)
+
+    def wait(self, timeout=None) -> bool:
+        """Wait for the step under way (at most `timeout` s) and apply it; whether none is left under way."""
+        if self.step is not None and self.step.join(timeout):
+            self._follow()
+        return self.step is None
+
+    def _follow(self):
+        """The step's new shots to the animation; the step applied if it is over (what it raised, raised here)."""
+        step = self.step
+        over = step.done  # read before the shots: then, when over, they are all of them
+        if self.animation is not None:
+            self.animation.add(step.shots(), complete=over)
+        if not over:
+            return
+        self.step = None
+        obs, reward, terminated, truncated, info = step.outcome()
+        self.done = bool(terminated or truncated)
+        self.lines = self._shot_lines(info, step.shooter)
+        self._begin_turn()
 
     def _shot_lines(self, info, shooter):
         """The rules' messages of a step (both players' shots), or what a break shot did."""
@@ -285,12 +257,13 @@ class PlaySession:
 
     def undo(self):
         """Take back the last shot: the game replayed from its seed with every action but the last."""
+        self.wait()
         if not self.actions:
             self.note = "nothing to undo"
             return
         actions = self.actions[:-1]
         self.env.reset(seed=self.seed)
-        self.actions, self.done, self.lines = [], False, []
+        self.actions, self.done, self.lines, self.animation = [], False, [], None
         for action in actions:
             obs, reward, terminated, truncated, info = self.env.step(np.asarray(action, dtype=np.float32))
             self.actions.append(action)
@@ -300,6 +273,7 @@ class PlaySession:
 
     def write(self, path=None):
         """Save the game so far (`pool_env.save_game`) and return the path (None if it cannot be saved)."""
+        self.wait()
         if path is None:
             path = self.save_dir / f"pool_game_{self.game}_{time.strftime('%Y%m%d_%H%M%S')}.json"
         actions = iter(self.actions)
@@ -359,6 +333,8 @@ class PlaySession:
     def status(self):
         """The lines of text on the table: the game, whose turn, ball in hand, the last shot's messages."""
         name = NAMES[self.game]
+        if self.busy:  # the rules' state is the worker's until the step is over
+            return [f"{name}: {self.thinking}"]
         if self.state is None:
             head = f"{name}: shot {len(self.actions) + 1}" + (" - over, R for a new rack" if self.done else "")
             return [head, *self.lines]
@@ -381,21 +357,33 @@ class PlaySession:
         return lines + self.lines
 
     def table_frame(self):
-        """The table now (uint8 (H, W, 3)), the cue ball where it is to be placed, with the status lines."""
+        """The table now (uint8 (H, W, 3)), the cue ball where it is to be placed, with the status
+        lines; while a step is under way, the table before it."""
+        return banded(self._still_frame(), self.status())
+
+    def _still_frame(self):
+        """The table now without text (drawn once a turn; kept while the worker has the env)."""
         if self._still is None:
             balls, playback = self.base.balls, self.base.playback
             xy, pocketed = balls.xy.copy(), balls.pocketed.copy()
             xy[0], pocketed[0] = self.cue_xy, False
             playback.frame()  # brings the rotation markers to the end of the last shot
             self._still = playback.renderer.draw(xy, pocketed, playback.orientation)
-        return overlay(self._still, self.status())
+        return self._still
+
+    def shot_frame(self):
+        """The animation's frame shown now (a shot of the last step, captioned as the env's own
+        frames), or None: no animation, or its first frame is not in yet."""
+        return None if self.animation is None else self.animation.frame()
 
     def tick(self, seconds):
-        """Advance the animation by `seconds` of wall time (at metadata["render_fps"] frames a second)."""
-        if self.frames:
-            self.frame_pos += seconds * self.base.metadata["render_fps"]
-            if self.frame_pos >= len(self.frames):
-                self.frames, self.frame_pos = [], 0.0
+        """Advance the animation by `seconds` of wall time (at metadata["render_fps"] frames a
+        second), but never past a frame not yet drawn (`StepAnimation.advance`): a loop that
+        blocked shows the next frame, none is skipped."""
+        if self.animation is not None:
+            self.animation.advance(seconds * self.base.metadata["render_fps"])
+            if self.animation.finished and self.step is None:
+                self.animation = None
 
     def power(self):
         """(|a[0:2]|, cue-ball speed in m/s) of the drag under way, or None."""

@@ -1,0 +1,168 @@
+"""A play window's step computed on a worker thread (`PendingStep`) while its shots are animated (`StepAnimation`)."""
+
+from __future__ import annotations
+
+import math
+import threading
+
+import numpy as np
+
+from ..envs.game_env import shot_caption
+from ..render.overlay import font_size, overlay
+from ..render.playback import sample_shot
+
+
+def banded(frame, lines, where="top"):
+    """`overlay(frame, lines, where=where)`, the same pixels, at a fraction of the cost: only the
+    strip under the text goes through PIL (a whole frame costs ~7 ms at 1120 x 630, 30 times a second)."""
+    lines = [line for line in lines if line]
+    if not lines:
+        return frame
+    h = frame.shape[0]
+    size = font_size(h)
+    rows = min(h, (2 * size + 8) * (len(lines) + 1))  # more than overlay()'s band: its lines are ~1.2 size apart
+    strip = slice(0, rows) if where == "top" else slice(h - rows, h)
+    out = frame.copy()
+    out[strip] = overlay(frame[strip], lines, where=where, size=size)
+    return out
+
+
+class PendingStep:
+    """`env.step(action)` run on a daemon thread (the engine releases the GIL: the window keeps
+    drawing), the shots it has played so far readable while it runs. A daemon, so that closing
+    the window does not wait for an opponent still thinking."""
+
+    def __init__(self, env, action, shooter):
+        self.env, self.base, self.shooter = env, env.unwrapped, shooter
+        # The last step's records, to tell them from this step's until it has begun (the env
+        # replaces its list when it does).
+        self._before = self.base.step_records if self.base.game.has_rules else ()
+        self._outcome = self._error = None
+        self._over = threading.Event()
+        self._thread = threading.Thread(target=self._run, args=(action,), name="pool_env.play step", daemon=True)
+        self._thread.start()
+
+    def _run(self, action):
+        try:
+            self._outcome = self.env.step(action)
+        except Exception as exc:  # handed to the main thread: outcome() raises it there, as a step on it would
+            self._error = exc
+        finally:
+            self._over.set()
+
+    @property
+    def done(self) -> bool:
+        return self._over.is_set()
+
+    def join(self, timeout=None) -> bool:
+        """Wait for the step to end (at most `timeout` s); whether it has."""
+        return self._over.wait(timeout)
+
+    def outcome(self):
+        """The step's (observation, reward, terminated, truncated, info); what it raised, raised here."""
+        self.join()
+        if self._error is not None:
+            raise self._error
+        return self._outcome
+
+    def shots(self) -> list:
+        """(Result, caption, messages) of each shot the step has played so far, as the env's own
+        frames caption them (`PoolGameEnv.shot_frames`): the caption on every frame, the rules'
+        messages on the last. A break env's one shot shows once the step is over."""
+        base = self.base
+        if not base.game.has_rules:
+            result = base.playback.last_result if self.done else None
+            return [] if result is None else [(result, None, [])]
+        records = base.step_records  # a snapshot: the worker appends each shot as it is played
+        if self._before and records[:1] and records[0] is self._before[0]:
+            return []  # the step has not begun yet
+        out = []
+        for record in records:
+            if record.error is not None:
+                continue
+            if not base.overlay:
+                out.append((record.result, None, []))
+                continue
+            who = f"player {record.shooter + 1}" if base.hotseat else ("agent" if record.shooter == 0 else "opponent")
+            out.append((record.result, shot_caption(base.game, record, who), list(record.ruling.messages)))
+        return out
+
+
+class StepAnimation:
+    """A step's shots as frames, each drawn only when it is shown, from each shot's first frame
+    in order: sampled from the exact trajectory at `fps` (render_fps, or more in slow motion)
+    and shown at render_fps. The frames of a shot are there as soon as the shot is added; the
+    animation waits on the last one until the next shot (or the step's end, `complete`) comes.
+
+    `pos` is the frame shown, a float advanced by wall time (`advance`), but never beyond the
+    frame after the last one drawn (`frame()`): a loop that blocked for seconds shows the next
+    frame, not one seconds later, so no frame is ever skipped (unless `skip`ped)."""
+
+    def __init__(self, renderer, orientation, fps):
+        self.renderer, self.fps = renderer, float(fps)
+        self.shots = []  # (caption, messages, (times, xy, pocketed, orientation)) per shot, in order
+        self.complete = False  # every shot of the step is in
+        self.skipped = False
+        self.pos, self.shown = 0.0, -1  # the frame to show (a float), the last frame drawn
+        self._orientation = np.asarray(orientation)  # the balls' orientations where the next shot starts
+        self._drawn = (None, None)  # (frame index, image) of the last frame drawn
+
+    @property
+    def available(self) -> int:
+        """The frames in so far."""
+        return sum(len(track[0]) for _, _, track in self.shots)
+
+    @property
+    def finished(self) -> bool:
+        return self.complete and self.pos >= self.available
+
+    def add(self, shots, complete=False):
+        """The step's shots so far ((Result, caption, messages), as `PendingStep.shots`): the new ones added."""
+        for result, caption, messages in shots[len(self.shots):]:
+            track = sample_shot(result, self._orientation, self.fps)
+            self._orientation = track[3][-1]
+            self.shots.append((caption, messages, track))
+        self.complete = self.complete or complete
+
+    def advance(self, frames):
+        """Move on by `frames` (wall time in frames), but not past the frame after the last one
+        drawn; while shots may still come, at most to the last frame in."""
+        n = self.available
+        end = n if self.complete else n - 1
+        if self.skipped:
+            self.pos = float(max(end, 0))
+            return
+        next_one = math.nextafter(self.shown + 2.0, 0.0)  # the last position still showing frame shown + 1
+        self.pos = max(self.pos, min(self.pos + max(float(frames), 0.0), next_one, float(end)))
+
+    def skip(self):
+        """Skip to the end of what is in, and of every shot still to come."""
+        self.skipped = True
+        self.advance(0.0)
+
+    def index(self):
+        """(shot, frame of that shot, frame of the step) shown now, or None before the first frame is in."""
+        k = min(int(self.pos), self.available - 1)
+        if k < 0:
+            return None
+        j = k
+        for s, (_, _, track) in enumerate(self.shots):
+            if j < len(track[0]):
+                return s, j, k
+            j -= len(track[0])
+        raise AssertionError("unreachable: k < available")
+
+    def frame(self):
+        """The frame shown now (uint8 (H, W, 3)), captioned as the env's own frames, or None before the first is in."""
+        where = self.index()
+        if where is None:
+            return None
+        s, j, k = where
+        if self._drawn[0] != k:
+            caption, messages, (_, xy, pocketed, orientation) = self.shots[s]
+            image = self.renderer.draw(xy[j], pocketed[j], orientation[j])
+            if caption is not None:
+                image = banded(image, [caption, *messages] if j == len(xy) - 1 else [caption])
+            self._drawn = (k, image)
+        self.shown = max(self.shown, k)
+        return self._drawn[1]
