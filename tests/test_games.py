@@ -240,6 +240,10 @@ def test_a_game_the_opponent_wins_before_the_agent_shoots_is_reported_not_racked
     obs, reward, terminated, truncated, info = env.step(action(vx=1.0))
     assert (reward, terminated, truncated, info["winner"]) == (-1.0, True, False, "opponent")
     assert env.unwrapped.step_records == () and info["events"] == 0  # the agent's action was not played
+    envs = gym.make_vec("PoolNineBall-v0", num_envs=2, vectorization_mode="vector_entry_point", opponent=pot_the_nine)
+    envs.reset(seed=0, options={"balls": balls, "agent_breaks": False})  # the native vector env: the same
+    _, rewards, terminations, _, infos = envs.step(np.stack([action(vx=1.0)] * 2))
+    assert rewards.tolist() == [-1.0, -1.0] and terminations.all() and list(infos["winner"]) == ["opponent"] * 2
 
 
 def test_an_opponents_bad_action_is_reported_as_the_opponents():

@@ -7,7 +7,7 @@ import numpy as np
 from gymnasium import logger, spaces
 
 from .. import rules
-from ..game import GAME_BALLS, Game, game_observation, game_observation_size
+from ..game import GAME_BALLS, Game, Shot, game_observation, game_observation_size
 from ..physics import Balls
 from ..players import make_player
 from ..render.overlay import overlay
@@ -346,7 +346,8 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         ended_at_reset, self._reset_error = self._reset_error, None
         self._begin_step()
         if self.game.over or ended_at_reset is not None:  # the opponent's turn at reset ended the game
-            self.game.decode(action)  # a bad action still raises
+            if not isinstance(action, Shot):
+                self.game.decode(action)  # a bad action still raises
             self._error = ended_at_reset
             return self._finish(observe)
         struck = self.game.strike(action)
