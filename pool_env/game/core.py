@@ -219,7 +219,7 @@ class Game:
     def legal_targets(self) -> frozenset:
         """The object balls the shooter may hit first (without rules: any on the table)."""
         if self._state is None:
-            return frozenset(int(b) for b in np.flatnonzero(~self._balls.pocketed[1:]) + 1)
+            return self._objects_on(self._balls)
         return frozenset() if self._state.winner is not None else rules.legal_targets(self._state)
 
     @property
@@ -310,19 +310,23 @@ class Game:
         check_on_table(balls, self.table, self.physics)
         return balls
 
+    @staticmethod
+    def _objects_on(balls) -> frozenset:
+        """The object balls (by number) on the table."""
+        return frozenset(int(k) for k in np.flatnonzero(~balls.pocketed[1:]) + 1)
+
     def _check_state(self, state, balls):
         if not self.has_rules:
             raise ValueError(f"the {self.mode} mode has no rules' state")
         if not isinstance(state, rules.GameState) or state.kind != self._mode.rules:
             raise ValueError(f"state must be a {self._mode.rules} rules.GameState, got {state!r}")
-        on_table = frozenset(int(k) for k in np.flatnonzero(~balls.pocketed[1:]) + 1)
+        on_table = self._objects_on(balls)
         if state.on_table != on_table:
             raise ValueError(f"state.on_table {sorted(state.on_table)} is not the layout's {sorted(on_table)}")
 
     def _open_table(self, balls, shooter, ball_in_hand):
         state = rules.new_game(self._mode.rules, breaker=0, **self.rule_options)
-        on_table = frozenset(int(k) for k in np.flatnonzero(~balls.pocketed[1:]) + 1)
-        return dataclasses.replace(state, on_table=on_table, is_break=False, shooter=shooter,
+        return dataclasses.replace(state, on_table=self._objects_on(balls), is_break=False, shooter=shooter,
                                    ball_in_hand="anywhere" if ball_in_hand else None)
 
     def _cue_start(self):
@@ -348,11 +352,17 @@ class Game:
         nothing but the generator. RuntimeError if the game is over, ValueError for a bad shot."""
         if self._over:
             raise RuntimeError("the game is over; reset() it")
-        action = None
-        if not isinstance(shot, Shot):
-            a = np.asarray(shot, dtype=np.float64)
-            action = tuple(a.tolist()) if a.ndim == 1 else None
-            shot = self.decode(a)
+        return self._strike(*self._shot_and_action(shot), rng)
+
+    def _shot_and_action(self, shot) -> tuple:
+        """(the `Shot`, the action vector's entries as a tuple or None) of a Shot or an action."""
+        if isinstance(shot, Shot):
+            return shot, None
+        a = np.asarray(shot, dtype=np.float64)
+        return self.decode(a), (tuple(a.tolist()) if a.ndim == 1 else None)
+
+    def _strike(self, shot: Shot, action, rng) -> StruckShot:
+        """`strike` of a decoded shot (`action` its vector's entries, or None)."""
         placed, hand = self._balls, self.ball_in_hand
         if hand is not None:
             wanted = shot.place
@@ -460,24 +470,22 @@ class Game:
         decoded = []
         for k, shot in enumerate(shots):
             try:
-                decoded.append((shot if isinstance(shot, Shot) else self.decode(shot), shot))
+                decoded.append(self._shot_and_action(shot))
             except ValueError as exc:
                 raise ValueError(f"shot {k}: {exc}") from None
         rng = self._evaluation_rng(seed)
-        struck = [self._strike_or_fail(shot if isinstance(given, Shot) else given, rng)
-                  for shot, given in decoded for _ in range(int(draws))]
+        struck = [self._strike_or_fail(shot, action, rng) for shot, action in decoded for _ in range(int(draws))]
         results = simulate_struck_batch(struck, self.table, self.physics, threads)
         rulings: dict = {}  # candidate shots often end alike: the rules judge each outcome once
         return [self.judge(s, r, rulings) for s, r in zip(struck, results)]
 
-    def _strike_or_fail(self, shot, rng) -> StruckShot:
-        """`strike`, a placement that finds no free spot recorded as the shot's failure."""
+    def _strike_or_fail(self, shot: Shot, action, rng) -> StruckShot:
+        """`strike` of a decoded shot, a placement that finds no free spot recorded as the shot's failure."""
         try:
-            return self.strike(shot, rng=rng)
+            return self._strike(shot, action, rng)
         except ValueError as exc:
-            decoded = shot if isinstance(shot, Shot) else self.decode(shot)
             zero = (0.0, 0.0)
-            return StruckShot(decoded, self.shooter, self.ball_in_hand, None, self._balls, zero, zero, exc)
+            return StruckShot(shot, self.shooter, self.ball_in_hand, None, self._balls, zero, zero, exc)
 
     def _evaluation_rng(self, seed):
         if isinstance(seed, np.random.Generator):
