@@ -338,7 +338,6 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
         self.render_size = (int(render_size[0]), int(render_size[1]))
         if self.render_size[0] < 8 or self.render_size[1] < 8:
             raise ValueError(f"render_size must be at least 8 x 8 pixels, got {render_size!r}")
-        self.pocketless = self.table.pockets.shape[0] == 0
 
         self.action_space = spaces.Box(-1.0, 1.0, (4 if self.spin else 2,), np.float32)
         self.observation_space = spaces.Box(-1.0, 1.0, (3 * N_BALLS + 1,), np.float32)

@@ -196,22 +196,16 @@ class PoolVectorEnv(VectorEnv):
         generators: every round's shots (the agents', then the opponents' round by round) in one
         `simulate_batch` call. {sub-env: its step's (None, reward, terminated, truncated, info)}."""
         steps = {k: self.envs[k].step_shots(shot, observe=False) for k, shot in zip(shots, decoded)}
-        pending, done = {}, {}
-        for k, step in steps.items():
-            try:
-                pending[k] = next(step)
-            except StopIteration as stop:  # a step without a shot (its game ended at reset)
-                done[k] = stop.value
-        while pending:
-            keys = list(pending)
-            outcomes = simulate_struck_batch([pending[k] for k in keys], self.table, self.physics, self.threads)
-            following = {}
-            for k, outcome in zip(keys, outcomes):
+        outcomes, done = dict.fromkeys(steps), {}  # the first send (None) starts each generator
+        while outcomes:
+            struck = {}
+            for k, outcome in outcomes.items():
                 try:
-                    following[k] = steps[k].send(outcome)
-                except StopIteration as stop:
+                    struck[k] = steps[k].send(outcome)
+                except StopIteration as stop:  # the step is over (or had no shot: its game ended at reset)
                     done[k] = stop.value
-            pending = following
+            results = simulate_struck_batch(list(struck.values()), self.table, self.physics, self.threads)
+            outcomes = dict(zip(struck, results))
         return done
 
     @staticmethod
