@@ -8,8 +8,9 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
-from ..game import MAX_SPEED, Shot, decode_game_observation, placement_area
+from ..game import MAX_SPEED, MAX_TIP_OFFSET, Shot, decode_game_observation, placement_area
 from ..players import GameGhostBallAgent, game_of
+from ..players import geometry as geo
 from ..players.game_ghost_ball import BREAK_SPEED
 
 # The corrections are small at |action| = 1: the ghost-ball aim is good, and a policy's
@@ -59,9 +60,9 @@ class GhostBallActionMap:
             else:
                 direction, speed, pocket = pot.direction, pot.speed, pot.pocket
                 self.last_plan = (pot.ball, pot.pocket)
-        direction = _turn(direction, math.radians(MAX_ANGLE * a[7]))
+        direction = geo.rotate(np.asarray(direction, dtype=np.float64), math.radians(MAX_ANGLE * a[7]))
         speed = min(speed * 2.0 ** (SPEED_OCTAVES * a[8]), MAX_SPEED)
-        tip = TIP_SCALE * a[9:11] * 0.5  # the env's entries are tip / 0.5 R
+        tip = TIP_SCALE * a[9:11] * MAX_TIP_OFFSET  # the env's entries are tip / MAX_TIP_OFFSET
         return p.encode(Shot.aimed(direction, speed, tuple(tip), place, pocket), in_hand)
 
     def shots(self, xy, on_table, legal) -> dict[int, list]:
@@ -160,12 +161,6 @@ class GhostBallAction(gym.ActionWrapper, gym.utils.RecordConstructorArgs):
     def env_action(self, observation, action) -> np.ndarray:
         """The env's action for the wrapper's `action` in `observation` (no env state used)."""
         return self.map.env_action(observation, action)
-
-
-def _turn(direction, angle: float) -> np.ndarray:
-    d = np.asarray(direction, dtype=np.float64)
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([c * d[0] - s * d[1], s * d[0] + c * d[1]])
 
 
 class GhostBallActionAgent:
