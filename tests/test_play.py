@@ -19,6 +19,7 @@ from pool_env.play.aim import DRAG_FULL, MIN_DRAG, shot_action  # noqa: E402
 from pool_env.play.draw import CALL_RGB, draw_session  # noqa: E402
 from pool_env.play.session import PlaySession  # noqa: E402
 from pool_env.records.saved import replay  # noqa: E402
+from pool_env.render.overlay import overlay  # noqa: E402
 
 SIZE = (640, 360)
 SMALL = (320, 180)  # the animation tests draw every frame of a step
@@ -137,14 +138,14 @@ def test_two_players_take_turns():
 def play_out(session, seconds, limit=60.0):
     """Drive the session's loop with a fake clock until its step is over and shown: each turn
     update, draw the frame shown, tick `seconds(turn, frames drawn so far)`. The (step frame
-    index, frame) drawn."""
+    index, frame) drawn, the frame with its caption as the env's own frames carry it."""
     shown, turn, start = [], 0, time.monotonic()
     while session.busy or session.animation is not None:
         assert time.monotonic() - start < limit, "the step never ended"
         session.update()
         frame = session.shot_frame()
         if frame is not None:
-            shown.append((session.animation.index()[2], frame.copy()))
+            shown.append((session.animation.index()[2], overlay(frame, session.shot_caption())))
         session.tick(seconds(turn, len(shown)))
         turn += 1
     return shown

@@ -8,23 +8,7 @@ import threading
 import numpy as np
 
 from ..envs.game_env import shot_caption
-from ..render.overlay import font_size, overlay
 from ..render.playback import sample_shot
-
-
-def banded(frame, lines, where="top"):
-    """`overlay(frame, lines, where=where)`, the same pixels, at a fraction of the cost: only the
-    strip under the text goes through PIL (a whole frame costs ~7 ms at 1120 x 630, 30 times a second)."""
-    lines = [line for line in lines if line]
-    if not lines:
-        return frame
-    h = frame.shape[0]
-    size = font_size(h)
-    rows = min(h, (2 * size + 8) * (len(lines) + 1))  # more than overlay()'s band: its lines are ~1.2 size apart
-    strip = slice(0, rows) if where == "top" else slice(h - rows, h)
-    out = frame.copy()
-    out[strip] = overlay(frame[strip], lines, where=where, size=size)
-    return out
 
 
 class PendingStep:
@@ -153,16 +137,26 @@ class StepAnimation:
         raise AssertionError("unreachable: k < available")
 
     def frame(self):
-        """The frame shown now (uint8 (H, W, 3)), captioned as the env's own frames, or None before the first is in."""
+        """The frame shown now (uint8 (H, W, 3), the table only: `caption` says what it shows), or None
+        before the first is in."""
         where = self.index()
         if where is None:
             return None
         s, j, k = where
         if self._drawn[0] != k:
-            caption, messages, (_, xy, pocketed, orientation) = self.shots[s]
-            image = self.renderer.draw(xy[j], pocketed[j], orientation[j])
-            if caption is not None:
-                image = banded(image, [caption, *messages] if j == len(xy) - 1 else [caption])
-            self._drawn = (k, image)
+            _, _, (_, xy, pocketed, orientation) = self.shots[s]
+            self._drawn = (k, self.renderer.draw(xy[j], pocketed[j], orientation[j]))
         self.shown = max(self.shown, k)
         return self._drawn[1]
+
+    def caption(self) -> list[str]:
+        """The lines the env's own frames carry on the frame shown now: the shot's caption, and on
+        its last frame the rules' messages too; [] before the first frame or without captions."""
+        where = self.index()
+        if where is None:
+            return []
+        s, j, _ = where
+        caption, messages, track = self.shots[s]
+        if caption is None:
+            return []
+        return [caption, *messages] if j == len(track[0]) - 1 else [caption]

@@ -1,31 +1,43 @@
-"""Drawing a `PlaySession` with pygame: the table, the aim line and ghost ball, the tip diagram, the panel's text."""
+"""Drawing a `PlaySession` with pygame: the status bar, the table, the aim line and ghost ball, the tip diagram, the panel."""
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
+from PIL import Image, ImageDraw
 
 from ..game import MAX_TIP_OFFSET
+from ..render.overlay import fit_text
+from ..render.overlay import font as text_font
 from .aim import first_hit
-from .session import KEYS, TIP_RADIUS
+from .session import KEYS, PANEL, STATUS_BAR, TIP_RADIUS
 
 PANEL_RGB, TEXT_RGB, DIM_RGB = (24, 28, 34), (235, 235, 235), (150, 155, 165)
 AIM_RGB, GHOST_RGB, CUE_RGB = (255, 255, 255), (230, 230, 230), (196, 160, 100)
 CALL_RGB, TIP_RGB = (255, 210, 60), (220, 40, 40)
-_FONTS = {}
+# Text sizes (px) and line steps: the frames' font (render.overlay.font), large enough that every
+# glyph keeps its parts (the dot of an "i").
+TITLE_SIZE, TEXT_SIZE, LINE = 20, 15, 20
+STATUS_SIZE, STATUS_LINE, STATUS_LINES = 18, 24, 3  # STATUS_LINES lines of STATUS_LINE px fit the STATUS_BAR
+MARGIN = 12  # px: the text's margin in the panel and the bar
 
 
-def font(pygame, size):
-    if size not in _FONTS:
-        pygame.font.init()
-        _FONTS[size] = pygame.font.Font(None, size)
-    return _FONTS[size]
+@functools.lru_cache(maxsize=512)
+def text(pygame, line, size, rgb):
+    """A pygame surface (per-pixel alpha) of `line` in the frames' font at `size` px, coloured `rgb`."""
+    face = text_font(size)
+    ascent, descent = face.getmetrics()
+    width = max(1, round(face.getlength(line)) + 2)
+    image = Image.new("RGBA", (width, ascent + descent), (*rgb, 0))
+    ImageDraw.Draw(image).text((0, 0), line, font=face, fill=(*rgb, 255))
+    return pygame.image.frombuffer(image.tobytes(), image.size, "RGBA")
 
 
-def blit_frame(pygame, surface, frame):
+def blit_frame(pygame, surface, frame, top=0):
     image = pygame.image.frombuffer(np.ascontiguousarray(frame).tobytes(), (frame.shape[1], frame.shape[0]), "RGB")
-    surface.blit(image, (0, 0))
+    surface.blit(image, (0, top))
 
 
 def draw_session(session, surface):
@@ -35,25 +47,41 @@ def draw_session(session, surface):
     surface.fill(PANEL_RGB)
     frame = session.shot_frame()
     if frame is not None:
-        blit_frame(pygame, surface, frame)
-        if session.busy:
-            draw_thinking(session, surface)
+        blit_frame(pygame, surface, frame, STATUS_BAR)
+        draw_status(session, surface, session.shot_caption())
     else:
-        blit_frame(pygame, surface, session.table_frame())  # while busy, the table before the shot, saying so
+        blit_frame(pygame, surface, session.table_frame(), STATUS_BAR)  # while busy, the table before the shot
+        draw_status(session, surface, session.status())
         if not session.done and not session.busy:
             draw_pockets(session, surface)
             draw_aim(session, surface)
     draw_panel(session, surface)
 
 
-def draw_thinking(session, surface):
-    """"opponent thinking..." at the table's bottom left, over the shots shown meanwhile."""
+def status_lines(session, lines):
+    """(line, colour) of the status bar: `lines` fitted to the bar's width (the first on a line
+    of its own, the rest run on), and "opponent thinking..." last while a step is under way."""
+    face, width = text_font(STATUS_SIZE), session.size[0] - 2 * MARGIN
+    thinking = session.busy and not any(session.thinking in line for line in lines)
+    room = STATUS_LINES - thinking
+    head = fit_text(lines[0], width, face, max_lines=room) if lines else []
+    rest = "   ".join(lines[1:])
+    out = head + (fit_text(rest, width, face, max_lines=room - len(head)) if rest and len(head) < room else [])
+    return [(line, TEXT_RGB) for line in out] + ([(session.thinking, CALL_RGB)] if thinking else [])
+
+
+def status_rect(session):
+    """The status bar's (left, top, width, height) in the window: above the table, never on it."""
+    return 0, 0, session.size[0], STATUS_BAR
+
+
+def draw_status(session, surface, lines):
+    """The status bar above the table: the game, whose turn, the last shot's messages."""
     pygame = session.pygame
-    text = font(pygame, 24).render(session.thinking, True, CALL_RGB)
-    box = text.get_rect(bottomleft=(0, session.size[1])).inflate(12, 8)
-    box.bottomleft = (0, session.size[1])
-    pygame.draw.rect(surface, PANEL_RGB, box)
-    surface.blit(text, text.get_rect(center=box.center))
+    y = (STATUS_BAR - STATUS_LINE * STATUS_LINES) // 2
+    for line, rgb in status_lines(session, lines):
+        surface.blit(text(pygame, line, STATUS_SIZE, rgb), (MARGIN, y))
+        y += STATUS_LINE
 
 
 def draw_pockets(session, surface):
@@ -96,38 +124,34 @@ def draw_panel(session, surface):
     pygame = session.pygame
     x0 = session.size[0]
     cx, cy = session.tip_centre()
-    small, big = font(pygame, 20), font(pygame, 24)
-    surface.blit(big.render("cue tip", True, TEXT_RGB), (x0 + 12, 10))
+    surface.blit(text(pygame, "cue tip", TITLE_SIZE, TEXT_RGB), (x0 + MARGIN, 10))
     pygame.draw.circle(surface, (245, 245, 240), (cx, cy), TIP_RADIUS)
     pygame.draw.circle(surface, (180, 180, 180), (cx, cy), round(MAX_TIP_OFFSET * TIP_RADIUS), 1)
     pygame.draw.line(surface, (200, 200, 200), (cx - TIP_RADIUS, cy), (cx + TIP_RADIUS, cy), 1)
     pygame.draw.line(surface, (200, 200, 200), (cx, cy - TIP_RADIUS), (cx, cy + TIP_RADIUS), 1)
     side, top = session.tip
     pygame.draw.circle(surface, TIP_RGB, (round(cx + side * TIP_RADIUS), round(cy - top * TIP_RADIUS)), 7)
-    y = cy + TIP_RADIUS + 12
-    lines = [f"side {side:+.2f} R, top {top:+.2f} R", "(top > 0 follow, < 0 draw)", ""]
+    keys = KEYS.split("  ")
+    y, bottom = cy + TIP_RADIUS + 12, surface.get_height() - LINE * len(keys) - 8
+    for line in panel_lines(session, (bottom - y) // LINE - 1):
+        surface.blit(text(pygame, line, TEXT_SIZE, TEXT_RGB), (x0 + MARGIN, y))
+        y += LINE
+    for line in keys:
+        surface.blit(text(pygame, line, TEXT_SIZE, DIM_RGB), (x0 + MARGIN, bottom))
+        bottom += LINE
+
+
+def panel_lines(session, room):
+    """The panel's lines under the tip diagram (at most `room`), each fitted to the panel's width:
+    the tip, the power, slow motion, the note (a saved game's path: on as many lines as it takes)."""
+    face, width = text_font(TEXT_SIZE), PANEL - 2 * MARGIN
+    side, top = session.tip
     power = session.power()
-    lines.append(f"power {power[0]:.2f}: {power[1]:.1f} m/s" if power else "drag back from the cue ball to aim")
-    lines.append("slow motion on" if session.slow else "")
-    lines.append(session.thinking if session.busy else "")
-    lines += wrap(session.note, 30)
-    for line in lines:
-        surface.blit(small.render(line, True, TEXT_RGB), (x0 + 12, y))
-        y += 20
-    y = session.size[1] - 20 * 5 - 8
-    for line in KEYS.split("  "):
-        surface.blit(small.render(line, True, DIM_RGB), (x0 + 12, y))
-        y += 20
-
-
-def wrap(text, width):
-    """`text` cut into lines of at most about `width` characters, at spaces."""
-    lines, line = [], ""
-    for word in text.split():
-        if line and len(line) + 1 + len(word) > width:
-            lines.append(line)
-            line = word
-        else:
-            line = f"{line} {word}".strip()
-    return lines + ([line] if line else [])
+    lines = [f"side {side:+.2f} R, top {top:+.2f} R", "(top > 0 follow, < 0 draw)", "",
+             f"power {power[0]:.2f}: {power[1]:.1f} m/s" if power else "drag back from the cue ball to aim",
+             "slow motion on" if session.slow else ""]
+    out = [cut for line in lines for cut in (fit_text(line, width, face) or [""])]
+    if session.note:
+        out += fit_text(session.note, width, face, max_lines=max(1, room - len(out)))
+    return out[: max(room, 0)]
 

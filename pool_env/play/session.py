@@ -13,10 +13,11 @@ from ..physics import BALL_RADIUS
 from ..records.saved import record_game, save_game
 from ..render.window import import_pygame
 from .aim import clamp_tip, shot_action
-from .animation import PendingStep, StepAnimation, banded
+from .animation import PendingStep, StepAnimation
 from .games import NAMES, TABLE_SIZE, make_env
 
 PANEL = 250  # px: the panel right of the table (tip diagram, messages, keys)
+STATUS_BAR = 80  # px: the status bar above the table (the game, whose turn, the last shot's messages)
 TIP_RADIUS = 70  # px: the cue ball of the tip diagram
 SLOW = 4  # slow motion: this many times slower
 KEYS = "R restart  U undo  S slow motion  W save  Esc quit"
@@ -51,7 +52,7 @@ class PlaySession:
     # --- state ------------------------------------------------------------------------------
     @property
     def window_size(self):
-        return self.size[0] + PANEL, self.size[1]
+        return self.size[0] + PANEL, self.size[1] + STATUS_BAR
 
     @property
     def state(self):
@@ -146,7 +147,7 @@ class PlaySession:
             self.tipping = True
             self.tip = self._tip_at(pos)
             return
-        if pos[0] >= self.size[0]:
+        if pos[0] >= self.size[0] or pos[1] < STATUS_BAR:  # the panel or the status bar
             return
         xy = self.to_world(pos)
         pocket = self._pocket_at(xy)
@@ -292,13 +293,14 @@ class PlaySession:
 
     # --- geometry -----------------------------------------------------------------------------
     def to_world(self, pos):
-        """Window pixel (col, row) to table metres (x, y)."""
+        """Window pixel (col, row) to table metres (x, y) (the table is drawn below the status bar)."""
         origin, unit = self.base.playback.renderer.world_to_pixel(np.array([[0.0, 0.0], [1.0, 1.0]]))
         scale = unit - origin
-        return np.array([(pos[0] - origin[0]) / scale[0], (pos[1] - origin[1]) / scale[1]])
+        return np.array([(pos[0] - origin[0]) / scale[0], (pos[1] - STATUS_BAR - origin[1]) / scale[1]])
 
     def to_pixel(self, xy):
-        return self.base.playback.renderer.world_to_pixel(np.asarray(xy, dtype=np.float64))[0]
+        """Table metres (x, y) to the window's pixel (col, row)."""
+        return self.base.playback.renderer.world_to_pixel(np.asarray(xy, dtype=np.float64))[0] + (0.0, STATUS_BAR)
 
     def _pocket_at(self, xy):
         """The pocket (index in `Table.pockets`) whose mouth is under `xy` (m), else None."""
@@ -310,7 +312,7 @@ class PlaySession:
         return k if d[k] <= pockets[k, 2] + 2 * BALL_RADIUS else None
 
     def tip_centre(self):
-        return self.size[0] + PANEL // 2, TIP_RADIUS + 40
+        return self.size[0] + PANEL // 2, TIP_RADIUS + 40  # the panel starts at the window's top
 
     def _tip_at(self, pos, clamp=False):
         """The tip offset (side, top) in R under the pixel `pos` of the diagram (None outside it, unless clamp)."""
@@ -357,9 +359,9 @@ class PlaySession:
         return lines + self.lines
 
     def table_frame(self):
-        """The table now (uint8 (H, W, 3)), the cue ball where it is to be placed, with the status
-        lines; while a step is under way, the table before it."""
-        return banded(self._still_frame(), self.status())
+        """The table now (uint8 (H, W, 3)), the cue ball where it is to be placed (`status` says the
+        rest, in the bar above it); while a step is under way, the table before it."""
+        return self._still_frame()
 
     def _still_frame(self):
         """The table now without text (drawn once a turn; kept while the worker has the env)."""
@@ -372,9 +374,13 @@ class PlaySession:
         return self._still
 
     def shot_frame(self):
-        """The animation's frame shown now (a shot of the last step, captioned as the env's own
-        frames), or None: no animation, or its first frame is not in yet."""
+        """The animation's frame shown now (a shot of the last step; `shot_caption` says what it is),
+        or None: no animation, or its first frame is not in yet."""
         return None if self.animation is None else self.animation.frame()
+
+    def shot_caption(self) -> list[str]:
+        """The lines the env's own frames carry on the animation's frame shown now ([] without one)."""
+        return [] if self.animation is None else self.animation.caption()
 
     def tick(self, seconds):
         """Advance the animation by `seconds` of wall time (at metadata["render_fps"] frames a

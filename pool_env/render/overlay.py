@@ -15,11 +15,14 @@ CUE_LINE_RGB = (250, 236, 200)  # the cue: from the cue ball backwards, as long 
 AIM_RGB = (255, 255, 255)  # the aim: a thin dashed line forwards
 MARK_RGB = (255, 80, 60)  # the ring on the pocket the cue ball fell into
 CUE_PIXELS_PER_MPS = 0.022  # cue line length per m/s of cue-ball speed, as a fraction of the frame width
+MIN_SIZE = 10  # px: the smallest text any overlay uses (smaller is not readable)
+ELLIPSIS = "..."  # marks elided text (ASCII: every font has it)
+BREAKS = "/\\_-.,"  # a word too long for its line is broken after one of these when it can be
 
 
 def font_size(height: int) -> int:
     """The text size for frames `height` pixels tall: 15 px at 360, never below 10."""
-    return max(10, round(height / 24))
+    return max(MIN_SIZE, round(height / 24))
 
 
 @functools.lru_cache(maxsize=16)
@@ -32,9 +35,83 @@ def font(size: int):
         return ImageFont.load_default()
 
 
-def _measure(draw, text, face) -> tuple[int, int]:
-    left, top, right, bottom = draw.textbbox((0, 0), text, font=face)
+def measure(face, text) -> tuple[int, int]:
+    """(width, bottom) in px of one line of `text` in `face`, drawn at (0, 0)."""
+    left, top, right, bottom = face.getbbox(text)
     return right - left, bottom
+
+
+def _width(face, text) -> float:
+    return measure(face, text)[0] if text else 0
+
+
+def _break_word(word, width, face) -> tuple[str, str]:
+    """(the longest head of `word` that fits `width`, preferably ending after a BREAKS character; the rest).
+    At least one character, so that a line always moves on."""
+    fits = max((k for k in range(1, len(word) + 1) if _width(face, word[:k]) <= width), default=1)
+    cut = max((k + 1 for k in range(fits) if word[k] in BREAKS), default=fits)
+    cut = cut if cut > fits // 2 else fits  # a break far back would waste most of the line
+    return word[:cut], word[cut:]
+
+
+def elide(text, width, face) -> str:
+    """`text` if it fits `width` px in `face`, else its longest head that fits with ELLIPSIS after it."""
+    if _width(face, text) <= width:
+        return text
+    head = text
+    while head and _width(face, head.rstrip() + ELLIPSIS) > width:
+        head = head[:-1]
+    return head.rstrip() + ELLIPSIS
+
+
+def fit_text(text, width, face, max_lines=None) -> list[str]:
+    """`text` in lines no wider than `width` px in `face`: cut at spaces, a word longer than a line
+    (a file's path) broken across lines, after a '/' or '_' where it can be; with `max_lines`, the
+    lines beyond it dropped and the last kept one ending in ELLIPSIS. ValueError for a width < 1."""
+    if not width >= 1:
+        raise ValueError(f"cannot fit text into a width of {width!r} px: it must be >= 1")
+    if max_lines is not None and max_lines < 1:
+        raise ValueError(f"max_lines must be >= 1 (or None), got {max_lines!r}")
+    lines, line = [], ""
+    for word in text.split():
+        while word:
+            joined = f"{line} {word}" if line else word
+            if _width(face, joined) <= width:
+                line, word = joined, ""
+            elif line:
+                lines.append(line)
+                line = ""
+            else:
+                head, word = _break_word(word, width, face)
+                lines.append(head)
+    lines += [line] if line else []
+    if max_lines is not None and len(lines) > max_lines:
+        rest = " ".join(lines[max_lines - 1 :])
+        lines = lines[: max_lines - 1] + [elide(rest, width, face)]
+    return lines
+
+
+def band_height(lines, face) -> int:
+    """The height in px of `overlay`'s band behind `lines` in `face`."""
+    step = max(measure(face, line)[1] for line in lines) + 2
+    return step * len(lines) + 4
+
+
+def fit_band(lines, width, rows, size) -> tuple[list[str], int]:
+    """(lines, text size) of an overlay band that says `lines` (joined, then cut to fit) within
+    `width` x `rows` px: the largest size from `size` down to MIN_SIZE whose lines fit, else at
+    MIN_SIZE the lines that fit (at least one), the last elided."""
+    text = "   ".join(line for line in lines if line)
+    if not text:
+        return [], size
+    for trial in range(max(size, MIN_SIZE), MIN_SIZE - 1, -1):
+        face = font(trial)
+        cut = fit_text(text, width - 8, face)
+        if band_height(cut, face) <= rows:
+            return cut, trial
+    face = font(MIN_SIZE)
+    fitting = max((n for n in range(1, len(cut) + 1) if band_height(cut[:n], face) <= rows), default=1)
+    return fit_text(text, width - 8, face, max_lines=fitting), MIN_SIZE
 
 
 def overlay(frame: np.ndarray, lines, *, where: str = "top", size: int | None = None) -> np.ndarray:
@@ -47,13 +124,11 @@ def overlay(frame: np.ndarray, lines, *, where: str = "top", size: int | None = 
         return frame
     h, w = frame.shape[:2]
     face = font(size or font_size(h))
-    image = Image.fromarray(np.ascontiguousarray(frame))
-    draw = ImageDraw.Draw(image)
-    sizes = [_measure(draw, line, face) for line in lines]
+    sizes = [measure(face, line) for line in lines]
     step = max(height for _, height in sizes) + 2
-    band_w, band_h = min(w, 8 + max(width for width, _ in sizes)), min(h, step * len(lines) + 4)
+    band_w, band_h = min(w, 8 + max(width for width, _ in sizes)), min(h, band_height(lines, face))
     top = 0 if where == "top" else h - band_h
-    out = np.asarray(image).copy()
+    out = np.array(frame)
     region = out[top : top + band_h, :band_w].astype(np.float32)
     out[top : top + band_h, :band_w] = region * (1 - BAND_ALPHA) + BAND_ALPHA * np.asarray(BAND_RGB, np.float32)
     image = Image.fromarray(out)
@@ -71,7 +146,7 @@ def card(frame: np.ndarray, lines) -> np.ndarray:
     dimmed = (frame.astype(np.float32) * 0.45).astype(np.uint8)
     image = Image.fromarray(dimmed)
     draw = ImageDraw.Draw(image)
-    sizes = [_measure(draw, line, face) for line in lines]
+    sizes = [measure(face, line) for line in lines]
     step = max(height for _, height in sizes) + 6
     y = (h - step * len(lines)) / 2
     for (width, _), line in zip(sizes, lines, strict=True):

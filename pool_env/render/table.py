@@ -7,6 +7,8 @@ import math
 
 import numpy as np
 
+from .digits import number_mask
+
 __all__ = [
     "BALL_COLORS",
     "CLOTH_RGB",
@@ -47,47 +49,7 @@ _SUPERSAMPLE = 8  # samples per pixel per axis when rasterising sprites
 _BAND_HALF = 0.55  # half-height of a stripe band, in ball radii
 _MIN_NUMBER_RADIUS_PX = 5.0  # smaller balls get no number (it could not be legible)
 
-# 3x5 bitmap digits: crisp and legible down to ~6 px ball radius.
-_DIGITS = {
-    "0": ("111", "101", "101", "101", "111"),
-    "1": ("010", "110", "010", "010", "111"),
-    "2": ("111", "001", "111", "100", "111"),
-    "3": ("111", "001", "011", "001", "111"),
-    "4": ("101", "101", "111", "001", "001"),
-    "5": ("111", "100", "111", "001", "111"),
-    "6": ("111", "100", "111", "101", "111"),
-    "7": ("111", "001", "001", "010", "010"),
-    "8": ("111", "101", "111", "101", "111"),
-    "9": ("111", "101", "111", "001", "111"),
-}
-# 4x7 digits for the one-digit numbers: taller, so readable on balls ~13 px across (640 x 360).
-_DIGITS_TALL = {
-    "1": ("0010", "0110", "0010", "0010", "0010", "0010", "0111"),
-    "2": ("0110", "1001", "0001", "0010", "0100", "1000", "1111"),
-    "3": ("1110", "0001", "0001", "0110", "0001", "0001", "1110"),
-    "4": ("1001", "1001", "1001", "1111", "0001", "0001", "0001"),
-    "5": ("1111", "1000", "1000", "1110", "0001", "0001", "1110"),
-    "6": ("0110", "1000", "1000", "1110", "1001", "1001", "0110"),
-    "7": ("1111", "0001", "0010", "0010", "0100", "0100", "0100"),
-    "8": ("0110", "1001", "1001", "0110", "1001", "1001", "0110"),
-    "9": ("0110", "1001", "1001", "0111", "0001", "0001", "0110"),
-}
 _DISC = 0.64  # number disc radius, in ball radii: room for the digits, a coloured ring left
-
-
-def _text_mask(text: str, scale: int, tall: bool = False) -> np.ndarray:
-    """Bool mask of `text` in the 3x5 digit font (`tall`: the 4x7 one, one digit), 1 px
-    spacing, each font pixel scale x scale."""
-    font = _DIGITS_TALL if tall else _DIGITS
-    glyphs = [np.array([[c == "1" for c in row] for row in font[ch]]) for ch in text]
-    gap = np.zeros((glyphs[0].shape[0], 1), dtype=bool)
-    parts = []
-    for k, g in enumerate(glyphs):
-        if k:
-            parts.append(gap)
-        parts.append(g)
-    mask = np.concatenate(parts, axis=1)
-    return np.kron(mask, np.ones((scale, scale), dtype=bool))
 
 
 def _ball_style(idx: int) -> tuple[tuple[int, int, int], bool]:
@@ -200,6 +162,16 @@ class TableRenderer:
         self._marker_sprites, self._marker_half = self._render_markers()
 
     # --- coordinates ---------------------------------------------------------
+    def cloth_box(self) -> tuple[float, float, float, float]:
+        """(left, top, right, bottom) in continuous pixels of the cloth inside the cushions' noses."""
+        return (self._ox, self._oy, self._ox + self.length * self.scale, self._oy + self.width * self.scale)
+
+    def table_box(self) -> tuple[float, float, float, float]:
+        """(left, top, right, bottom) in continuous pixels of the whole table, rails included."""
+        rail = self.rail * self.scale
+        left, top, right, bottom = self.cloth_box()
+        return (left - rail, top - rail, right + rail, bottom + rail)
+
     def world_to_pixel(self, xy: np.ndarray) -> np.ndarray:
         """(N,2) metres -> (N,2) continuous [col, row]; pixel index is floor() of these."""
         xy = np.asarray(xy, dtype=np.float64).reshape(-1, 2)
@@ -296,8 +268,7 @@ class TableRenderer:
         alpha = g["alpha"]
         mask = None
         if numbered:
-            tall = idx <= 9 and 7 * g["number_scale"] <= 2 * _DISC * self._r_px + 1  # the 4x7 digit fits the disc
-            mask = _text_mask(str(idx), g["number_scale"], tall)
+            mask = number_mask(str(idx), g["number_scale"], 2 * _DISC * self._r_px + 1)  # +1: the rounding's pixel
         if mask is not None and mask.shape[1] <= 2 * self._r_px:  # very long numbers are skipped
             # The number is stamped crisply at whole pixels (snapped to the rounded centre),
             # which keeps the tiny digits sharp; only the disc/edges use sub-pixel phases.
