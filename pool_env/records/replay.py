@@ -1,4 +1,4 @@
-"""`python -m pool_env.records.replay game.json [--video out.mp4] [--shot K]`: replay a saved game, checked."""
+"""`python -m pool_env.records.replay game.json [--video out.mp4] [--shot K]`: replay a saved game, checked, shown or filmed."""
 
 from __future__ import annotations
 
@@ -8,6 +8,7 @@ import sys
 
 import gymnasium as gym
 
+from ..render.window import Window, display_problem
 from .saved import ReplayMismatch, load_game, make_env, replay
 from .video import _Writer
 
@@ -19,7 +20,9 @@ def main(argv=None) -> int:
     (one line on stderr; --debug or POOL_ENV_DEBUG=1: the traceback)."""
     parser = argparse.ArgumentParser(prog=PROG, description=__doc__.split("\n")[0])
     parser.add_argument("path", help="a saved game (pool_env.save_game)")
-    parser.add_argument("--video", help="write the replayed shots to this .mp4")
+    parser.add_argument("--video", help="write the replayed shots to this .mp4 (without it, they are shown in a "
+                        "window when there is a display)")
+    parser.add_argument("--no-window", action="store_true", help="only check the replay, show nothing")
     parser.add_argument("--shot", type=int, help="stop after this many of the agent's shots")
     parser.add_argument("--debug", action="store_true", help="on an error, the full traceback instead of one line "
                         "(also POOL_ENV_DEBUG=1)")
@@ -45,15 +48,36 @@ def describe(exc: Exception, path: str) -> str:
     return str(exc)
 
 
+def count(n: int, noun: str) -> str:
+    """ "1 step", "2 steps", "0 steps"."""
+    return f"{n} {noun}{'' if n == 1 else 's'}"
+
+
+def open_window(args, title):
+    """The window the replay is shown in (None with --video or --no-window, or, saying why on
+    stderr, when no one would see it)."""
+    if args.video or args.no_window:
+        return None
+    problem = display_problem()
+    if problem is not None:
+        print(f"{PROG}: not shown: {problem}; checking the replay only (--video out.mp4 films it)", file=sys.stderr)
+        return None
+    return Window(title)
+
+
 def replay_file(args) -> int:
-    """Load, replay and (with --video) film the saved game; a replay that differs is a result (1), not an error."""
+    """Load, replay and film (--video) or show (a window, when there is a display) the saved game;
+    a replay that differs is a result (1), not an error."""
     record = load_game(args.path)
     env = make_env(record)
-    writer = None
-    if args.video:
-        fps = env.unwrapped.metadata["render_fps"]
-        writer = _Writer(args.video, fps)
-    on_step = (lambda k, e: writer.append(e.unwrapped.shot_frames(fps))) if writer else None
+    fps = env.unwrapped.metadata["render_fps"]
+    writer = _Writer(args.video, fps) if args.video else None
+    window = open_window(args, f"pool_env replay: {os.path.basename(args.path)}")
+    on_step = None
+    if writer is not None:
+        on_step = lambda k, e: writer.append(e.unwrapped.shot_frames(fps))  # noqa: E731
+    elif window is not None:
+        on_step = lambda k, e: window.closed or window.play(e.unwrapped.shot_frames(fps), fps)  # noqa: E731
     try:
         replay(record, env, on_step=on_step, until=args.shot)
     except ReplayMismatch as exc:
@@ -63,8 +87,12 @@ def replay_file(args) -> int:
         if writer is not None:
             writer.close()
     steps = len(record["actions"]) if args.shot is None else min(args.shot, len(record["actions"]))
-    print(f"replayed {steps} steps of {record['env_id']} (seed {record['seed']}): every outcome as recorded"
-          + (f"; video: {args.video}" if args.video else ""))
+    print(f"replayed {count(steps, 'step')} of {record['env_id']} (seed {record['seed']}): every outcome as recorded"
+          + (f"; video: {args.video}" if args.video else "") + ("; Esc or close the window to quit" if window else ""),
+          flush=True)
+    if window is not None:
+        window.hold()
+        window.close()
     return 0
 
 

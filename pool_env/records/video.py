@@ -136,7 +136,7 @@ def video_frames(env, policy, episodes=1, fps=None, *, seed=None, overlay=True, 
         episode_seed = (seed + episode) if save_games is not None else (seed if episode == 0 else None)
         recorder = None if save_games is None else GameRecorder(env, episode_seed, record_opponent=True)
         obs, _ = env.reset(seed=episode_seed)
-        story, done, first, frames = Story(base, episode + 1, fps), False, True, []
+        story, done, first, frames = Story(base, episode, fps), False, True, []
         while not done:
             action = act(obs) if recorder is None else recorder.action(act(obs))
             obs, reward, terminated, truncated, info = env.step(action)

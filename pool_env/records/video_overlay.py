@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-import textwrap
+import math
 
 import numpy as np
 
 from ..physics.kinds import BALL_POCKET
-from ..render.overlay import card, cue_line, font_size, overlay, pocket_mark
+from ..render.overlay import card, cue_line, fit_band, font_size, overlay, pocket_mark
 from ..render.playback import frame_times
 
 CUE_SECONDS = 0.5  # the cue line is shown this long before each shot
@@ -48,7 +48,8 @@ def episode_result(base, episode: int, info: dict, reward: float, shots: int, ba
 
 class Story:
     """An episode told on its frames: `step(frames, info, reward, first)` decorates one step's
-    frames (every shot of it), `card(info)` is the closing card."""
+    frames (every shot of it), `card(info)` is the closing card. `episode` is the episode's
+    number as the saved games' and the recorder's file names have it (from 0)."""
 
     def __init__(self, base, episode: int, fps: float):
         self.base, self.episode, self.fps = base, episode, float(fps)
@@ -117,10 +118,14 @@ class Story:
         self.last = [f"last shot{f' ({who})' if who else ''}: {shot_summary(info)}"]
         self.last += [m for m in info.get("messages", []) if m]
 
+    def caption_rows(self, frame) -> int:
+        """The rows at the bottom of `frame` below the cloth (the rail and the letterbox): the caption's room."""
+        bottom = self.base.playback.renderer.cloth_box()[3]
+        return max(0, frame.shape[0] - math.ceil(bottom))
+
     def _caption(self, frame, label=None):
-        width = max(20, int(frame.shape[1] / (0.55 * font_size(frame.shape[0]))) - 2)
+        """The frame with the caption in the band under the cloth: the episode, the shot, the reward
+        so far, what the last shot did, as large as fits there (elided at the smallest size)."""
         head = f"episode {self.episode}" + (f"   {label}" if label else "") + f"   reward so far {self.reward:+.2f}"
-        lines = [head]
-        for line in self.last:
-            lines += textwrap.wrap(line, width)
-        return overlay(frame, lines, where="bottom")
+        lines, size = fit_band([head, *self.last], frame.shape[1], self.caption_rows(frame), font_size(frame.shape[0]))
+        return overlay(frame, lines, where="bottom", size=size)

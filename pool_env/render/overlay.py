@@ -101,7 +101,7 @@ def fit_band(lines, width, rows, size) -> tuple[list[str], int]:
     """(lines, text size) of an overlay band that says `lines` (joined, then cut to fit) within
     `width` x `rows` px: the largest size from `size` down to MIN_SIZE whose lines fit, else at
     MIN_SIZE the lines that fit (at least one), the last elided."""
-    text = "   ".join(line for line in lines if line)
+    text = " | ".join(line for line in lines if line)
     if not text:
         return [], size
     for trial in range(max(size, MIN_SIZE), MIN_SIZE - 1, -1):

@@ -40,6 +40,23 @@ def check_display() -> bool:
     return True
 
 
+def display_problem() -> str | None:
+    """Why no one would see a window opened now, or None when someone would: pygame missing,
+    SDL's video driver chosen as one that draws to memory (SDL_VIDEODRIVER=dummy or offscreen),
+    or on Linux and BSD neither DISPLAY nor WAYLAND_DISPLAY set."""
+    driver = os.environ.get("SDL_VIDEODRIVER", "")
+    if driver.lower() in HEADLESS_DRIVERS:
+        return f"SDL_VIDEODRIVER={driver} draws windows to memory, not to a screen"
+    if sys.platform.startswith(("linux", "freebsd", "openbsd", "netbsd")) and not (
+            os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")):
+        return "no display (DISPLAY and WAYLAND_DISPLAY are unset)"
+    try:
+        import_pygame()
+    except ImportError as exc:
+        return str(exc)
+    return None
+
+
 def _init_headless(pygame) -> str:
     """pygame.display.init() on SDL's offscreen video driver ("dummy" if this SDL has none); the driver's
     name. SDL_VIDEODRIVER is set only for the init (SDL reads it then), so the process's environment,
@@ -144,6 +161,19 @@ class Window:
             if wait:
                 self.clock.tick(float(fps))
         return True
+
+    def hold(self) -> None:
+        """Keep showing the last frame until the window is closed or Esc is pressed; at once when not
+        `realtime` (no one could close it)."""
+        if not self.realtime:
+            return
+        while not self.closed:
+            for event in self.pygame.event.get():
+                if event.type == self.pygame.QUIT or (event.type == self.pygame.KEYDOWN
+                                                      and event.key == self.pygame.K_ESCAPE):
+                    self.close()
+                    self.closed = True
+            self.clock.tick(30)
 
     def pump(self) -> bool:
         """Handle pending window events (a close request closes the window); False once closed."""
