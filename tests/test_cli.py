@@ -111,6 +111,6 @@ def test_an_argparse_error_ends_in_the_line_naming_it(folder):
 
 
 def test_a_good_replay_still_succeeds(folder):
-    proc = run(folder, (*REPLAY, str(SAVED)))
+    proc = run(folder, (*REPLAY, str(SAVED), "--no-window"))
     assert proc.returncode == 0 and proc.stderr == "", proc.stderr
     assert proc.stdout.startswith("replayed 10 steps of PoolNineBall-v0")

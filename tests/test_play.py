@@ -220,3 +220,57 @@ def test_the_window_stays_responsive_while_the_opponent_thinks():
     session.update()  # the undo
     assert session.actions == [] and session.note.startswith("undone")
     assert [record.shooter for record in records][:2] == [0, 1]
+
+
+def test_the_status_bar_is_off_the_table_and_the_panel_text_fits_the_panel():
+    from pool_env.play.draw import MARGIN, PANEL_RGB, TEXT_RGB, panel_lines, status_rect
+    from pool_env.play.session import PANEL, STATUS_BAR
+    from pool_env.render.overlay import font
+
+    session = PlaySession("nine_ball", "ghost_ball", seed=0, size=SIZE, animate=False)
+    left, top, right, bottom = session.base.playback.renderer.table_box()
+    x, y, w, h = status_rect(session)
+    assert y + h <= top + STATUS_BAR  # the bar ends where the table's rails begin in the window
+    assert session.window_size == (SIZE[0] + PANEL, SIZE[1] + STATUS_BAR)
+    session.note = "saved /a/rather/long/folder/of/saved/games/pool_game_nine_ball_20260101_120000.json"
+    surface = pygame.Surface(session.window_size)
+    draw_session(session, surface)
+    pixels = pygame.surfarray.array3d(surface).transpose(1, 0, 2)
+    # The table is drawn below the bar exactly as rendered: no text on its rails or pockets.
+    assert np.array_equal(pixels[STATUS_BAR:, : SIZE[0]], session.table_frame())
+    assert (pixels[:STATUS_BAR, : SIZE[0]] == TEXT_RGB).all(axis=-1).any()  # the status is in the bar
+    # The saved game's path is all there, on lines that end before the panel's right margin.
+    lines = panel_lines(session, 20)
+    assert "".join(lines).replace(" ", "").endswith(session.note.split()[1])
+    assert all(font(15).getlength(line) <= PANEL - 2 * MARGIN for line in lines)
+    assert (pixels[:, -(MARGIN - 1):] == PANEL_RGB).all()  # nothing runs off the edge
+    # A click on the bar is not a shot.
+    session.handle(mouse("down", (SIZE[0] / 2, STATUS_BAR / 2)))
+    assert session.drag is None
+
+
+def test_the_window_draws_with_no_display_variable_at_all():
+    """pool_env.play's drawing on a plain surface in a process with neither DISPLAY, WAYLAND_DISPLAY
+    nor SDL_VIDEODRIVER (conftest's dummy driver is not inherited): text, table, panel."""
+    import json
+    import os
+    import subprocess
+    from pathlib import Path
+
+    code = (
+        "import json, numpy as np, pygame\n"
+        "from pool_env.play.session import PlaySession, STATUS_BAR\n"
+        "from pool_env.play.draw import draw_session\n"
+        "s = PlaySession('eight_ball', 'ghost_ball', seed=1, size=(320, 180), animate=False)\n"
+        "surface = pygame.Surface(s.window_size)\n"
+        "draw_session(s, surface)\n"
+        "p = pygame.surfarray.array3d(surface).transpose(1, 0, 2)\n"
+        "print(json.dumps({'same': bool(np.array_equal(p[STATUS_BAR:, :320], s.table_frame())),\n"
+        "                  'display': pygame.display.get_init()}))\n")
+    root = Path(__file__).resolve().parents[1]
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER")}
+    env["PYTHONPATH"] = str(root)
+    proc = subprocess.run([sys.executable, "-c", code], env=env, cwd=root, capture_output=True, text=True,
+                          timeout=300)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    assert json.loads(proc.stdout.strip().splitlines()[-1]) == {"same": True, "display": False}

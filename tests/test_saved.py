@@ -11,6 +11,9 @@ from pool_env.records.replay import main as replay_main
 from pool_env.records.saved import ReplayMismatch, load_game, record_game, replay, save_game
 
 
+SAVED_RUN = Path(__file__).parent / "data" / "saved_games" / "run_ghost.json"  # 16 steps
+
+
 @pytest.fixture(scope="module")
 def nine_ball_game(tmp_path_factory):
     import gymnasium as gym
@@ -46,11 +49,40 @@ def test_a_tampered_file_is_refused(nine_ball_game, tmp_path):
         load_game(tmp_path / "old.json")
 
 
-def test_replay_cli_and_a_break_env(tmp_path):
+def test_replay_cli_and_a_break_env(tmp_path, capsys):
     record = record_game("PoolBreakRun-v0", RandomAgent(pool_env.PoolBreakEnv(max_shots=3).action_space, seed=0),
                          seed=1)
     path = save_game(tmp_path / "run.json", record)
     assert replay_main([str(path), "--shot", "1"]) == 0
+    out = capsys.readouterr()
+    assert out.out.startswith("replayed 1 step of PoolBreakRun-v0 (seed 1)")  # one step, not "1 steps"
+    # conftest's SDL_VIDEODRIVER=dummy: no window anyone would see, and the replay says so.
+    assert "not shown: SDL_VIDEODRIVER=dummy" in out.err and "--video" in out.err
+    assert replay_main([str(SAVED_RUN), "--no-window", "--shot", "3"]) == 0
+    out = capsys.readouterr()
+    assert out.out.startswith("replayed 3 steps of PoolBreakRun-v0") and out.err == ""
+
+
+def test_replay_shows_every_shot_in_a_window_when_there_is_a_display(tmp_path, monkeypatch, capsys):
+    import pool_env.records.replay as replay_module
+
+    shown = []
+
+    class Recorded(replay_module.Window):
+        def show(self, frame):
+            shown.append(frame.shape)
+            return super().show(frame)
+
+    record = {**load_game(SAVED_RUN), "actions": load_game(SAVED_RUN)["actions"][:2]}
+    record["outcomes"] = record["outcomes"][:2]
+    path = save_game(tmp_path / "run.json", record)
+    monkeypatch.setattr(replay_module, "display_problem", lambda: None)  # as if a screen were there
+    monkeypatch.setattr(replay_module, "Window", Recorded)  # drawn on the dummy driver: no waits, no hold
+    assert replay_main([str(path)]) == 0
+    counts = []  # each step's frames, as the replayed env draws them
+    replay(record, on_step=lambda k, env: counts.append(len(env.unwrapped.shot_frames())))
+    assert len(counts) == 2 and len(shown) == sum(counts) and all(shape == (360, 640, 3) for shape in shown)
+    assert "close the window" in capsys.readouterr().out
 
 
 def test_unsavable_opponents_are_named():

@@ -109,3 +109,40 @@ def test_tournament_saves_games_that_replay(tmp_path):
         record = load_game(path)
         assert record["env_kwargs"]["opponent"] == "recorded" and record["players"][0] in path.name
         replay(record)
+
+
+def test_the_title_card_and_captions_number_episodes_as_the_saved_files_do(tmp_path, monkeypatch):
+    import pool_env.records.video_overlay as video_overlay
+
+    cards, captions = [], []
+    monkeypatch.setattr(video_overlay, "card", lambda frame, lines: cards.append(lines) or frame)
+    real_overlay = video_overlay.overlay
+    monkeypatch.setattr(video_overlay, "overlay",
+                        lambda frame, lines, **kw: captions.append(lines[0]) or real_overlay(frame, lines, **kw))
+    env = gym.make("PoolBreak-v0", render_size=(160, 90))
+    frames = list(video_frames(env, lambda obs: SHOT, episodes=2, fps=FPS, seed=5, save_games=tmp_path, name="v"))
+    assert frames and sorted(p.name for p in tmp_path.iterdir()) == ["v-episode-0.json", "v-episode-1.json"]
+    assert {lines[0] for lines in cards} == {"episode 0", "episode 1"}  # as the files: from 0
+    assert captions[0].startswith("episode 0") and captions[-1].startswith("episode 1")
+
+
+def test_the_caption_of_a_640_x_360_video_stays_off_the_cloth():
+    from pool_env.records.video_overlay import Story
+
+    env = gym.make("PoolBreak-v0")  # one shot a step: its frames are the caption's, one to one
+    base = env.unwrapped
+    env.reset(seed=3)
+    info = env.step(SHOT)[4]
+    story = Story(base, 0, FPS)
+    frames = base.shot_frames(FPS)
+    told = story.step(frames, info, 0.0, True)
+    left, top, right, bottom = base.playback.renderer.cloth_box()
+    cloth = (slice(int(top) + 1, int(bottom)), slice(int(left) + 1, int(right)))  # whole pixels of cloth
+    assert frames[0].shape == (360, 640, 3) and story.caption_rows(frames[0]) == 360 - int(np.ceil(bottom))
+    # Every captioned frame is the env's frame on the cloth: the caption sits under it, on the rail.
+    bare = frames[1:]  # the moving frames (the first one is the cue line's)
+    moving = told[round(CUE_SECONDS * FPS):]
+    assert len(moving) == len(bare)
+    assert len(story.last) >= 1  # what the last shot did is told, so the band has text to fit
+    assert all(np.array_equal(a[cloth], b[cloth]) for a, b in zip(moving, bare, strict=True))
+    assert any(not np.array_equal(a[int(np.ceil(bottom)):], b[int(np.ceil(bottom)):]) for a, b in zip(moving, bare))

@@ -146,3 +146,17 @@ def test_an_interactive_window_without_a_display_still_names_the_fix(monkeypatch
     assert str(info.value) == DISPLAY_HINT and not pygame.display.get_init()
     monkeypatch.setenv("DISPLAY", ":0")
     assert window_module.check_display() is True
+
+
+@linux_only
+def test_display_problem_names_why_no_one_would_see_a_window(monkeypatch):
+    for name in ("SDL_VIDEODRIVER", "DISPLAY", "WAYLAND_DISPLAY"):
+        monkeypatch.delenv(name, raising=False)
+    assert "DISPLAY and WAYLAND_DISPLAY are unset" in window_module.display_problem()
+    monkeypatch.setenv("WAYLAND_DISPLAY", "wayland-0")
+    assert window_module.display_problem() is None
+    for driver in ("dummy", "offscreen"):  # a display, but a driver that draws to memory
+        monkeypatch.setenv("SDL_VIDEODRIVER", driver)
+        assert f"SDL_VIDEODRIVER={driver}" in window_module.display_problem()
+    monkeypatch.setenv("SDL_VIDEODRIVER", "x11")
+    assert window_module.display_problem() is None

@@ -15,13 +15,13 @@ CUE_LINE_RGB = (250, 236, 200)  # the cue: from the cue ball backwards, as long 
 AIM_RGB = (255, 255, 255)  # the aim: a thin dashed line forwards
 MARK_RGB = (255, 80, 60)  # the ring on the pocket the cue ball fell into
 CUE_PIXELS_PER_MPS = 0.022  # cue line length per m/s of cue-ball speed, as a fraction of the frame width
-MIN_SIZE = 10  # px: the smallest text any overlay uses (smaller is not readable)
+MIN_SIZE = 12  # px: the smallest text any overlay uses (smaller, the font's i and j lose their dots)
 ELLIPSIS = "..."  # marks elided text (ASCII: every font has it)
 BREAKS = "/\\_-.,"  # a word too long for its line is broken after one of these when it can be
 
 
 def font_size(height: int) -> int:
-    """The text size for frames `height` pixels tall: 15 px at 360, never below 10."""
+    """The text size for frames `height` pixels tall: 15 px at 360, never below MIN_SIZE."""
     return max(MIN_SIZE, round(height / 24))
 
 
@@ -91,10 +91,16 @@ def fit_text(text, width, face, max_lines=None) -> list[str]:
     return lines
 
 
+def line_step(face) -> int:
+    """The px from one line of text in `face` to the next: its ascent and descent."""
+    if hasattr(face, "getmetrics"):
+        return sum(face.getmetrics())
+    return measure(face, "Ag")[1] + 2  # Pillow's bitmap font (no FreeType) has no metrics
+
+
 def band_height(lines, face) -> int:
-    """The height in px of `overlay`'s band behind `lines` in `face`."""
-    step = max(measure(face, line)[1] for line in lines) + 2
-    return step * len(lines) + 4
+    """The height in px of `overlay`'s band behind `lines` in `face`: 2 px above and below."""
+    return line_step(face) * len(lines) + 4
 
 
 def fit_band(lines, width, rows, size) -> tuple[list[str], int]:
@@ -125,7 +131,7 @@ def overlay(frame: np.ndarray, lines, *, where: str = "top", size: int | None = 
     h, w = frame.shape[:2]
     face = font(size or font_size(h))
     sizes = [measure(face, line) for line in lines]
-    step = max(height for _, height in sizes) + 2
+    step = line_step(face)
     band_w, band_h = min(w, 8 + max(width for width, _ in sizes)), min(h, band_height(lines, face))
     top = 0 if where == "top" else h - band_h
     out = np.array(frame)
