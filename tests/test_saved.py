@@ -10,7 +10,6 @@ from agents import GameGhostBallAgent, RandomAgent
 from pool_env.records.replay import main as replay_main
 from pool_env.records.saved import ReplayMismatch, load_game, record_game, replay, save_game
 
-
 SAVED_RUN = Path(__file__).parent / "data" / "saved_games" / "run_ghost.json"  # 16 steps
 
 

@@ -1,4 +1,4 @@
-"""Text on frames and in the play window: fitting lines to a width, a font that has every glyph, numbers on the balls."""
+"""Text on frames and in the play window: lines fitted to a width, glyphs with their dots, the balls' digits."""
 
 import string
 

@@ -1,4 +1,4 @@
-"""Drawing a `PlaySession` with pygame: the status bar, the table, the aim line and ghost ball, the tip diagram, the panel."""
+"""Drawing a `PlaySession` with pygame: the status bar, the table, the aim and ghost ball, the tip diagram, the text."""
 
 from __future__ import annotations
 

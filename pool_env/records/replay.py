@@ -1,4 +1,4 @@
-"""`python -m pool_env.records.replay game.json [--video out.mp4] [--shot K]`: replay a saved game, checked, shown or filmed."""
+"""`python -m pool_env.records.replay game.json [--video out.mp4] [--shot K]`: a saved game replayed, checked, shown."""
 
 from __future__ import annotations
 
