@@ -65,7 +65,7 @@ def status_lines(session, lines):
     thinking = session.busy and not any(session.thinking in line for line in lines)
     room = STATUS_LINES - thinking
     head = fit_text(lines[0], width, face, max_lines=room) if lines else []
-    rest = "   ".join(lines[1:])
+    rest = " | ".join(lines[1:])
     out = head + (fit_text(rest, width, face, max_lines=room - len(head)) if rest and len(head) < room else [])
     return [(line, TEXT_RGB) for line in out] + ([(session.thinking, CALL_RGB)] if thinking else [])
 
