@@ -41,14 +41,34 @@ def measure(face, text) -> tuple[int, int]:
     return right - left, bottom
 
 
+@functools.lru_cache(maxsize=4096)
+def _advance(face, char) -> float:
+    return face.getlength(char)
+
+
 def _width(face, text) -> float:
-    return measure(face, text)[0] if text else 0
+    """The advance width of `text` in `face` (px), summed over its characters: what `face.getlength`
+    gives for the frames' font, which has no kerning, at a fraction of its cost (a caption is
+    measured word by word at several sizes)."""
+    return sum(_advance(face, char) for char in text)
+
+
+def _longest_head(text, width, face) -> int:
+    """The most characters of `text` whose head is no wider than `width` px in `face` (by bisection)."""
+    lo, hi = 0, len(text)
+    while lo < hi:
+        mid = (lo + hi + 1) // 2
+        if _width(face, text[:mid]) <= width:
+            lo = mid
+        else:
+            hi = mid - 1
+    return lo
 
 
 def _break_word(word, width, face) -> tuple[str, str]:
     """(the longest head of `word` that fits `width`, preferably ending after a BREAKS character; the rest).
     At least one character, so that a line always moves on."""
-    fits = max((k for k in range(1, len(word) + 1) if _width(face, word[:k]) <= width), default=1)
+    fits = max(1, _longest_head(word, width, face))
     cut = max((k + 1 for k in range(fits) if word[k] in BREAKS), default=fits)
     cut = cut if cut > fits // 2 else fits  # a break far back would waste most of the line
     return word[:cut], word[cut:]
@@ -58,9 +78,7 @@ def elide(text, width, face) -> str:
     """`text` if it fits `width` px in `face`, else its longest head that fits with ELLIPSIS after it."""
     if _width(face, text) <= width:
         return text
-    head = text
-    while head and _width(face, head.rstrip() + ELLIPSIS) > width:
-        head = head[:-1]
+    head = text[: _longest_head(text, width - _width(face, ELLIPSIS), face)]
     return head.rstrip() + ELLIPSIS
 
 
@@ -107,17 +125,23 @@ def fit_band(lines, width, rows, size) -> tuple[list[str], int]:
     """(lines, text size) of an overlay band that says `lines` (joined, then cut to fit) within
     `width` x `rows` px: the largest size from `size` down to MIN_SIZE whose lines fit, else at
     MIN_SIZE the lines that fit (at least one), the last elided."""
+    cut, size = _fit_band(tuple(lines), int(width), int(rows), int(size))
+    return list(cut), size
+
+
+@functools.lru_cache(maxsize=64)  # a video's caption is the same on every frame of a shot
+def _fit_band(lines, width, rows, size) -> tuple[tuple[str, ...], int]:
     text = " | ".join(line for line in lines if line)
     if not text:
-        return [], size
+        return (), size
     for trial in range(max(size, MIN_SIZE), MIN_SIZE - 1, -1):
         face = font(trial)
         cut = fit_text(text, width - 8, face)
         if band_height(cut, face) <= rows:
-            return cut, trial
+            return tuple(cut), trial
     face = font(MIN_SIZE)
     fitting = max((n for n in range(1, len(cut) + 1) if band_height(cut[:n], face) <= rows), default=1)
-    return fit_text(text, width - 8, face, max_lines=fitting), MIN_SIZE
+    return tuple(fit_text(text, width - 8, face, max_lines=fitting)), MIN_SIZE
 
 
 def overlay(frame: np.ndarray, lines, *, where: str = "top", size: int | None = None) -> np.ndarray:
