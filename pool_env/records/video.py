@@ -92,8 +92,9 @@ def record_video(env, policy, path, episodes=1, fps=None, *, seed=None, overlay=
     A missing folder is created.
 
     `overlay=True` (see `video_frames`): a caption under the cloth (episode, numbered from 0 as
-    the saved games are, shot, reward so far, what the last shot did, the rules' messages), the cue line for CUE_SECONDS before every shot, the pocket
-    a cue ball fell into ringed, and a CARD_SECONDS card with each episode's result.
+    the saved games are, shot, reward so far, what the last shot did, the rules' messages), the
+    cue line for CUE_SECONDS before every shot, the pocket a cue ball fell into ringed, and a
+    CARD_SECONDS card with each episode's result.
     `overlay=False`: the shots' frames exactly as `shot_frames` gives them, the last frame of
     each episode held HOLD_SECONDS.
 
