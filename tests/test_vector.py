@@ -445,3 +445,24 @@ def test_infos_gathered_at_once_equal_gymnasiums_add_info():
         for k, info in entries:
             expected = envs._add_info(expected, info, k)  # noqa: SLF001 (Gymnasium's own, the reference)
         assert_same(envs.gather_infos(entries), expected, f"trial {trial}")
+
+
+@pytest.mark.parametrize("mode", ["vector_entry_point", "sync"])
+def test_same_step_autoreset_spends_no_step_on_a_reset(mode):
+    # PoolBreak-v0 is one shot an episode: with SAME_STEP every step plays a break and starts the
+    # next episode at once; with Gymnasium's default NEXT_STEP every other step only resets.
+    same = AutoresetMode.SAME_STEP
+    how = {"autoreset_mode": same} if mode == "vector_entry_point" else {"vector_kwargs": {"autoreset_mode": same}}
+    envs = gym.make_vec("PoolBreak-v0", num_envs=2, vectorization_mode=mode, **how)
+    assert envs.metadata["autoreset_mode"] == same
+    envs.reset(seed=0)
+    actions = np.array([[1.0, 0.02], [0.8, -0.03]], np.float32)
+    for _ in range(4):
+        obs, rewards, terminations, truncations, infos = envs.step(actions)
+        assert terminations.all() and not truncations.any()  # every step ended both episodes with a shot
+        assert infos["_final_info"].all() and (infos["final_info"]["events"] > 0).all()
+        assert (obs[:, 48] == -1.0).all() and not infos["pocketed"].any()  # and the next episodes began
+    default = gym.make_vec("PoolBreak-v0", num_envs=2, vectorization_mode=mode)
+    default.reset(seed=0)
+    shots = [default.step(actions)[4]["events"].tolist() for _ in range(4)]
+    assert shots[1] == shots[3] == [0, 0] and min(shots[0] + shots[2]) > 0  # NEXT_STEP: every other step resets
