@@ -9,6 +9,7 @@ import gymnasium as gym
 import imageio_ffmpeg
 import numpy as np
 import pytest
+from scenes import named
 
 import pool_env
 from pool_env.envs.break_env import PoolBreakEnv, spread, spread_gain
@@ -16,7 +17,6 @@ from pool_env.game import MAX_FORCE, cue_force, decode_observation
 from pool_env.physics import BALL_MASS, Balls, Physics, SimulationError, Table
 from pool_env.records.video import HOLD_SECONDS, ShotVideoRecorder, record_video
 from pool_env.render.table import CLOTH_RGB
-from scenes import named
 
 IDS = ("PoolBreak-v0", "PoolBreakRun-v0")
 BREAK = np.array([1.0, 0.0], dtype=np.float32)

@@ -1,4 +1,4 @@
-"""The envs' `info` dicts: numeric (every value a number, a bool or a fixed-shape array) or rich (with the shot records)."""
+"""The envs' `info` dicts: numeric (numbers, bools, fixed-shape arrays) or rich (with the shot records)."""
 
 from __future__ import annotations
 

@@ -11,10 +11,10 @@ from pettingzoo.utils import wrappers
 from ..envs.break_env import can_render, check_env_options, check_reset_options
 from ..envs.game_env import SHAPING_BALL, SHAPING_FOUL, PoolGameEnv, captioned, shot_caption
 from ..envs.infos import check_info_mode, no_shot_info, record_info, rich_info, winner_code
-from ..rules import codes
 from ..game import GAME_BALLS, Game, game_observation, game_observation_size
 from ..render.overlay import overlay
 from ..render.playback import ShotPlayback
+from ..rules import codes
 
 AGENTS = ("player_0", "player_1")
 RESET_OPTIONS = ("balls", "ball_in_hand", "breaker")

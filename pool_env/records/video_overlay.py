@@ -6,9 +6,9 @@ import textwrap
 
 import numpy as np
 
+from ..envs.infos import NO_WINNER
 from ..physics.kinds import BALL_POCKET
 from ..render.overlay import card, cue_line, font_size, overlay, pocket_mark
-from ..envs.infos import NO_WINNER
 from ..render.playback import frame_times
 from ..rules import codes
 
