@@ -1,4 +1,4 @@
-"""The integer codes of the rules' names in the envs' numeric infos (foul, end reason, ball in hand), and their decoders."""
+"""The integer codes of the rules' names in the numeric infos (foul, end reason, ball in hand) and their decoders."""
 
 from __future__ import annotations
 
