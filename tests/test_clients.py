@@ -44,6 +44,20 @@ def test_torchrl_gym_env_with_num_envs_passes_check_env_specs(env_id):
         env.close()
 
 
+@pytest.mark.parametrize("env_id", ["PoolBreak-v0", "PoolEightBall-v0"])
+def test_torchrl_wraps_the_native_vector_env_in_same_step_mode(env_id):
+    need("torchrl")
+    from torchrl.envs import GymWrapper
+    from torchrl.envs.utils import check_env_specs
+
+    with pytest.raises(RuntimeError, match="SAME_STEP or DISABLED"):  # TorchRL's own refusal of NEXT_STEP
+        GymWrapper(gym.make_vec(env_id, num_envs=2))
+    env = GymWrapper(gym.make_vec(env_id, num_envs=2, autoreset_mode="SameStep"))
+    check_env_specs(env, seed=0)
+    assert env.rollout(3, break_when_any_done=False)["next", "done"].shape == (2, 3, 1)
+    env.close()
+
+
 @pytest.mark.parametrize("env_id", pool_env.ENV_IDS)
 def test_tianshou_collects_steps(env_id):
     need("tianshou")
