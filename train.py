@@ -331,7 +331,7 @@ def make_callbacks(args: Args, run: Run):
             return bool(args.keep_best and self.points and self.best is self.points[0])
 
         def _on_step(self) -> bool:
-            self.failed_shots += sum("error" in info for info in self.locals["infos"])
+            self.failed_shots += sum(bool(info.get("error")) for info in self.locals["infos"])
             if self.every and self.num_timesteps >= self.next_at:
                 self.next_at += self.every
                 self.measure()
@@ -545,8 +545,9 @@ def play_games(agent, args: Args, run: Run, seeds) -> dict:
         while not done:
             obs, _, terminated, truncated, info = env.step(breaker.act(obs))
             done = terminated or truncated
-            shots += 1 + len(info.get("opponent_shots", []))
-        winner = info.get("winner") if breaks else {"agent": "opponent", "opponent": "agent"}.get(info.get("winner"))
+            shots += 1 + info["opponent_shots"]
+        # info["winner"] is the env's player number (its agent is 0; -1: none); as_opponent's agent is the other
+        winner = {0: "agent", 1: "opponent"}.get(info["winner"] if breaks else 1 - info["winner"])
         games.append({"seed": int(seed), "agent_breaks": breaks, "winner": winner, "shots": shots})
     as_agent.close()
     as_opponent.close()

@@ -36,10 +36,10 @@ def play_episode(env, agent, seed: int) -> dict:
         obs, r, terminated, truncated, info = env.step(act(obs))
         done = terminated or truncated
         reward += r
-        pocketed += sum(1 for ball in info["pocketed"] if ball != 0)
+        pocketed += int(info["pocketed"][1:].sum())  # the object balls of the mask
         shots += 1
         scratches += int(info["scratch"])
-        errors += int("error" in info)
+        errors += int(info["error"])
     return {"seed": int(seed), "reward": reward, "pocketed": pocketed, "shots": shots, "scratches": scratches,
             "cleared": bool(info["balls_left"] == 0), "errors": errors}
 

@@ -436,7 +436,7 @@ def head_to_head(games: int = 20, seed: int = 0, env_id: str = "PoolNineBall-v0"
             done = terminated or truncated
             if not done and info["opponent_shots"]:
                 first_turn = False
-        won = info.get("winner") == "agent"
+        won = info.get("winner") == 0  # the agent is player 0 (-1: no winner)
         wins += won
         breaks += k % 2 == 0
         runs += won and first_turn and k % 2 == 0

@@ -17,6 +17,7 @@ from pool_env.envs.game_env import PoolGameEnv
 from pool_env.game import GAME_BALLS
 from pool_env.players import make_player as registry_player
 from pool_env.records.saved import RECORDED, GameRecorder, save_game
+from pool_env.rules import codes
 
 from .stats import wilson
 
@@ -191,9 +192,7 @@ def play_game(game: str, breaker: str, other: str, players: dict, timers: dict, 
         if recorder is not None:
             recorder.stepped(reward, terminated, truncated, info)
         done = terminated or truncated
-        shots.append({"by": breaker, "foul": info["foul"], "pocketed": [int(b) for b in info["pocketed"]]})
-        shots += [{"by": other, "foul": s["foul"], "pocketed": [int(b) for b in s["pocketed"]]}
-                  for s in info["opponent_shots"]]
+        shots += step_shots(env.step_records, breaker, other)
     env.close()
     if recorder is not None:
         save_game(save_to, {**recorder.record(), "players": [breaker, other]})
@@ -201,10 +200,21 @@ def play_game(game: str, breaker: str, other: str, players: dict, timers: dict, 
         winner, reason = (other if forfeit.name == breaker else breaker), f"forfeit ({forfeit})"
         return {"seed": int(seed), "players": [breaker, other], "breaker": breaker, "winner": winner,
                 "end_reason": reason, "forfeit": forfeit.name, "shots": shots}
-    winner = {"agent": breaker, "opponent": other, None: None}[info.get("winner")]
-    reason = info.get("end_reason") if winner is not None else ("error" if "error" in info else "max_shots")
+    winner = {0: breaker, 1: other}.get(info.get("winner"))  # the agent is player 0; -1: no winner
+    reason = codes.decode("end_reason", info["end_reason"]) if winner is not None \
+        else ("error" if info.get("error") else "max_shots")
     return {"seed": int(seed), "players": [breaker, other], "breaker": breaker, "winner": winner,
             "end_reason": reason, "shots": shots}
+
+
+def step_shots(records, breaker: str, other: str) -> list[dict]:
+    """The shots of one env step as the tournament logs them (who, the foul's name, the object
+    balls pocketed), from its `ShotRecord`s: the breaker's (the env's agent, player 0) first,
+    then the opponent's that were played (a shot that failed ends the step)."""
+    if not records:  # no shot of the agent (its game ended in reset)
+        return [{"by": breaker, "foul": None, "pocketed": []}]
+    return [{"by": breaker if r.shooter == 0 else other, "foul": r.foul, "pocketed": [int(b) for b in r.pocketed]}
+            for r in records if r is records[0] or r.error is None]
 
 
 def game_recorder(env, seed: int, noise, max_shots: int):

@@ -20,6 +20,7 @@ import numpy as np
 
 import pool_env  # noqa: F401  (registers the env ids)
 from pool_env.players.game_ghost_ball import GameGhostBallAgent
+from pool_env.rules import codes
 
 IDS = {"nine_ball": "PoolNineBall-v0", "eight_ball": "PoolEightBall-v0"}
 
@@ -89,11 +90,12 @@ def tournament(model, args):
         for agent in aec.agent_iter():
             observation, _, termination, truncation, info = aec.last()
             aec.step(None if termination or truncation else players[agent](observation))
-        winner = info["winner"]
-        name = "none" if winner is None else ("ppo" if winner == ppo_seat else "ghost_ball")
+        winner = info["winner"]  # the winner's number k of player_k, -1 for none
+        name = "none" if winner < 0 else ("ppo" if f"player_{winner}" == ppo_seat else "ghost_ball")
         wins[name] += 1
+        reason = codes.decode("end_reason", info["end_reason"])
         print(f"game {game + 1}: PPO as {ppo_seat}, {info['shots']} shots, winner {name}"
-              f"{' (' + info['end_reason'] + ')' if info['end_reason'] else ''}")
+              f"{' (' + reason + ')' if reason else ''}")
     aec.close()
     return wins
 

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from pool_env.physics import Balls
+from pool_env.rules import codes
 
 
 def layout(n, on):
@@ -27,3 +28,12 @@ def require_pygame():
             raise
         pytest.skip("pygame is not installed (pip install -e '.[play]'); POOL_ENV_REQUIRE_PYGAME=1 makes this fail",
                     allow_module_level=True)
+
+
+def named(info: dict) -> dict:
+    """An env's numeric info with its codes as names (`pool_env.rules.codes.decode_info`) and the
+    pocketed mask as the list of ball numbers (0 the cue ball), for asserting on."""
+    out = codes.decode_info(info)
+    if "pocketed" in out:
+        out["pocketed"] = list(out["pocketed"])
+    return out

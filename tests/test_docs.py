@@ -7,10 +7,14 @@ rendered) tells this test about the block:
 - `<!-- slow -->`: the block takes seconds (training, videos); it runs under the `slow` marker.
 - `<!-- not-run: <reason> -->`: the block cannot run here; it is reported as skipped with the
   reason. Keep these rare: `test_not_run_blocks_are_rare` counts them.
+- `<!-- needs: module ... -->`: the block imports an optional library (docs/clients.md's, of
+  the `clients` extra); it is skipped where one is missing, unless POOL_ENV_REQUIRE_CLIENTS=1
+  (CI's clients venv), where it must run.
 """
 
 from __future__ import annotations
 
+import importlib.util
 import os
 import re
 import subprocess
@@ -25,7 +29,8 @@ TIME_LIMIT = 300  # s per block; the slowest (training a stand-in model, a rack 
 MAX_NOT_RUN = 1
 
 FENCE = re.compile(r"^```(\S*)\s*$")
-MARK = re.compile(r"^<!--\s*(slow|not-run:\s*(?P<reason>.*?))\s*-->$")
+MARK = re.compile(r"^<!--\s*(slow|not-run:\s*(?P<reason>.*?)|needs:\s*(?P<modules>.*?))\s*-->$")
+REQUIRE_CLIENTS = os.environ.get("POOL_ENV_REQUIRE_CLIENTS") == "1"
 
 
 def python_blocks(path: Path):
@@ -42,8 +47,9 @@ def python_blocks(path: Path):
         if fence.group(1) == "python":
             before = next((lines[k].strip() for k in range(i - 1, -1, -1) if lines[k].strip()), "")
             mark = MARK.match(before)
-            kind = None if mark is None else ("slow" if mark.group(1) == "slow" else "not-run")
-            reason = mark.group("reason") if mark is not None else None
+            kind = None if mark is None else ("slow" if mark.group(1) == "slow" else
+                                              "needs" if mark.group("modules") else "not-run")
+            reason = mark.group("reason") or mark.group("modules") if mark is not None else None
             blocks.append((i + 1, "\n".join(lines[i + 1:end]) + "\n", kind, reason))
         i = end + 1
     return blocks
@@ -59,14 +65,20 @@ def params():
             marks.append(pytest.mark.slow)
         elif kind == "not-run":
             marks.append(pytest.mark.skip(reason=f"not run: {reason}"))
+        elif kind == "needs" and not REQUIRE_CLIENTS:
+            missing = [m for m in reason.split() if importlib.util.find_spec(m) is None]
+            if missing:
+                marks.append(pytest.mark.skip(reason=f"needs {', '.join(missing)} (pip install -e '.[clients]')"))
         yield pytest.param(code, marks=marks, id=f"{path.relative_to(ROOT)}:{line}")
 
 
 def test_blocks_are_found():
     # Guards the parser: the pages hold these blocks (update the count when adding examples).
     names = {path.relative_to(ROOT).as_posix() for path, *_ in BLOCKS}
-    assert {"README.md", "docs/env.md"} <= names
+    assert {"README.md", "docs/env.md", "docs/clients.md"} <= names
     assert len(BLOCKS) >= 5
+    needs = {reason for path, _, _, kind, reason in BLOCKS if kind == "needs"}
+    assert {"torchrl", "tianshou", "skrl", "rl_zoo3", "supersuit", "moviepy"} <= needs  # clients.md's recipes
 
 
 def test_not_run_blocks_are_rare():

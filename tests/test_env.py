@@ -9,6 +9,7 @@ import gymnasium as gym
 import imageio_ffmpeg
 import numpy as np
 import pytest
+from scenes import named
 
 import pool_env
 from pool_env.envs.break_env import PoolBreakEnv, spread, spread_gain
@@ -114,6 +115,9 @@ def assert_same(a, b):
         for u, v in zip(x, y, strict=True):
             if isinstance(u, np.ndarray):
                 assert u.dtype == v.dtype and np.array_equal(u, v)
+            elif isinstance(u, dict):  # an info: the same keys, types and values (arrays bit for bit)
+                assert list(u) == list(v)
+                assert_same([tuple(u.values())], [tuple(v.values())])
             else:
                 assert type(u) is type(v) and u == v
 
@@ -189,7 +193,8 @@ def test_observation_layout_and_decoding():
     env = PoolBreakEnv(max_shots=4)
     balls = scene({0: (0.5, 0.3), 3: (1.7, 0.9), 11: (2.0, 0.2)})
     obs, info = env.reset(seed=0, options={"balls": balls})
-    assert obs.shape == (49,) and obs.dtype == np.float32 and info == {}
+    assert obs.shape == (49,) and obs.dtype == np.float32
+    assert not info["pocketed"].any() and info["first_contact"] == -1 and info["balls_left"] == 2  # no shot yet
     assert env.observation_space.contains(obs)
     assert np.allclose(obs[0:3], (2 * 0.5 / 2.24 - 1, 2 * 0.3 / 1.12 - 1, 1.0))
     assert np.array_equal(obs[3:6], [0.0, 0.0, -1.0])  # ball 1 is pocketed
@@ -207,7 +212,7 @@ def test_lone_ball_into_corner_pocket_scores_and_clears_the_table():
     cue, ball = (0.6, 0.6), (0.4, 0.4)  # on the diagonal to the corner pocket at (0, 0)
     env.reset(seed=0, options={"balls": scene({0: cue, 1: ball})})
     obs, reward, terminated, truncated, info = env.step(toward(cue, (0, 0), 0.3))
-    assert info["pocketed"] == [1] and info["first_contact"] == 1 and not info["scratch"]
+    assert named(info)["pocketed"] == [1] and info["first_contact"] == 1 and not info["scratch"]
     assert reward == 1.0 and type(reward) is float
     assert terminated is True and truncated is False  # the table is cleared
     assert info["balls_left"] == 0 and obs[5] == -1.0 and obs[2] == 1.0
@@ -221,7 +226,7 @@ def test_scratch_is_penalised_and_ends_the_run():
     cue = (0.4, 0.4)
     env.reset(seed=0, options={"balls": scene({0: cue, 1: (1.5, 0.6), 2: (1.8, 0.3)})})
     obs, reward, terminated, truncated, info = env.step(toward(cue, (0, 0), 0.3))
-    assert info["scratch"] is True and info["pocketed"] == [0] and info["first_contact"] == -1
+    assert info["scratch"] is True and named(info)["pocketed"] == [0] and info["first_contact"] == -1
     assert reward == -2.5 and terminated is True and truncated is False
     assert info["balls_left"] == 2 and obs[2] == -1.0
 
@@ -232,8 +237,9 @@ def test_break_env_ends_after_one_shot_and_run_env_truncates():
     _, reward, terminated, truncated, info = env.step(BREAK)
     assert terminated is True and truncated is False
     assert info["first_contact"] == 1 and info["cushion_hits"] > 0
-    assert reward == float(sum(b != 0 for b in info["pocketed"])) - info["scratch"]
-    assert info["balls_left"] == 15 - sum(b != 0 for b in info["pocketed"])
+    assert info["pocketed"].shape == (16,) and info["pocketed"].dtype == np.bool_
+    assert reward == float(info["pocketed"][1:].sum()) - info["scratch"]
+    assert info["balls_left"] == 15 - info["pocketed"][1:].sum()
 
     env = PoolBreakEnv(max_shots=2)
     env.reset(seed=0)
@@ -270,7 +276,7 @@ def test_pocketless_table_rewards_the_spread():
     total = 0.0
     for k in range(3):
         obs, reward, terminated, truncated, info = env.step(BREAK if k == 0 else np.array([0.0, 0.5]))
-        assert -1.0 <= reward <= 1.0 and info["pocketed"] == [] and info["balls_left"] == 15
+        assert -1.0 <= reward <= 1.0 and not info["pocketed"].any() and info["balls_left"] == 15
         total += reward
     assert terminated is False and truncated is True  # never cleared: it runs to max_shots
     xy, on = decode_observation(obs, env.table)
@@ -292,7 +298,8 @@ def test_simulation_failure_truncates_with_error(monkeypatch):
     with pytest.warns(UserWarning, match="event cap"):
         obs, reward, terminated, truncated, info = env.step(BREAK)
     assert (reward, terminated, truncated) == (0.0, False, True)
-    assert "event cap" in info["error"] and info["pocketed"] == [] and info["balls_left"] == 15
+    assert info["error"] is True and not info["pocketed"].any() and info["balls_left"] == 15
+    assert "event cap" in env.step_records[0].error
     assert np.array_equal(obs[:48], obs0[:48])  # the balls stay put
     with pytest.raises(RuntimeError):
         env.step(BREAK)

@@ -142,7 +142,8 @@ def test_vector_api():
     assert envs.observation_space == gym.vector.utils.batch_space(envs.single_observation_space, 3)
     assert envs.action_space == gym.vector.utils.batch_space(envs.single_action_space, 3)
     obs, infos = envs.reset(seed=3)
-    assert obs in envs.observation_space and obs.dtype == np.float32 and infos == {}
+    assert obs in envs.observation_space and obs.dtype == np.float32
+    assert infos["pocketed"].shape == (3, 16) and not infos["pocketed"].any() and infos["_pocketed"].all()
     envs.action_space.seed(0)
     for _ in range(4):
         obs, rewards, terminations, truncations, infos = envs.step(envs.action_space.sample())
@@ -204,8 +205,8 @@ def test_autoreset_disabled_with_reset_mask():
     ours = PoolVectorEnv(num_envs=3, max_shots=30, autoreset_mode=AutoresetMode.DISABLED)
     ref = gym.make_vec("PoolBreakRun-v0", num_envs=3, vectorization_mode="sync",
                        vector_kwargs={"autoreset_mode": AutoresetMode.DISABLED})
-    obs, _ = ours.reset(seed=2)
-    assert_same((obs, {}), ref.reset(seed=2))
+    obs, info = ours.reset(seed=2)
+    assert_same((obs, info), ref.reset(seed=2))
     rng = np.random.default_rng(2)
     resets = 0
     for step in range(30):
@@ -306,10 +307,10 @@ def test_a_failed_shot_truncates_only_its_sub_env(monkeypatch):
         obs, rewards, terminations, truncations, infos = envs.step(actions)
     assert (rewards[1], terminations[1], truncations[1]) == (0.0, False, True)
     assert np.array_equal(obs[1, :48], obs0[1, :48])  # its balls stay put
-    assert infos["_error"].tolist() == [False, True, False] and "event cap" in infos["error"][1]
+    assert infos["error"].tolist() == [False, True, False] and "event cap" in envs.envs[1].step_records[0].error
     for k in (0, 2):
         assert np.array_equal(obs[k], ref_out[0][k]) and rewards[k] == ref_out[1][k]
-        assert infos["pocketed"][k] == ref_out[4]["pocketed"][k]
+        assert np.array_equal(infos["pocketed"][k], ref_out[4]["pocketed"][k])
 
 
 # --- the planner API of PoolBreakEnv -------------------------------------------------------------
@@ -444,3 +445,24 @@ def test_infos_gathered_at_once_equal_gymnasiums_add_info():
         for k, info in entries:
             expected = envs._add_info(expected, info, k)  # noqa: SLF001 (Gymnasium's own, the reference)
         assert_same(envs.gather_infos(entries), expected, f"trial {trial}")
+
+
+@pytest.mark.parametrize("mode", ["vector_entry_point", "sync"])
+def test_same_step_autoreset_spends_no_step_on_a_reset(mode):
+    # PoolBreak-v0 is one shot an episode: with SAME_STEP every step plays a break and starts the
+    # next episode at once; with Gymnasium's default NEXT_STEP every other step only resets.
+    same = AutoresetMode.SAME_STEP
+    how = {"autoreset_mode": same} if mode == "vector_entry_point" else {"vector_kwargs": {"autoreset_mode": same}}
+    envs = gym.make_vec("PoolBreak-v0", num_envs=2, vectorization_mode=mode, **how)
+    assert envs.metadata["autoreset_mode"] == same
+    envs.reset(seed=0)
+    actions = np.array([[1.0, 0.02], [0.8, -0.03]], np.float32)
+    for _ in range(4):
+        obs, rewards, terminations, truncations, infos = envs.step(actions)
+        assert terminations.all() and not truncations.any()  # every step ended both episodes with a shot
+        assert infos["_final_info"].all() and (infos["final_info"]["events"] > 0).all()
+        assert (obs[:, 48] == -1.0).all() and not infos["pocketed"].any()  # and the next episodes began
+    default = gym.make_vec("PoolBreak-v0", num_envs=2, vectorization_mode=mode)
+    default.reset(seed=0)
+    shots = [default.step(actions)[4]["events"].tolist() for _ in range(4)]
+    assert shots[1] == shots[3] == [0, 0] and min(shots[0] + shots[2]) > 0  # NEXT_STEP: every other step resets

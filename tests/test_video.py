@@ -62,7 +62,7 @@ def test_the_overlay_draws_text_in_its_band():
 def test_scratch_and_result_card_are_told():
     from pool_env.records.video_overlay import episode_result, shot_summary
 
-    assert shot_summary({"pocketed": [3, 0], "scratch": True}) == "pocketed 3; cue ball pocketed (scratch)"
+    assert shot_summary({"pocketed": [3], "scratch": True}) == "pocketed 3; cue ball pocketed (scratch)"
     assert shot_summary({"pocketed": [], "foul": "wrong_ball_first"}) == "nothing pocketed; foul: wrong ball first"
     lines = episode_result(PoolBreakEnv(), 2, {}, 2.0, 3, 3, 1)
     assert lines[:2] == ["episode 2", "3 balls in 3 shots, 1 scratch"]

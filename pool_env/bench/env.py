@@ -43,7 +43,7 @@ def _steps_per_second(env_id, seconds, seed, **kwargs):
         while clock.wall() < seconds:
             _, _, terminated, truncated, info = env.step(env.action_space.sample())
             steps += 1
-            failures += "error" in info
+            failures += bool(info["error"])
             if terminated or truncated:
                 episodes += 1
                 env.reset()

@@ -10,9 +10,9 @@ from gymnasium import logger, spaces
 
 from ..game import N_BALLS, Game, StruckShot, break_observation, simulate_struck
 from ..physics import Balls, Table
-from ..physics.kinds import BALL_BALL_KINDS, BALL_CUSHION, BALL_POCKET
 from ..render.playback import ShotPlayback
 from ..render.window import HumanWindow
+from .infos import check_info_mode, rich_info, shot_info
 
 SHAPING_CONTACT = 0.1  # shaping: + for hitting an object ball, - for missing them all
 SHAPING_SPREAD = 0.5  # shaping: weight of the spread gain on a table with pockets
@@ -92,42 +92,13 @@ def spread_gain(before: Balls, after: Balls, table: Table) -> float:
     return float(min(1.0, max(-1.0, gain)))
 
 
-def shot_info(result, after: Balls, error: str | None = None) -> dict:
-    """A step's `info` (see PoolBreakEnv) from the shot's `Result` and the balls after it; for a
-    shot that could not be simulated, result None, the balls as they were and the error message."""
-    pocketed, first, cushions, events = [], -1, 0, 0
-    if result is not None:
-        _, kinds, i_s, j_s = (a.tolist() for a in result.event_arrays)  # lists: a shot has tens of events
-        events = len(kinds)
-        for kind, i, j in zip(kinds, i_s, j_s):
-            if kind == BALL_POCKET:
-                pocketed.append(i)
-            elif kind == BALL_CUSHION:
-                cushions += 1
-            elif first < 0 and kind in BALL_BALL_KINDS and (i == 0 or j == 0):  # a settle is a contact too
-                first = i + j
-    on_table = after.pocketed.tolist()
-    info = {
-        "pocketed": pocketed,
-        "first_contact": first,
-        "cushion_hits": cushions,
-        "scratch": bool(on_table[0]),
-        "events": events,
-        "shot_duration": 0.0 if result is None else result.duration,
-        "balls_left": len(on_table) - 1 - sum(on_table[1:]),
-    }
-    if error is not None:
-        info["error"] = error
-    return info
-
-
 def shot_reward(info: dict, before: Balls, after: Balls, table: Table, scratch_penalty=1.0, shaping=False) -> float:
     """A shot's reward (see PoolBreakEnv) from its `info` and the balls before and after it."""
     pocketless = table.pockets.shape[0] == 0
     if pocketless:
         reward = spread_gain(before, after, table)
     else:
-        reward = float(sum(1 for b in info["pocketed"] if b != 0)) - (scratch_penalty if info["scratch"] else 0.0)
+        reward = float(info["pocketed"][1:].sum()) - (scratch_penalty if info["scratch"] else 0.0)
     if shaping:
         reward += SHAPING_CONTACT if info["first_contact"] >= 0 else -SHAPING_CONTACT
         if not pocketless:
@@ -228,12 +199,29 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
     also logged with `gymnasium.logger.warn`, and the episode must be reset. Stepping a
     finished episode raises `RuntimeError`.
 
-    `info` after every step holds: `pocketed` (list of the ball numbers that dropped this
-    shot, in order), `first_contact` (the first ball the cue ball hit, -1 for none),
-    `cushion_hits` (ball-cushion contacts of all balls this shot), `scratch` (bool),
-    `events` (simulator events this shot), `shot_duration` (simulated seconds until every
-    ball rested) and `balls_left` (object balls on the table). There are no wall-clock figures,
-    so infos of identical runs are identical.
+    ## Info
+
+    `reset` and every `step` return an `info` with the same keys, each a number, a bool or a
+    fixed-shape array (so vector envs, TorchRL and tianshou stack them): `pocketed` (bool
+    array (16,): ball k dropped into a pocket this shot, k = 0 the cue ball), `first_contact`
+    (the first ball the cue ball hit, -1 for none), `cushion_hits` (ball-cushion contacts of
+    all balls), `scratch` (the cue ball is off the table), `events` (simulator events),
+    `shot_duration` (simulated seconds until every ball rested), `balls_left` (object balls
+    on the table) and `error` (the shot could not be simulated). After `reset` they describe
+    no shot (no ball pocketed, -1, zeros). docs/env.md lists them with their dtypes. There
+    are no wall-clock figures, so infos of identical runs are identical. With
+    `info_mode="rich"` the info also holds `records` (the step's `pool_env.game.ShotRecord`s:
+    its events, trajectories, the balls before and after; `env.unwrapped.step_records`
+    always has them) and `error_message` (the simulator's message, or None).
+
+    ## Autoreset in vector envs
+
+    `PoolBreak-v0` is one shot an episode, so Gymnasium's default autoreset (`NEXT_STEP`: the
+    step after an episode ends only resets it) spends every other step on a reset. Ask for
+    `SAME_STEP`, which resets in the step that ends the episode and wastes none:
+    `gymnasium.make_vec("PoolBreak-v0", num_envs=N, vectorization_mode="vector_entry_point",
+    vector_kwargs={"autoreset_mode": "SameStep"})` (the native vector env), or
+    `vectorization_mode="sync"` with the same `vector_kwargs`.
 
     ## Arguments
 
@@ -248,6 +236,7 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
     | `shaping` | False | add the shaping terms to the reward |
     | `render_size` | (640, 360) | (width, height) of rendered frames in pixels |
     | `scratch_penalty` | 1.0 | penalty for pocketing the cue ball |
+    | `info_mode` | `"numeric"` | `"rich"` adds the shot records to `info` (above) |
 
     The balls are regulation pool balls (57.15 mm, 170 g) on every table.
 
@@ -322,7 +311,8 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
     metadata = {"render_modes": ["human", "rgb_array", "rgb_array_list"], "render_fps": 30}
 
     def __init__(self, render_mode=None, table=None, physics=None, max_shots=1, spin=False, randomize_cue=False,
-                 shaping=False, render_size=(640, 360), scratch_penalty=1.0):
+                 shaping=False, render_size=(640, 360), scratch_penalty=1.0, info_mode="numeric"):
+        self.info_mode = check_info_mode(info_mode)
         self.max_shots = check_env_options(render_mode, self.metadata["render_modes"], max_shots)
         self.render_mode = render_mode
         self.spin = bool(spin)
@@ -345,6 +335,7 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
         self._started = False
         self._shots = 0
         self._done = True
+        self._records = ()  # the last step's ShotRecords
         self._window = None  # render_mode="human": a pool_env.render.window.Window, opened at the first frame
         self._window_title = f"pool_env: {type(self).__name__}"
         # With a render mode the balls' rotation is carried through every shot (lazily); without
@@ -369,9 +360,10 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
         except ValueError as exc:
             raise ValueError(f"options['balls']: {exc}") from None
         quaternions = self.np_random.normal(size=(N_BALLS, 4))  # random orientations, made matrices when drawn
-        self._started, self._shots, self._done = True, 0, False
+        self._started, self._shots, self._done, self._records = True, 0, False, ()
         self.playback.reset(self.game.balls, quaternions)
-        return {}
+        info = shot_info(None, self.game.balls)
+        return rich_info(info, (), None) if self.info_mode == "rich" else info
 
     def render(self):
         if not can_render(self.render_mode, self._started):
@@ -401,6 +393,12 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
     def shots(self) -> int:
         """The shots of this episode so far (failed ones included)."""
         return self._shots
+
+    @property
+    def step_records(self) -> tuple:
+        """The `pool_env.game.ShotRecord` of the last step (a one-tuple; a shot that could not
+        be simulated too, with its `error`); () after a reset."""
+        return self._records
 
     def strike(self, action) -> Balls:
         """The struck `Balls` that `step(action)` would simulate from the balls now: the cue
@@ -448,5 +446,8 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
             terminated = record.over
             truncated = not terminated and self._shots >= self.max_shots
         self._done = terminated or truncated
+        self._records = (record,)
+        if self.info_mode == "rich":
+            info = rich_info(info, self._records, record.error)
         self.playback.shot(record.result)
         return self.observation() if observe else None, reward, bool(terminated), bool(truncated), info

@@ -13,26 +13,13 @@ from ..players import make_player
 from ..render.overlay import overlay
 from ..render.playback import ShotPlayback
 from ..render.window import HumanWindow
-from .break_env import StepsShots, can_render, check_env_options, check_reset_options, run_step, shot_info
+from ..rules import codes
+from .break_env import StepsShots, can_render, check_env_options, check_reset_options, run_step
+from .infos import check_info_mode, no_shot_info, record_info, rich_info, rules_info, winner_code
 
 SHAPING_BALL, SHAPING_FOUL = 0.1, 0.1  # shaping: + per ball the agent pockets legally, - per foul
 RESET_OPTIONS = ("balls", "ball_in_hand", "agent_breaks")
 OPPONENT = 1  # the opponent is player 1 of the game, the agent player 0
-
-
-def rules_info(record) -> dict:
-    """The rules' part of a shot's info: `foul`, `pocketed`, `ball_in_hand` (the next
-    shooter's), `turn_passed`, `messages`."""
-    ruling = record.ruling
-    return {"foul": ruling.foul, "pocketed": list(record.pocketed), "ball_in_hand": ruling.ball_in_hand,
-            "turn_passed": bool(ruling.turn_passed), "messages": list(ruling.messages)}
-
-
-def record_info(record) -> dict:
-    """A shot's whole info: `PoolBreakEnv`'s per-shot entries, the rules' (`rules_info`), and
-    `balls_left` (object balls on the table)."""
-    return {**shot_info(record.result, record.balls_after), **rules_info(record),
-            "balls_left": len(record.state_after.on_table)}
 
 
 def shot_caption(game, record, who: str) -> str:
@@ -90,7 +77,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
     env = gym.make("PoolNineBall-v0")                  # the agent breaks; the ghost-ball player replies
     obs, info = env.reset(seed=0)
     obs, reward, terminated, truncated, info = env.step(env.action_space.sample())
-    print(info["foul"], info["pocketed"], info["opponent_shots"], info["winner"])
+    print(info["foul"], info["pocketed"], info["opponent_shots"], info["winner"])  # codes, a mask, counts
     ```
 
     ## Arguments
@@ -108,6 +95,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
     | `max_shots` | 100 | truncate after this many agent shots (a game of misses would never end) |
     | `rule_options` | None | the rule set's options (`NineBall(three_foul_rule=...)`, `EightBall(illegal_break=...)`) |
     | `table`, `physics`, `render_mode`, `render_size` | as `PoolBreakEnv` | |
+    | `info_mode` | `"numeric"` | `"rich"` adds the step's shot records to `info` (below) |
     | `overlay` | True | frames carry text: the game, whose shot, ball in hand, the called pocket; at the end
       of each shot the rules' messages (fouls, the winner) |
     | `hotseat` | False | with `opponent=None`: two people at one table, each step the shot of whoever is to
@@ -170,12 +158,20 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
 
     ## Info
 
-    After every step: `foul` (None or a foul name, `rules.FOULS`), `pocketed` (balls the
-    agent's shot pocketed), `ball_in_hand` (the next shooter's: None, "anywhere",
-    "behind_head_string"), `turn_passed`, `messages` (the rules' lines), `opponent_shots` (a
-    list of dicts with those keys, one per opponent shot), `winner` ("agent", "opponent" or
-    None), `end_reason`, and the agent's shot's `first_contact`, `cushion_hits`, `scratch`,
-    `events`, `shot_duration`, `balls_left` as `PoolBreakEnv` reports them.
+    `reset` and every `step` return an `info` with the same keys, each a number, a bool or a
+    fixed-shape array (docs/env.md lists them with dtypes and code tables): the agent's shot's
+    `foul` (a code: 0 none, else `pool_env.rules.codes.FOUL_CODES`), `pocketed` (bool array
+    of the game's balls, (10,) or (16,): ball k dropped into a pocket), `ball_in_hand` (the
+    next shooter's, a code of `BALL_IN_HAND_CODES`), `turn_passed`; `opponent_shots` (how many
+    shots the opponent played in the step, or in `reset` when it broke), `winner` (-1 while
+    the game goes on, 0 the agent, 1 the opponent), `end_reason` (0, or a code of
+    `END_REASON_CODES` once the game is over), `error` (a shot could not be simulated), and the
+    agent's shot's `first_contact`, `cushion_hits`, `scratch`, `events`, `shot_duration`,
+    `balls_left` as `PoolBreakEnv` reports them. A step without an agent shot (the game ended
+    in `reset`) and `reset` itself report no shot: nothing pocketed, no foul.
+    `pool_env.rules.codes.decode_info(info)` turns the codes into names. The rules' messages
+    and every shot's details are in `env.unwrapped.step_records`; with `info_mode="rich"` the
+    info also holds them (`records`) and `error_message` (why a shot failed, or None).
 
     The game is `env.unwrapped.game` (a `pool_env.game.Game`: its state, snapshots, `evaluate`;
     the agent is player 0), with `state` (`rules.GameState`) and `balls` also on the env;
@@ -192,7 +188,8 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
 
     def __init__(self, game="nine_ball", opponent="ghost_ball", render_mode=None, table=None, physics=None,
                  noise=None, agent_breaks=True, shaping=False, max_shots=100, rule_options=None,
-                 render_size=(640, 360), overlay=True, hotseat=False):
+                 render_size=(640, 360), overlay=True, hotseat=False, info_mode="numeric"):
+        self.info_mode = check_info_mode(info_mode)
         if game not in GAME_BALLS:
             raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
         self.render_mode = render_mode
@@ -251,12 +248,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         run_step(self._reset_turn(), self.table, self.physics)  # the opponent's break and turn, if it breaks
         self._reset_records, self._reset_error = tuple(self._step_records), self._error
         self._step_records = []
-        info = {}
-        if self.game.over or self._error is not None:  # not racked again: the game the opponent won is shown
-            info = {"winner": "opponent" if self.game.winner == OPPONENT else None, "end_reason": self._end_reason}
-            if self._error is not None:
-                info["error"] = self._error
-        return info
+        return self._info(no_shot_info(self.game.balls, self.game.ball_in_hand, self._error), self._reset_records)
 
     def _reset_turn(self):
         yield from self._opponent_turn()
@@ -414,11 +406,15 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         if not practice and game.winner is not None:
             reward += 1.0 if game.winner == 0 else -1.0
         self._done = terminated or truncated
-        info = self._agent_info or {**shot_info(None, game.balls, self._error), "foul": None, "pocketed": [],
-                                    "ball_in_hand": game.ball_in_hand, "turn_passed": False, "messages": []}
-        info = {**info, "opponent_shots": self._opponent_infos,
-                "winner": None if game.winner is None else ("agent" if game.winner == 0 else "opponent"),
-                "end_reason": self._end_reason if game.winner is not None else None}
-        if self._error is not None:
-            info["error"] = self._error
-        return self.observation() if observe else None, float(reward), bool(terminated), bool(truncated), info
+        info = self._agent_info or no_shot_info(game.balls, game.ball_in_hand, self._error)
+        return self.observation() if observe else None, float(reward), bool(terminated), bool(truncated), \
+            self._info(info, self._step_records)
+
+    def _info(self, shot: dict, records) -> dict:
+        """The info of a step or a reset: the agent's shot's entries (`shot`), then the
+        opponent's shots, the winner, the end reason and the error; the records if rich."""
+        game = self.game
+        info = {**shot, "opponent_shots": len(self._opponent_infos), "winner": winner_code(game.winner),
+                "end_reason": codes.encode("end_reason", self._end_reason if game.winner is not None else None),
+                "error": self._error is not None}
+        return rich_info(info, records, self._error) if self.info_mode == "rich" else info

@@ -50,9 +50,11 @@ class PoolVectorEnv(VectorEnv):
 
     - `NEXT_STEP` (Gymnasium's default): the step after a sub-env's episode ends resets it
       (unseeded: its random generator runs on) and ignores its action; nothing is simulated
-      for it, its reward is 0, its flags False and its info that of `reset` (empty).
-    - `SAME_STEP`: the step that ends an episode resets the sub-env at once; the returned
-      observation is the new episode's first, and the episode's last observation and info
+      for it, its reward is 0, its flags False and its info that of `reset` (no shot). The
+      one-shot `PoolBreak-v0` so spends every other step on resets: ask for `SAME_STEP`.
+    - `SAME_STEP`: the step that ends an episode resets the sub-env at once, so no step is
+      spent on a reset; the returned observation is the new episode's first, its info holds
+      that of `reset` (the same keys as a step's), and the episode's last observation and info
       are in `infos["final_obs"]` (an object array, None for the other sub-envs) and
       `infos["final_info"]` (a dict of arrays), masked by `infos["_final_obs"]` and
       `infos["_final_info"]`.
@@ -159,12 +161,13 @@ class PoolVectorEnv(VectorEnv):
         # (c) the sub-envs whose episodes ended last step start anew (NEXT_STEP)
         rewards, terminations, truncations = [0.0] * n, [False] * n, [False] * n
         elapsed, limit = self._elapsed, self.max_episode_steps
+        entries = {}  # sub-env k: its infos in order (SyncVectorEnv's _add_info order, sub-env by sub-env)
         if len(shots) < n:
             for k in np.flatnonzero(self._autoreset_envs).tolist():
-                envs[k].begin()
+                entries[k] = [envs[k].begin()]  # the info of reset
                 elapsed[k] = 0
         same_step = self.autoreset_mode == AutoresetMode.SAME_STEP
-        entries, finals, final_balls = [], [], []
+        finals, final_balls = [], []
         for k in shots:
             env = envs[k]
             _, rewards[k], terminated, truncated, info = outcomes[k]
@@ -174,13 +177,12 @@ class PoolVectorEnv(VectorEnv):
             terminations[k], truncations[k] = terminated, truncated
             if same_step and (terminated or truncated):
                 final = {"final_obs": None, "final_info": info}  # final_obs filled in below, all at once
-                entries.append((k, final))  # then the info of reset: empty
                 finals.append(final)
                 final_balls.append(self._state_of(env))
-                env.begin()
+                entries[k] = [final, env.begin()]  # then the info of reset
                 elapsed[k] = 0
             else:
-                entries.append((k, info))
+                entries[k] = [info]
         if finals:
             for final, obs in zip(finals, self._observe(final_balls)):
                 final["final_obs"] = obs
@@ -188,7 +190,7 @@ class PoolVectorEnv(VectorEnv):
         truncations = np.array(truncations, dtype=np.bool_)
         self._autoreset_envs = terminations | truncations
         return (self._observe(), np.array(rewards, dtype=np.float64), terminations, truncations,
-                self.gather_infos(entries))
+                self.gather_infos([(k, info) for k in sorted(entries) for info in entries[k]]))
 
     # --- helpers ------------------------------------------------------------------------------
     def _play(self, shots, decoded):

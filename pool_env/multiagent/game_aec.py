@@ -8,11 +8,13 @@ from gymnasium.utils import seeding
 from pettingzoo import AECEnv
 from pettingzoo.utils import wrappers
 
-from ..envs.break_env import can_render, check_env_options
-from ..envs.game_env import SHAPING_BALL, SHAPING_FOUL, PoolGameEnv, captioned, record_info, shot_caption
+from ..envs.break_env import can_render, check_env_options, check_reset_options
+from ..envs.game_env import SHAPING_BALL, SHAPING_FOUL, PoolGameEnv, captioned, shot_caption
+from ..envs.infos import check_info_mode, no_shot_info, record_info, rich_info, winner_code
 from ..game import GAME_BALLS, Game, game_observation, game_observation_size
 from ..render.overlay import overlay
 from ..render.playback import ShotPlayback
+from ..rules import codes
 
 AGENTS = ("player_0", "player_1")
 RESET_OPTIONS = ("balls", "ball_in_hand", "breaker")
@@ -45,6 +47,7 @@ class PoolGameAEC(AECEnv):
     | `noise` | None | None, `"olympiad"` or a dict of standard deviations, on both players' shots |
     | `shaping` | False | add +0.1 to the shooter per ball he pockets legally and -0.1 per foul |
     | `max_shots` | 200 | truncate both agents after this many shots in all |
+    | `info_mode` | `"numeric"` | `"rich"` adds the shot's record to the infos |
     | `rule_options`, `table`, `physics`, `render_mode`, `render_size` | | as PoolGameEnv's |
 
     - **Actions** `action_space(agent)`: PoolGameEnv's Box(-1, 1, (6,)) for 9-ball, (7,) for
@@ -58,15 +61,21 @@ class PoolGameAEC(AECEnv):
       terminate), 0 otherwise, plus the shaping if asked.
     - **Truncation** of both agents after `max_shots` shots, or when a shot cannot be simulated
       (`info["error"]`).
-    - **Infos** (both agents, after every shot): the last shot's `shooter`, `foul`, `pocketed`,
-      `ball_in_hand` (the next shooter's), `turn_passed`, `messages`, `winner` ("player_0",
-      "player_1" or None), `end_reason`, `shots` (so far), and PoolBreakEnv's per-shot entries
-      (`first_contact`, `cushion_hits`, `scratch`, `events`, `shot_duration`, `balls_left`).
+    - **Infos** (both agents, after `reset` and every shot; the same keys each time, each a
+      number, a bool or a fixed-shape array, as PoolGameEnv's, docs/env.md): the last shot's
+      `shooter` (0 or 1), `foul` (a code, `pool_env.rules.codes`), `pocketed` (bool array of
+      the game's balls), `ball_in_hand` (the next shooter's, a code), `turn_passed`, `winner`
+      (-1 while the game goes on, else the winner's number k of `player_k`), `end_reason` (a
+      code), `shots` (so far), `error` (the shot could not be simulated), and PoolBreakEnv's
+      per-shot entries (`first_contact`, `cushion_hits`, `scratch`, `events`, `shot_duration`,
+      `balls_left`). After `reset` they describe no shot (`shooter` is the breaker). With
+      `info_mode="rich"` they also hold `records` (the shot's `ShotRecord`, a one-tuple) and
+      `error_message`; `last_record` always has it.
     - **reset(seed, options)**: a fresh rack (WPA racking, seeded) with `player_0` to break,
       unless `options={"breaker": 1}`; `options={"balls": balls}` starts from a layout (as
       PoolGameEnv's, open table, `"ball_in_hand": True` for ball in hand anywhere) with the
-      breaker option's player to shoot. Unknown option keys are ignored with a warning
-      (`pettingzoo.test.api_test` passes one).
+      breaker option's player to shoot. An unknown option key raises ValueError, as in the
+      single-agent envs.
     - **render()**: as PoolGameEnv: "rgb_array" the table now, "rgb_array_list" the frames of
       the last shot.
 
@@ -78,8 +87,9 @@ class PoolGameAEC(AECEnv):
                 "render_fps": PoolGameEnv.metadata["render_fps"]}
 
     def __init__(self, game="nine_ball", render_mode=None, noise=None, shaping=False, max_shots=200,
-                 rule_options=None, table=None, physics=None, render_size=(640, 360)):
+                 rule_options=None, table=None, physics=None, render_size=(640, 360), info_mode="numeric"):
         super().__init__()
+        self.info_mode = check_info_mode(info_mode)
         if game not in GAME_BALLS:
             raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
         self.max_shots = check_env_options(render_mode, self.metadata["render_modes"], max_shots)
@@ -127,7 +137,8 @@ class PoolGameAEC(AECEnv):
         self._cumulative_rewards = dict.fromkeys(AGENTS, 0.0)
         self.terminations = dict.fromkeys(AGENTS, False)
         self.truncations = dict.fromkeys(AGENTS, False)
-        self.infos = {agent: {} for agent in AGENTS}
+        info = self._info(no_shot_info(self.game.balls, self.game.ball_in_hand), self.game.shooter, None)
+        self.infos = {agent: dict(info) for agent in AGENTS}
         self.agent_selection = AGENTS[self.game.shooter]
 
     def step(self, action):
@@ -147,15 +158,12 @@ class PoolGameAEC(AECEnv):
         if record.error is None:
             info = record_info(record)
             if self.shaping:
-                legal = len(info["pocketed"]) if info["foul"] is None else 0
-                self.rewards[agent] += SHAPING_BALL * legal - (SHAPING_FOUL if info["foul"] is not None else 0.0)
+                foul = record.ruling.foul is not None
+                legal = 0 if foul else len(record.pocketed)
+                self.rewards[agent] += SHAPING_BALL * legal - (SHAPING_FOUL if foul else 0.0)
         else:
-            info = {"foul": None, "pocketed": [], "ball_in_hand": game.ball_in_hand, "turn_passed": False,
-                    "messages": []}
-        end_reason = record.ruling.end_reason if winner is not None and record.ruling is not None else None
-        info.update(shooter=agent, winner=winner, end_reason=end_reason, shots=self.shots)
-        if record.error is not None:
-            info["error"] = record.error
+            info = no_shot_info(game.balls, game.ball_in_hand, record.error)
+        info = self._info(info, record.shooter, record)
         if winner is not None:
             for other in AGENTS:
                 self.rewards[other] += 1.0 if other == winner else -1.0
@@ -165,6 +173,18 @@ class PoolGameAEC(AECEnv):
         self.infos = {other: dict(info) for other in AGENTS}
         self.agent_selection = AGENTS[game.shooter]
         self._accumulate_rewards()
+
+    def _info(self, shot: dict, shooter: int, record) -> dict:
+        """Both agents' info: the shot's entries (`shot`) with the shooter, the winner, the end
+        reason and the shots so far; the record too if rich."""
+        game = self.game
+        ended = game.winner is not None and record is not None and record.ruling is not None
+        end_reason = record.ruling.end_reason if ended else None
+        info = {**shot, "shooter": int(shooter), "winner": winner_code(game.winner),
+                "end_reason": codes.encode("end_reason", end_reason), "shots": self.shots}
+        if self.info_mode == "rich":
+            info = rich_info(info, () if record is None else (record,), None if record is None else record.error)
+        return info
 
     def _follow(self, record):
         """The playback follows the shot; the shot counter and the last record are noted."""
@@ -216,15 +236,7 @@ class PoolGameAEC(AECEnv):
     # --- helpers -----------------------------------------------------------------------------
     @staticmethod
     def _check_options(options) -> dict:
-        if options is None:
-            return {"breaker": 0}
-        if not isinstance(options, dict):
-            raise TypeError(f"options must be a dict or None, got {type(options).__name__}")
-        unknown = [key for key in options if key not in RESET_OPTIONS]
-        if unknown:
-            gym.logger.warn(f"reset: ignoring unknown option(s) {', '.join(map(repr, unknown))}; the accepted "
-                            f"options are {', '.join(map(repr, RESET_OPTIONS))}")
-        options = {key: value for key, value in options.items() if key in RESET_OPTIONS}
+        options = dict(check_reset_options(options, RESET_OPTIONS))
         breaker = options.get("breaker", 0)
         if breaker in AGENTS:
             breaker = AGENTS.index(breaker)

@@ -247,13 +247,14 @@ class PlaySession:
         self._begin_turn()
 
     def _shot_lines(self, info, shooter):
-        """The rules' messages of a step (both players' shots), or what a break shot did."""
+        """The rules' messages of a step (both players' shots, from its records), or what a break shot did."""
         if self.state is None:
-            pocketed = [b for b in info["pocketed"] if b]
+            pocketed = info["pocketed"][1:].nonzero()[0] + 1  # the mask's object balls
             return [f"pocketed: {', '.join(map(str, pocketed)) or 'none'}"] + (["scratch"] if info["scratch"] else [])
-        lines = [f"{self._player(shooter)}: {m}" for m in info["messages"]]
-        for shot in info.get("opponent_shots", []):
-            lines += [f"opponent: {m}" for m in shot["messages"]]
+        lines = []
+        for k, record in enumerate(self.base.step_records):
+            who = self._player(shooter) if k == 0 else "opponent"
+            lines += [f"{who}: {m}" for m in (record.ruling.messages if record.ruling is not None else ())]
         return lines
 
     def undo(self):

@@ -12,7 +12,7 @@ import numpy as np
 from .. import __version__
 
 FORMAT = "pool_env.saved_game"
-VERSION = 1
+VERSION = 2  # 2: the numeric infos (codes, the pocketed mask)
 CHECKED_INFO = ("foul", "pocketed", "winner", "end_reason", "turn_passed", "scratch")  # per step, when present
 
 
@@ -142,7 +142,7 @@ def _outcome(env, reward, terminated, truncated, info) -> dict:
     balls = env.unwrapped.balls
     out = {"reward": float(reward), "terminated": bool(terminated), "truncated": bool(truncated),
            "xy": balls.xy.tolist(), "pocketed": balls.pocketed.tolist()}
-    out["info"] = {key: info[key] for key in CHECKED_INFO if key in info}
+    out["info"] = {key: np.asarray(info[key]).tolist() for key in CHECKED_INFO if key in info}  # JSON: no arrays
     return out
 
 

@@ -6,23 +6,33 @@ import math
 
 import numpy as np
 
+from ..envs.infos import NO_WINNER
 from ..physics.kinds import BALL_POCKET
 from ..render.overlay import card, cue_line, fit_band, font_size, overlay, pocket_mark
 from ..render.playback import frame_times
+from ..rules import codes
 
 CUE_SECONDS = 0.5  # the cue line is shown this long before each shot
 CARD_SECONDS = 1.5  # each episode ends on a card with its result, this long
 
 
-def shot_summary(info: dict) -> str:
-    """One shot in words: the balls pocketed, a scratch, a foul."""
-    balls = [int(b) for b in info.get("pocketed", []) if b != 0]
+def shot_facts(record) -> dict:
+    """What the captions tell of one shot, from its `ShotRecord`: the object balls pocketed, a
+    scratch, the foul's name, the rules' lines, a failure."""
+    return {"pocketed": [int(b) for b in record.pocketed], "scratch": record.scratch, "foul": record.foul,
+            "messages": list(record.ruling.messages) if record.ruling is not None else [],
+            "error": record.error is not None}
+
+
+def shot_summary(facts: dict) -> str:
+    """One shot in words (its `shot_facts`): the balls pocketed, a scratch, a foul."""
+    balls = facts.get("pocketed", [])
     parts = [("pocketed " + ", ".join(str(b) for b in balls)) if balls else "nothing pocketed"]
-    if info.get("scratch") or 0 in info.get("pocketed", []):
+    if facts.get("scratch"):
         parts.append("cue ball pocketed (scratch)")
-    if info.get("foul"):
-        parts.append(f"foul: {info['foul'].replace('_', ' ')}")
-    if info.get("error"):
+    if facts.get("foul"):
+        parts.append(f"foul: {facts['foul'].replace('_', ' ')}")
+    if facts.get("error"):
         parts.append("could not be simulated")
     return "; ".join(parts)
 
@@ -32,12 +42,13 @@ def episode_result(base, episode: int, info: dict, reward: float, shots: int, ba
     lines = [f"episode {episode}"]
     if base.game.has_rules:
         name = base.game.label
-        winner = info.get("winner")
-        if winner is not None:
-            reason = info.get("end_reason")
-            lines.append(f"{winner} wins {name}" + (f" ({reason.replace('_', ' ')})" if reason else ""))
+        winner = info.get("winner", NO_WINNER)
+        if winner != NO_WINNER:
+            reason = codes.decode("end_reason", info["end_reason"])
+            who = "agent" if winner == 0 else "opponent"
+            lines.append(f"{who} wins {name}" + (f" ({reason.replace('_', ' ')})" if reason else ""))
         else:
-            lines.append(f"{name}: no winner ({'error' if 'error' in info else 'shot limit'})")
+            lines.append(f"{name}: no winner ({'error' if info.get('error') else 'shot limit'})")
         lines.append(f"{shots} shots, reward {reward:+.2f}")
         return lines
     lines.append(f"{balls} ball{'s' if balls != 1 else ''} in {shots} shot{'s' if shots != 1 else ''}"
@@ -62,7 +73,7 @@ class Story:
         counts = [len(frame_times(r.duration, self.fps)) for r in results]
         if not results or sum(counts) != len(frames):  # a failed shot: the table as it is
             self.reward += reward
-            self.last = [f"last shot: {shot_summary(info)}"]
+            self.last = [f"last shot: {shot_summary({'error': bool(info.get('error'))})}"]
             return [self._caption(frame) for frame in (frames if first else frames[-1:])]
         out, start = [], 0
         for k, (result, shot_info, count) in enumerate(zip(results, infos, counts, strict=True)):
@@ -91,16 +102,12 @@ class Story:
         return card(frame, lines)
 
     def _shots(self, info):
-        """(the step's Results, an info per shot) in the order they were played."""
-        if self.base.game.has_rules:
-            records = [record for record in self.base.step_records if record.error is None]
-            results = [record.result for record in records]
-            others = [{**s, "_who": "opponent"} for s in info.get("opponent_shots", [])]
-            agent_shot = bool(records) and records[0].shooter == 0
-            infos = ([{**info, "_who": "agent"}] + others) if agent_shot else others
-            return (results, infos) if len(infos) == len(results) else ([], [])
-        result = self.base.playback.last_result
-        return ([result], [dict(info)]) if result is not None else ([], [])
+        """(the step's Results, the `shot_facts` of each) in the order they were played."""
+        records = [record for record in self.base.step_records if record.error is None]
+        if not self.base.game.has_rules:
+            return ([r.result for r in records], [shot_facts(r) for r in records])
+        facts = [{**shot_facts(r), "_who": "agent" if r.shooter == 0 else "opponent"} for r in records]
+        return [r.result for r in records], facts
 
     @staticmethod
     def _cue_pocket(result):
@@ -111,10 +118,9 @@ class Story:
 
     def _note(self, info, reward, who):
         self.reward += reward
-        scratch = bool(info.get("scratch")) or 0 in info.get("pocketed", [])
         if who in (None, "agent"):
-            self.balls += sum(1 for b in info.get("pocketed", []) if b != 0)
-            self.scratches += scratch
+            self.balls += len(info["pocketed"])
+            self.scratches += bool(info["scratch"])
         self.last = [f"last shot{f' ({who})' if who else ''}: {shot_summary(info)}"]
         self.last += [m for m in info.get("messages", []) if m]
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from . import codes
 from .eight_ball import EightBall
 from .nine_ball import NineBall
 from .outcome import ShotOutcome, outcome_from_result
@@ -13,7 +14,7 @@ KINDS = {"nine_ball": NineBall, "eight_ball": EightBall}
 __all__ = [
     "new_game", "judge", "legal_targets", "GameState", "Ruling", "ShotOutcome", "outcome_from_result",
     "NineBall", "EightBall", "FOULS", "END_REASONS", "BALL_IN_HAND", "GROUPS", "KINDS",
-    "nine_ball_rack", "eight_ball_rack", "spot_balls", "head_string_x", "foot_spot", "head_spot",
+    "nine_ball_rack", "eight_ball_rack", "spot_balls", "head_string_x", "foot_spot", "head_spot", "codes",
 ]
 
 
