@@ -79,12 +79,24 @@ def collision(v, roll, dn, dt, e_b):
 
 # --- distances (geometry.point_segment_distance, segments_distance) --------------------------------
 @helper
-def point_segment(px, py, ax, ay, bx, by):
+def closer(dx, dy, r):
+    """math.hypot(dx, dy) < r, the squares compared first (hypot only when they are within 1e-12)."""
+    d2, r2 = dx * dx + dy * dy, r * r
+    if d2 < r2 * (1.0 - 1e-12):
+        return True
+    if d2 > r2 * (1.0 + 1e-12):
+        return False
+    return math.hypot(dx, dy) < r
+
+
+@helper
+def point_segment_within(px, py, ax, ay, bx, by, r):
+    """geometry.point_segment_distance(p, a, b) < r."""
     abx, aby = bx - ax, by - ay
     length2 = abx * abx + aby * aby
     s = ((px - ax) * abx + (py - ay) * aby) / (length2 if length2 > 0 else 1.0)
     s = min(max(s, 0.0), 1.0)
-    return math.hypot(px - (ax + s * abx), py - (ay + s * aby))
+    return closer(px - (ax + s * abx), py - (ay + s * aby), r)
 
 
 @helper
@@ -102,8 +114,9 @@ def segments_within(ax, ay, bx, by, cx, cy, dx, dy, reach):
     if (cross(cx, cy, dx, dy, ax, ay) * cross(cx, cy, dx, dy, bx, by) < 0
             and cross(ax, ay, bx, by, cx, cy) * cross(ax, ay, bx, by, dx, dy) < 0):
         return True  # they cross
-    return (point_segment(ax, ay, cx, cy, dx, dy) < reach or point_segment(bx, by, cx, cy, dx, dy) < reach
-            or point_segment(cx, cy, ax, ay, bx, by) < reach or point_segment(dx, dy, ax, ay, bx, by) < reach)
+    return (point_segment_within(ax, ay, cx, cy, dx, dy, reach) or point_segment_within(bx, by, cx, cy, dx, dy, reach)
+            or point_segment_within(cx, cy, ax, ay, bx, by, reach)
+            or point_segment_within(dx, dy, ax, ay, bx, by, reach))
 
 
 @helper
@@ -115,7 +128,7 @@ def path_clear(xy, on, q, ball, ax, ay, bx, by, clearance):
         px, py = xy[q, j, 0], xy[q, j, 1]
         if not on[q, j] or j == ball or px < lo_x or px > hi_x or py < lo_y or py > hi_y:
             continue  # outside the path's box grown by the clearance: farther than that from the path
-        if point_segment(px, py, ax, ay, bx, by) < clearance:
+        if point_segment_within(px, py, ax, ay, bx, by, clearance):
             return False
     return True
 
@@ -217,23 +230,28 @@ def fold(p, lo, hi):
 
 
 @helper
-def in_pocket(px, py, c, pockets):
-    """geometry.enters_pocket of one point of a cue-ball path (geometry.fold's mirror image):
-    (in a pocket's capture circle, reflections so far)."""
+def folded(px, py, c):
+    """A point of a cue-ball path mirrored onto the table (geometry.fold): (x, y, reflections)."""
     R = c[R_]
     x, kx = fold(px, R, c[LENGTH] - R)
     y, ky = fold(py, R, c[WIDTH] - R)
+    return x, y, kx + ky
+
+
+@helper
+def pocket_gap(x, y, pockets):
+    """The least distance from (x, y) to a pocket's capture circle, negative inside one (geometry.enters_pocket)."""
+    gap = np.inf
     for p in range(pockets.shape[0]):
-        if math.hypot(x - pockets[p, 0], y - pockets[p, 1]) < pockets[p, 2]:
-            return True, kx + ky
-    return False, kx + ky
+        gap = min(gap, math.hypot(x - pockets[p, 0], y - pockets[p, 1]) - pockets[p, 2])
+    return gap
 
 
 @helper
 def scratches(work, c, pockets):
     """geometry.enters_pocket(geometry.cue_path(...)): the cue ball leaving the ghost ball at
     velocity work[2:4] with roll work[4:6] slides, rolls and reflects into a pocket."""
-    g, mu_s, step = c[G], c[MU_S], c[STEP]
+    g, mu_s = c[G], c[MU_S]
     sx, sy, vx, vy = work[0], work[1], work[2], work[3]
     slip_x, slip_y = vx - work[4], vy - work[5]
     slip = math.hypot(slip_x, slip_y)
@@ -245,22 +263,38 @@ def scratches(work, c, pockets):
     for k in range(12):  # np.linspace(0, t_slide, 12)
         t = t_slide if k == 11 else k * (t_slide / 11.0)
         px, py = sx + vx * t + 0.5 * ax * (t * t), sy + vy * t + 0.5 * ay * (t * t)
-        if in_pocket(px, py, c, pockets)[0]:
+        x, y, _ = folded(px, py, c)
+        if pocket_gap(x, y, pockets) < 0.0:
             return True
-    rx, ry = vx + ax * t_slide, vy + ay * t_slide
+    return rolls_in(px, py, vx + ax * t_slide, vy + ay * t_slide, c, pockets)
+
+
+@helper
+def rolls_in(px, py, rx, ry, c, pockets):
+    """The rolling part of `scratches`: from (px, py) at velocity (rx, ry), points PATH_STEP
+    apart until the cushions have eaten the run (each reflection costs a share 1 - e_c^2)."""
+    step = c[STEP]
     speed = math.hypot(rx, ry)
-    run = speed * speed / (2.0 * c[MU_R] * g)
+    run = speed * speed / (2.0 * c[MU_R] * c[G])
     ex, ey = (rx / speed, ry / speed) if speed > 0 else (0.0, 0.0)
     delta, cost = (step + step) - step, 0.0  # np.arange(step, run + step, step)'s spacing
+    bounces, share, skip = -1.0, 0.0, 0
     for i in range(int(math.ceil((run + step - step) / step))):
         s = step + i * delta
-        hit, bounces = in_pocket(px + ex * s, py + ey * s, c, pockets)
-        cost += step / c[E_C] ** (2.0 * bounces)
+        x, y, b = folded(px + ex * s, py + ey * s, c)
+        if b != bounces:
+            bounces, share = b, step / c[E_C] ** (2.0 * b)
+        cost += share
         if cost >= run:  # the cushions have eaten the run
             return False
-        if hit:
+        if skip > 0:
+            skip -= 1
+            continue
+        gap = pocket_gap(x, y, pockets)
+        if gap < 0.0:
             return True
-    return False
+        skip = max(int(gap / step) - 2, 0)  # the next points are each at most a step nearer (folding
+    return False  # shortens no distance)
 
 
 @kernel
