@@ -10,7 +10,7 @@ from ..physics import BALL_RADIUS, Physics, Table
 from . import geometry as geo
 from .base import Agent, game_of
 from .ghost_ball import GhostBallAgent, best_row, pot_of
-from .planner import OK, SCORE, first_best
+from .planner import SCORE, first_best
 
 BREAK_SPEED = 9.0  # m/s, full into the rack's apex ball
 SAFETY_SPEED = 3.0  # m/s: no pot on, the cue ball sent full at a legal ball (far enough for a rail)
@@ -106,19 +106,17 @@ class GameGhostBallAgent(Agent):
     def plan_groups(self, xy, objects, index, aims, bounds, cues):
         """Plan every view's candidates from each of its cue-ball spots in one call: per view
         (its best `Pot` or None, the spot it is played from or None if no spot has a pot)."""
-        parts, group_spots = [], []
-        for q, (_, spots, _) in enumerate(cues):
-            for spot in spots:
-                parts.append((q, np.arange(bounds[q], bounds[q + 1]), spot))
-                group_spots.append((q, spot))
-        if not parts:
+        group_spots = [(q, spot) for q, (_, spots, _) in enumerate(cues) for spot in spots]
+        if not group_spots:
             return [(None, None)] * len(cues), None, None
-        rows_of = np.concatenate([rows for _, rows, _ in parts])
-        groups = np.repeat(np.arange(len(parts)), [len(rows) for _, rows, _ in parts])
-        cue = np.repeat(np.array([spot for _, _, spot in parts]), [len(rows) for _, rows, _ in parts], axis=0)
+        views = np.array([q for q, _ in group_spots])
+        lengths = bounds[views + 1] - bounds[views]
+        groups = np.repeat(np.arange(len(group_spots)), lengths)
+        rows_of = np.arange(len(groups)) - np.repeat(np.cumsum(lengths) - lengths - bounds[views], lengths)
+        cue = np.repeat(np.array([spot for _, spot in group_spots]), lengths, axis=0)
         rows = self.planner.batch.plan(cue, xy, objects, index[rows_of], aims[rows_of],
                                        np.full(len(rows_of), self.planner.arrival_speed))
-        heads = first_best(np.where(rows[:, OK] > 0, rows[:, SCORE], -np.inf), groups, len(parts))
+        heads = first_best(rows, groups, len(group_spots))
         out = [(None, None)] * len(cues)
         best = np.full(len(cues), -np.inf)
         for g, (q, spot) in enumerate(group_spots):

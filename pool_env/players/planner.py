@@ -362,13 +362,20 @@ class ShotPlanner:
         return index
 
 
-def first_best(scores, groups, count: int) -> np.ndarray:
-    """(count,) per group (groups (N,) ascending, 0..count-1): the row of its highest score, the
-    first of equal ones (a loop's `score > best`), or -1 where every score is -inf or it has no row."""
-    order = np.lexsort((np.arange(len(scores)), -scores, groups))
-    out = np.full(count, -1, dtype=np.int64)
-    starts = np.flatnonzero(np.r_[True, groups[order][1:] != groups[order][:-1]]) if len(order) else order
-    heads = order[starts]
-    good = np.isfinite(scores[heads])
-    out[groups[heads[good]]] = heads[good]
+@kernel
+def group_best(rows, groups, out):
+    """out[g]: the row of group g's best-scoring pot (the first of equal ones, as a loop's
+    `score > best`), -1 if it has none; groups (N,) are the rows' group numbers (< len(out))."""
+    for g in range(out.shape[0]):
+        out[g] = -1
+    for i in range(rows.shape[0]):
+        g = groups[i]
+        if rows[i, OK] > 0.0 and (out[g] < 0 or rows[i, SCORE] > rows[out[g], SCORE]):
+            out[g] = i
+
+
+def first_best(rows, groups, count: int) -> np.ndarray:
+    """(count,): `group_best` of plan rows."""
+    out = np.empty(count, dtype=np.int64)
+    group_best(rows, np.asarray(groups, dtype=np.int64), out)
     return out
