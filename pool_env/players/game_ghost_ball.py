@@ -50,6 +50,17 @@ class GameGhostBallAgent(Agent):
         view = decode_game_observation(observation, self.game, self.table)
         return self.encode(self.decide(view), view.ball_in_hand)
 
+    def act_batch(self, observations) -> list[np.ndarray]:
+        """`act` of each observation, planned together (`decide_batch`): the same actions."""
+        views = [decode_game_observation(observation, self.game, self.table) for observation in observations]
+        return [self.encode(shot, view.ball_in_hand) for shot, view in zip(self.decide_batch(views), views)]
+
+    @property
+    def batch_key(self) -> tuple:
+        """Equal for players that plan alike (game, table, physics, radius): one's `act_batch` serves the others."""
+        b = self.planner.batch
+        return (self.game, b.constants.tobytes(), b.rails.tobytes(), b.jaws.tobytes(), b.captures.tobytes())
+
     def decide(self, view) -> Shot:
         """The shot for a decoded observation (`pool_env.game.GameView`)."""
         return self.decide_batch([view])[0]
