@@ -12,6 +12,7 @@ from pool_env.game import MAX_SPEED, GameView
 from pool_env.physics import BALL_RADIUS, Physics, Table
 from pool_env.players import GameGhostBallAgent, GhostBallAgent
 from pool_env.players import geometry as geo
+from pool_env.players import plan_kernels as pk
 from pool_env.players import planner as pl
 
 POSITIONS = json.loads((Path(__file__).parent / "data" / "planner_positions.json").read_text())["positions"]
@@ -60,13 +61,13 @@ def test_the_ball_models_match_geometry_element_wise():
     g, mu_s, mu_r = PHYSICS.g, PHYSICS.mu_s, PHYSICS.mu_r
     for v in (0.0, 0.3, 1.1, 4.0, 11.5):
         for distance in (0.0, 0.05, 0.4, 1.7, 3.5):
-            assert pl.start_speed(v, distance, g, mu_s, mu_r) == pytest.approx(geo.start_speed(v, distance, PHYSICS),
+            assert pk.start_speed(v, distance, g, mu_s, mu_r) == pytest.approx(geo.start_speed(v, distance, PHYSICS),
                                                                                rel=1e-12, abs=1e-15)
-            assert pl.forward_spin_after(v, distance, g, mu_s, mu_r) == pytest.approx(
+            assert pk.forward_spin_after(v, distance, g, mu_s, mu_r) == pytest.approx(
                 geo.forward_spin_after(v, distance, PHYSICS), rel=1e-12, abs=1e-15)
     for v, roll, cut in ((2.0, 0.0, 0.0), (2.0, 1.4, 0.6), (0.4, 0.4, 1.2), (5.0, 3.0, -0.9)):
         dn, dt = math.cos(cut), math.sin(cut)
-        assert pl.collision(v, roll, dn, dt, PHYSICS.e_b) == pytest.approx(geo.collision(v, roll, dn, dt, PHYSICS),
+        assert pk.collision(v, roll, dn, dt, PHYSICS.e_b) == pytest.approx(geo.collision(v, roll, dn, dt, PHYSICS),
                                                                            rel=1e-12, abs=1e-15)
 
 
