@@ -140,10 +140,10 @@ def evaluate_ratio(repeats: int, threads: int | None) -> dict:
 
 def env_figures(path: str | None, seconds: float, script: str = ENV_SCRIPT) -> dict:
     """The env figures (or the search's, `script=SEARCH_SCRIPT` with `seconds` the decisions
-    timed) measured in a fresh process of the checkout at `path` (None: this one)."""
+    timed) measured in a fresh process of the checkout at `path` (None: the one this module is in)."""
     env = dict(os.environ)
-    if path is not None:
-        env["PYTHONPATH"] = path + os.pathsep + env.get("PYTHONPATH", "")
+    path = str(Path(__file__).resolve().parents[2]) if path is None else path  # this checkout, not an installed one
+    env["PYTHONPATH"] = path + os.pathsep + env.get("PYTHONPATH", "")
     # From a neutral folder: `python -c` puts the working folder first on sys.path, where a
     # checkout would shadow the one asked for.
     with tempfile.TemporaryDirectory() as folder:
