@@ -142,10 +142,16 @@ class SearchAgent(Agent):
     leaves (depth-1 lookahead: the best ghost-ball score of the next legal ball), a miss minus
     the opponent's best shot, a foul, a loss. The best mean value is played.
 
+    The pots, the ball-in-hand spots' ranking and the lookahead's qualities are planned in
+    batches on the compiled ghost-ball planner (`SearchPlanner`).
+
     `budget` caps the simulated shots per decision (candidates x noise samples); the lookahead
     covers the best candidates by their plain value (`LOOKAHEAD_WORK`). `seconds` (optional)
-    also stops the lookahead when the decision has used that much wall time (decisions then
-    depend on the machine's speed; without it they depend only on the seed and the observation).
+    caps the decision's wall time: the candidates (best prior first) are simulated
+    `SIMULATION_CHUNK` at a time and the lookahead takes `LOOKAHEAD_CHUNK` candidates at a
+    time, each batch only while the decision has used less than `seconds` (the first batch of
+    simulations always runs; a candidate left unsimulated is not chosen). Decisions then depend
+    on the machine's speed; without it they depend only on the seed and the observation.
     `last_stats` holds the last decision's candidates, simulations, seconds and value."""
 
     name = "search"
