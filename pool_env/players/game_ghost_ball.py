@@ -199,13 +199,14 @@ class GameGhostBallAgent(Agent):
 
     def safety(self, xy, on_table, legal, place) -> Shot:
         """Full at the nearest legal ball with a clear path (any legal ball if none is clear)."""
-        objects = [b for b in np.flatnonzero(on_table[1:]) + 1 if legal[b - 1]]
-        if not objects:
-            return Shot.aimed((1.0, 0.0), SAFETY_SPEED, place=place)
-        objects.sort(key=lambda b: float(np.hypot(*(xy[b] - xy[0]))))
         everything = np.flatnonzero(on_table[1:]) + 1
-        for ball in objects:
-            others = xy[everything[everything != ball]]
-            if geo.path_clear(xy[0], xy[ball], others, 2.0 * self.radius * 1.02):
-                return Shot.aimed(geo.unit(xy[ball] - xy[0]), SAFETY_SPEED, place=place)
-        return Shot.aimed(geo.unit(xy[objects[0]] - xy[0]), SAFETY_SPEED, place=place)
+        objects = everything[np.asarray(legal, dtype=bool)[everything - 1]]
+        if not objects.size:
+            return Shot.aimed((1.0, 0.0), SAFETY_SPEED, place=place)
+        to = xy[objects] - xy[0]
+        objects = objects[np.argsort(np.hypot(to[:, 0], to[:, 1]), kind="stable")]  # nearest first
+        gaps = geo.point_segment_distance(xy[everything][None, :, :], xy[0], xy[objects][:, None, :])  # (L, E)
+        gaps[objects[:, None] == everything[None, :]] = np.inf  # a ball does not block its own path
+        clear = np.flatnonzero(gaps.min(axis=1, initial=np.inf) >= 2.0 * self.radius * 1.02)
+        ball = objects[clear[0]] if clear.size else objects[0]
+        return Shot.aimed(geo.unit(xy[ball] - xy[0]), SAFETY_SPEED, place=place)
