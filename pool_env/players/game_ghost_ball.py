@@ -77,7 +77,7 @@ class GameGhostBallAgent(Agent):
         bounds = np.searchsorted(index[:, 0], np.arange(len(views) + 1))
         cues = [self.cue_spots(view, xy[q], objects[q], index[bounds[q]:bounds[q + 1]], aims[bounds[q]:bounds[q + 1]])
                 for q, view in enumerate(views)]
-        tried, rows, groups = self.plan_groups(xy, objects, index, aims, bounds, cues)
+        tried = self.plan_groups(xy, objects, index, aims, bounds, cues)
         shots = []
         for q, view in enumerate(views):
             (kind, _, default), (pot, spot) = cues[q], tried[q]
@@ -87,7 +87,7 @@ class GameGhostBallAgent(Agent):
                 apex = min(np.flatnonzero(view.legal_mask) + 1) if view.legal_mask.any() else 1
                 shots.append(Shot.aimed(geo.unit(xy[q, apex] - cue), BREAK_SPEED, place=place))
                 continue
-            if not view.on_table[0]:  # a pocketed cue ball: placed, it plays the safety
+            if not view.on_table[0]:  # pots are planned for a cue ball on the table: a pocketed one plays safe
                 pot = None
             elif spot is None and kind == "hand":  # no spot has a pot: from the area's middle
                 pot = self.best(np.vstack([cue[None], xy[q, 1:]]), view.on_table, view.legal_mask)
@@ -119,7 +119,7 @@ class GameGhostBallAgent(Agent):
         (its best `Pot` or None, the spot it is played from or None if no spot has a pot)."""
         group_spots = [(q, spot) for q, (_, spots, _) in enumerate(cues) for spot in spots]
         if not group_spots:
-            return [(None, None)] * len(cues), None, None
+            return [(None, None)] * len(cues)
         views = np.array([q for q, _ in group_spots])
         lengths = bounds[views + 1] - bounds[views]
         groups = np.repeat(np.arange(len(group_spots)), lengths)
@@ -135,7 +135,7 @@ class GameGhostBallAgent(Agent):
             if k >= 0 and rows[k, SCORE] > best[q]:  # the first spot of the highest score
                 best[q] = rows[k, SCORE]
                 out[q] = (pot_of(index[rows_of[k]], rows[k]), spot)
-        return out, rows, groups
+        return out
 
     def cue_spots(self, view, xy, objects, index, aims):
         """(kind, the spots to plan from, where the cue ball goes if none has a pot): "lies"
