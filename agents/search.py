@@ -18,6 +18,7 @@ from pool_env.game import (
     Game,
     GameView,
     Shot,
+    decode_action,
     decode_game_observation,
     decode_observation,
     encode_action,
@@ -358,7 +359,9 @@ class SearchAgent(Agent):
         left unsimulated gets -inf)."""
         s = self.noise_samples
         self.sim.reset(balls=balls_of(d, self.radius), state=state)
-        shots = [self.sim.decode(self.action(cand, d.ball_in_hand)) for cand in candidates]
+        area, pockets = self.sim.placement_area(), self.table.pockets.shape[0]  # as sim.decode reads them
+        shots = [decode_action(self.sim.layout, self.action(cand, d.ball_in_hand, area), area, pockets)
+                 for cand in candidates]
         chunk = len(shots) if self.seconds is None else SIMULATION_CHUNK
         records = []
         for at in range(0, len(shots), chunk):
@@ -443,10 +446,12 @@ class SearchAgent(Agent):
         return self.plans.qualities(np.array(xys, dtype=np.float64), on, masks, IN_HAND_QUALITY)
 
     # --- the action ------------------------------------------------------------------------------
-    def action(self, cand: Candidate, in_hand) -> np.ndarray:
-        """The env's action for a candidate (`pool_env.game.encode_action` of its shot)."""
+    def action(self, cand: Candidate, in_hand, area=False) -> np.ndarray:
+        """The env's action for a candidate (`pool_env.game.encode_action` of its shot); `area`
+        the placement area of `in_hand` if already known."""
         shot = Shot.aimed(cand.direction, min(cand.speed, MAX_SPEED), cand.tip, place=cand.spot, pocket=cand.pocket)
-        area = None if in_hand is None else placement_area(self.table, in_hand, self.radius)
+        if area is False:
+            area = None if in_hand is None else placement_area(self.table, in_hand, self.radius)
         return encode_action(self.sim.layout, shot, area, max(self.table.pockets.shape[0], 1))
 
 
