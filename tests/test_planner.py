@@ -157,3 +157,25 @@ def test_a_batch_of_views_gets_the_shots_of_one_view_at_a_time():
         assert any(v.ball_in_hand for v in views) and any(v.ball_in_hand is None for v in views)
         assert agent.decide_batch(views) == [agent.decide(view) for view in views]
         assert agent.decide_batch([]) == []
+
+
+@pytest.mark.parametrize("change, match", [
+    (lambda a: {**a, "xy": a["xy"][:, :, :1]}, "xy must be"),
+    (lambda a: {**a, "index": a["index"][:, :2]}, "index must be"),
+    (lambda a: {**a, "index": a["index"] + np.array([0, 0, 9])}, "out of range"),
+    (lambda a: {**a, "index": a["index"] * np.array([1, 0, 1])}, "out of range"),  # ball 0, the cue ball
+    (lambda a: {**a, "xy": np.where(np.arange(3)[None, :, None] == 1, np.nan, a["xy"])}, "finite"),
+    (lambda a: {**a, "arrival": -a["arrival"] - 1.0}, "arrival"),
+    (lambda a: {**a, "cue": a["cue"][:1]}, "cue, aims and arrival"),
+])
+def test_bad_batches_are_named(change, match):
+    batch = pl.ShotPlanner(TABLE, PHYSICS, BALL_RADIUS)
+    xy = np.array([[[0.5, 0.5], [1.0, 0.5], [1.5, 0.8]]])
+    on = np.array([[False, True, True]])
+    index = batch.candidates(on)
+    good = {"xy": xy, "index": index, "cue": np.repeat(xy[:, 0], len(index), axis=0),
+            "aims": batch.aims(xy, on, index), "arrival": np.full(len(index), 0.3)}
+    bad = change(good)
+    with pytest.raises(ValueError, match=match):
+        batch.aims(bad["xy"], on, bad["index"])
+        batch.plan(bad["cue"], bad["xy"], on, bad["index"], bad["aims"], bad["arrival"])

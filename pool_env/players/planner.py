@@ -62,8 +62,26 @@ class ShotPlanner:
         self.constants = np.array([radius, physics.g, physics.mu_s, physics.mu_r, physics.e_b, physics.e_c,
                                    math.cos(math.radians(max_cut)), max_speed, table.length, table.width, PATH_STEP])
 
+    def checked(self, xy, on, index, columns: int = 3):
+        """(xy, on, index) as the kernels read them; ValueError naming the first thing wrong
+        (the kernels do not check bounds)."""
+        xy = np.ascontiguousarray(xy, dtype=np.float64)
+        on = np.ascontiguousarray(on, dtype=bool)
+        index = np.ascontiguousarray(index, dtype=np.int64)
+        if xy.ndim != 3 or xy.shape[2] != 2 or on.shape != xy.shape[:2]:
+            raise ValueError(f"xy must be (Q, n, 2) and on (Q, n), got {xy.shape} and {on.shape}")
+        if index.ndim != 2 or index.shape[1] != columns:
+            raise ValueError(f"index must be (N, {columns}) (position, ball, pocket), got {index.shape}")
+        limits = (xy.shape[0], xy.shape[1], len(self.pockets))[:columns]
+        if len(index) and (np.any(index.min(axis=0) < (0, 1, 0)[:columns]) or np.any(index.max(axis=0) >= limits)):
+            raise ValueError(f"index names a position, object ball or pocket out of range {limits}")
+        if not (np.isfinite(xy[:, 0]).all() and np.isfinite(xy[on]).all()):
+            raise ValueError("xy must be finite for the cue balls and the object balls on the table")
+        return xy, on, index
+
     def aims(self, xy, on, index) -> np.ndarray:
         """(N, 3): each candidate's aim point on the mouth and the open share of the mouth (0: closed)."""
+        xy, on, index = self.checked(xy, on, index)
         out = np.zeros((len(index), 3))
         aim_kernel(xy, on, index, self.jaws, self.rails, self.lams, self.reach, np.empty_like(self.rails), out)
         return out
@@ -71,6 +89,14 @@ class ShotPlanner:
     def plan(self, cue, xy, on, index, aims, arrival) -> np.ndarray:
         """(N, PLAN_COLUMNS): each candidate's pot (direction, speed, dn, score, scratch, ok,
         d1, d2); ok 0 where there is none. `arrival` (N,) is the object ball's speed at the pocket."""
+        xy, on, index = self.checked(xy, on, index)
+        cue, aims = np.ascontiguousarray(cue, dtype=np.float64), np.ascontiguousarray(aims, dtype=np.float64)
+        arrival = np.ascontiguousarray(arrival, dtype=np.float64)
+        if cue.shape != (len(index), 2) or aims.shape != (len(index), 3) or arrival.shape != (len(index),):
+            raise ValueError(f"cue, aims and arrival must be ({len(index)}, 2), ({len(index)}, 3) and ({len(index)},), "
+                             f"got {cue.shape}, {aims.shape} and {arrival.shape}")
+        if not (np.isfinite(cue).all() and np.isfinite(aims).all() and np.all(arrival >= 0.0)):
+            raise ValueError("cue and aims must be finite and arrival speeds finite and >= 0")
         out = np.empty((len(index), PLAN_COLUMNS))
         plan_kernel(cue, xy, on, index, aims, arrival, self.constants, self.captures, np.empty(6), out)
         return out
