@@ -319,3 +319,18 @@ def group_best(rows, groups, out):
         g = groups[i]
         if rows[i, OK] > 0.0 and (out[g] < 0 or rows[i, SCORE] > rows[out[g], SCORE]):
             out[g] = i
+
+
+@kernel
+def batch_fault(xy, on, index, pockets):
+    """0 if every candidate names a position, an object ball (not 0) and a pocket in range and
+    every cue ball and object ball on the table is finite; else 1 (an index) or 2 (a position)."""
+    for i in range(index.shape[0]):
+        if not (0 <= index[i, 0] < xy.shape[0] and 1 <= index[i, 1] < xy.shape[1]
+                and (index.shape[1] < 3 or 0 <= index[i, 2] < pockets)):
+            return 1
+    for q in range(xy.shape[0]):
+        for j in range(xy.shape[1]):
+            if (j == 0 or on[q, j]) and not (math.isfinite(xy[q, j, 0]) and math.isfinite(xy[q, j, 1])):
+                return 2
+    return 0

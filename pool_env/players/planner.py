@@ -38,6 +38,7 @@ from .plan_kernels import (
     SCRATCH,
     SPEED,
     aim_kernel,
+    batch_fault,
     group_best,
     plan_kernel,
 )
@@ -72,10 +73,10 @@ class ShotPlanner:
             raise ValueError(f"xy must be (Q, n, 2) and on (Q, n), got {xy.shape} and {on.shape}")
         if index.ndim != 2 or index.shape[1] != columns:
             raise ValueError(f"index must be (N, {columns}) (position, ball, pocket), got {index.shape}")
-        limits = (xy.shape[0], xy.shape[1], len(self.pockets))[:columns]
-        if len(index) and (np.any(index.min(axis=0) < (0, 1, 0)[:columns]) or np.any(index.max(axis=0) >= limits)):
-            raise ValueError(f"index names a position, object ball or pocket out of range {limits}")
-        if not (np.isfinite(xy[:, 0]).all() and np.isfinite(xy[on]).all()):
+        fault = batch_fault(xy, on, index, len(self.pockets))
+        if fault == 1:
+            raise ValueError(f"index names a position, object ball (1 to {xy.shape[1] - 1}) or pocket out of range")
+        if fault == 2:
             raise ValueError("xy must be finite for the cue balls and the object balls on the table")
         return xy, on, index
 
