@@ -26,7 +26,9 @@ class GameGhostBallAgent(Agent):
     observation) into any pocket, calling that pocket for the 8; with ball in hand it tries a
     grid of spots in the area and places the cue ball where the best pot scores highest; with
     no pot on, it sends the cue ball full at the nearest legal ball (a safety that at least
-    makes contact). No spin, no kicks, no combinations. `decide(view)` is the `Shot` it plays."""
+    makes contact). No spin, no kicks, no combinations. `decide(view)` is the `Shot` it plays;
+    `decide_batch(views)` plans many views in one pass of the compiled planner
+    (`planner.ShotPlanner`), every ball x pocket x cue-ball spot at once."""
 
     name = "ghost_ball"
 
