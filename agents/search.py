@@ -32,7 +32,7 @@ from pool_env.players.planner import DX, DY, OK, SCORE, SPEED
 from .search_plan import SearchPlanner
 from .stats import wilson
 
-ARRIVALS = (0.25, 0.7, 1.6)  # m/s: the object ball's speed at the pocket, one planner each (three speeds)
+ARRIVALS = (0.25, 0.7, 1.6)  # m/s: the object ball's speed at the pocket, every pot planned at each
 TIPS = ((0.0, 0.0), (0.0, 0.3), (0.0, -0.3))  # (side, top) in R: stun, follow, draw
 JITTER = (0.0, math.radians(0.15), -math.radians(0.15))  # aim corrections tried around the ghost-ball line
 SAFETY_SPEEDS = (1.2, 2.2, 3.5)  # m/s
