@@ -18,6 +18,7 @@ from pool_env.game import (
     Game,
     GameView,
     Shot,
+    decode_action,
     decode_game_observation,
     decode_observation,
     encode_action,
@@ -26,10 +27,12 @@ from pool_env.game import (
 from pool_env.physics import BALL_RADIUS, Balls, Physics, Table
 from pool_env.players import Agent, GhostBallAgent, game_of
 from pool_env.players import geometry as geo
+from pool_env.players.planner import DX, DY, OK, SCORE, SPEED
 
+from .search_plan import SearchPlanner
 from .stats import wilson
 
-ARRIVALS = (0.25, 0.7, 1.6)  # m/s: the object ball's speed at the pocket, one planner each (three speeds)
+ARRIVALS = (0.25, 0.7, 1.6)  # m/s: the object ball's speed at the pocket, every pot planned at each
 TIPS = ((0.0, 0.0), (0.0, 0.3), (0.0, -0.3))  # (side, top) in R: stun, follow, draw
 JITTER = (0.0, math.radians(0.15), -math.radians(0.15))  # aim corrections tried around the ghost-ball line
 SAFETY_SPEEDS = (1.2, 2.2, 3.5)  # m/s
@@ -49,9 +52,9 @@ SPOT_TRIES = 14  # spots (best by the cheap ranking) whose shots are planned to 
 # a foul (ball in hand for the opponent), a loss.
 WIN, CONTINUE, MISS, FOUL, LOSS = 1.0, 0.35, -0.55, -0.75, -1.0
 IN_HAND_QUALITY = 1.0  # the next shooter's quality with ball in hand
-MAX_CUT_COS = math.cos(math.radians(80.0))  # the planner's 75 degrees with room for the pocket's width
 SEPARATION, SEPARATION_PASSES = 1e-9, 5  # m: overlaps the observation's rounding leaves, undone
 LOOKAHEAD_WORK = 150  # outcomes x legal balls the lookahead scores per decision (best plain value first)
+SIMULATION_CHUNK, LOOKAHEAD_CHUNK = 64, 4  # with `seconds`: candidates simulated, looked ahead, between time checks
 
 
 @dataclass
@@ -66,6 +69,13 @@ class Candidate:
     pocket: int | None = None
     kind: str = "pot"
     prior: float = 0.0
+
+
+def legal_mask(legal, n_balls: int) -> np.ndarray:
+    """(n_balls,) bool of a set of legal ball numbers (the cue ball's entry False)."""
+    mask = np.zeros(n_balls, dtype=bool)
+    mask[[int(b) for b in legal]] = True
+    return mask
 
 
 def decode(observation, n_balls: int, table: Table, game: bool = True) -> GameView:
@@ -133,10 +143,16 @@ class SearchAgent(Agent):
     leaves (depth-1 lookahead: the best ghost-ball score of the next legal ball), a miss minus
     the opponent's best shot, a foul, a loss. The best mean value is played.
 
+    The pots, the ball-in-hand spots' ranking and the lookahead's qualities are planned in
+    batches on the compiled ghost-ball planner (`SearchPlanner`).
+
     `budget` caps the simulated shots per decision (candidates x noise samples); the lookahead
     covers the best candidates by their plain value (`LOOKAHEAD_WORK`). `seconds` (optional)
-    also stops the lookahead when the decision has used that much wall time (decisions then
-    depend on the machine's speed; without it they depend only on the seed and the observation).
+    caps the decision's wall time: the candidates (best prior first) are simulated
+    `SIMULATION_CHUNK` at a time and the lookahead takes `LOOKAHEAD_CHUNK` candidates at a
+    time, each batch only while the decision has used less than `seconds` (the first batch of
+    simulations always runs; a candidate left unsimulated is not chosen). Decisions then depend
+    on the machine's speed; without it they depend only on the seed and the observation.
     `last_stats` holds the last decision's candidates, simulations, seconds and value."""
 
     name = "search"
@@ -156,8 +172,8 @@ class SearchAgent(Agent):
         self.budget, self.noise_samples = int(budget), int(noise_samples) if noise else 1
         self.lookahead, self.threads, self.seconds = bool(lookahead), int(threads), seconds
         self.rule_options = dict(rule_options or {})
-        self.planners = [GhostBallAgent(self.table, self.physics, arrival_speed=v, radius=radius) for v in ARRIVALS]
-        self.scorer = GhostBallAgent(self.table, self.physics, radius=radius)
+        self.plans = SearchPlanner(self.table, self.physics, radius)  # the pots, qualities and spots, at once
+        self.scorer = GhostBallAgent(self.table, self.physics, radius=radius)  # its break shots (PoolBreakRun-v0)
         self.pockets = self.scorer.pockets
         self.seed = seed
         self.rng = np.random.default_rng(seed)
@@ -186,9 +202,9 @@ class SearchAgent(Agent):
         d = decode(observation, self.n_balls, self.table, game=self.game is not None)
         state = game_state(d, self.game, self.rule_options) if self.game is not None else None
         candidates = self.candidates(d, state)[: max(1, self.budget // self.noise_samples)]
-        values = self.evaluate(d, state, candidates, start)
+        values, simulated = self.evaluate(d, state, candidates, start)
         best = int(np.argmax(values))
-        self.last_stats = {"candidates": len(candidates), "simulations": len(candidates) * self.noise_samples,
+        self.last_stats = {"candidates": len(candidates), "simulations": simulated * self.noise_samples,
                            "seconds": time.perf_counter() - start, "value": float(values[best]),
                            "kind": candidates[best].kind}
         return self.action(candidates[best], d.ball_in_hand)
@@ -198,12 +214,10 @@ class SearchAgent(Agent):
         if racked(d.xy, d.on_table, self.radius):
             return self.break_candidates(d, state)
         if d.ball_in_hand is not None:
-            out = []
-            for spot in self.spots(d):
-                xy = d.xy.copy()
-                xy[0] = spot
-                out += [dataclasses.replace(c, spot=spot) for c in self.shot_candidates(xy, d.on_table, d.legal)]
-            return self.ranked(out)
+            spots = self.spots(d)
+            xys = np.repeat(d.xy[None], len(spots), axis=0)
+            xys[:, 0] = spots
+            return self.ranked([c for cands in self.candidates_from(xys, d.on_table, d.legal, spots) for c in cands])
         return self.ranked(self.shot_candidates(d.xy, d.on_table, d.legal))
 
     def ranked(self, cands: list[Candidate]) -> list[Candidate]:
@@ -217,27 +231,31 @@ class SearchAgent(Agent):
     # --- candidate generation --------------------------------------------------------------------
     def shot_candidates(self, xy, on_table, legal) -> list[Candidate]:
         """Ghost-ball pots of the legal balls; kicks if no pot is on; safeties."""
-        objects = np.flatnonzero(on_table[1:]) + 1
-        geo.pocket_aims(xy, sorted(legal), objects, self.pockets, self.table, self.radius)  # all aims at once
-        pots = []
-        for ball in sorted(legal):
-            others = xy[objects[objects != ball]]
-            for pocket in self.pockets:
-                if not self.cuttable(xy[0], xy[ball], pocket):
-                    continue
-                for k, planner in enumerate(self.planners):
-                    shot = planner.plan(xy[0], ball, xy[ball], pocket, others)
-                    if shot is None:
-                        continue
-                    for j, turn in enumerate(JITTER):
-                        direction = geo.rotate(shot.direction, turn)
-                        for t, tip in enumerate(self.tips()):
-                            prior = shot.score * (1.0 - 0.1 * j - 0.05 * t - 0.02 * k)
-                            pots.append(Candidate(direction, shot.speed, tip, pocket=pocket.index, prior=prior))
-        rest = self.safeties(xy, on_table, legal)
-        if not pots:
-            rest += self.kicks(xy, legal)
-        return pots + rest
+        return self.candidates_from(np.asarray(xy, dtype=np.float64)[None], on_table, legal, [None])[0]
+
+    def candidates_from(self, xys, on_table, legal, spots) -> list[list[Candidate]]:
+        """`shot_candidates` of one layout from several cue-ball spots (xys (S, n, 2), the cue
+        ball of each at its spot; `spots` the candidates' `spot`s), every pot planned at once."""
+        n = len(xys)
+        mask = legal_mask(legal, len(on_table))
+        index, rows = self.plans.pots(xys, np.repeat(np.asarray(on_table)[None], n, axis=0),
+                                      np.repeat(mask[None], n, axis=0), ARRIVALS)
+        out: list[list[Candidate]] = [[] for _ in range(n)]
+        tips = self.tips()
+        for i in np.flatnonzero(rows[:, OK]):
+            q, k, score, speed = int(index[i, 0]), i % len(ARRIVALS), float(rows[i, SCORE]), float(rows[i, SPEED])
+            shot = np.array([rows[i, DX], rows[i, DY]])
+            for j, turn in enumerate(JITTER):
+                direction = geo.rotate(shot, turn)
+                for t, tip in enumerate(tips):
+                    out[q].append(Candidate(direction, speed, tip, spots[q], int(index[i, 2]),
+                                            prior=score * (1.0 - 0.1 * j - 0.05 * t - 0.02 * k)))
+        for q in range(n):
+            rest = self.safeties(xys[q], on_table, legal)
+            if not out[q]:
+                rest += self.kicks(xys[q], legal)
+            out[q] += rest if spots[q] is None else [dataclasses.replace(c, spot=spots[q]) for c in rest]
+        return out
 
     def tips(self):
         return TIPS if self.spin else TIPS[:1]
@@ -276,32 +294,32 @@ class SearchAgent(Agent):
         area = placement_area(self.table, d.ball_in_hand, self.radius)
         x_lo, x_hi, y_lo, y_hi = area
         objects = np.flatnonzero(d.on_table[1:]) + 1
-        cheap = []
-        for ball in sorted(d.legal):
-            others = d.xy[objects[objects != ball]]
-            for pocket in self.pockets:
-                aim = geo.pocket_aim(d.xy[ball], pocket, self.table, self.radius, others)
-                if aim is None:
-                    continue
-                u, d2 = geo.unit(aim[0] - d.xy[ball]), float(np.hypot(*(aim[0] - d.xy[ball])))
-                for back in SPOT_BACKS:
-                    for turn in SPOT_TURNS:
-                        spot = d.xy[ball] - geo.rotate(u, turn) * (2.0 * self.radius + back)
-                        cheap.append((aim[1] / ((d2 + 0.5) * (back + 0.5)) * (1.0 - abs(turn)), tuple(spot)))
-        cheap.sort(reverse=True)
-        spots = [np.array(p) for _, p in cheap if self.free(p, d, objects, area)][:SPOT_TRIES]
+        cheap, rank = self.plans.spot_ranks(d.xy, d.on_table, legal_mask(d.legal, len(d.on_table)), SPOT_BACKS,
+                                            SPOT_TURNS)
+        cheap = cheap[np.lexsort((cheap[:, 1], cheap[:, 0], rank))[::-1]]  # best first (a sort of the tuples)
+        spots = [np.array(p) for p in cheap[self.free_all(cheap, d, objects, area)]][:SPOT_TRIES]
         if len(spots) < SPOTS:
             spots += [np.array((x, y)) for x in np.linspace(x_lo, x_hi, 6) for y in np.linspace(y_lo, y_hi, 3)
                       if self.free((x, y), d, objects, area)]
+        if not spots:
+            return [np.array((0.5 * (x_lo + x_hi), 0.5 * (y_lo + y_hi)))]
         on = d.on_table.copy()
         on[0] = True
-        ranked = []
-        for spot in spots:
-            xy = d.xy.copy()
-            xy[0] = spot
-            ranked.append((self.quality(xy, on, d.legal), tuple(spot)))
-        ranked.sort(reverse=True)
-        return [np.array(s) for _, s in ranked[:SPOTS]] or [np.array((0.5 * (x_lo + x_hi), 0.5 * (y_lo + y_hi)))]
+        xys = np.repeat(d.xy[None], len(spots), axis=0)
+        xys[:, 0] = spots
+        quality = self.qualities(xys, np.repeat(on[None], len(spots), axis=0), [d.legal] * len(spots))
+        points = np.array(spots)
+        order = np.lexsort((points[:, 1], points[:, 0], quality))[::-1]  # (quality, spot) best first
+        return [np.array(tuple(points[k])) for k in order[:SPOTS]]
+
+    def free_all(self, spots, d: GameView, objects, area) -> np.ndarray:
+        """`free` of each spot (K, 2)."""
+        x_lo, x_hi, y_lo, y_hi = area
+        on = d.xy[objects]
+        gap = np.hypot(on[None, :, 0] - spots[:, None, 0], on[None, :, 1] - spots[:, None, 1]).min(axis=1,
+                                                                                               initial=np.inf)
+        return ((x_lo <= spots[:, 0]) & (spots[:, 0] <= x_hi) & (y_lo <= spots[:, 1]) & (spots[:, 1] <= y_hi)
+                & (gap >= 2.2 * self.radius))
 
     def free(self, spot, d: GameView, objects, area) -> bool:
         """The spot is inside the placement area and clear of every object ball."""
@@ -334,23 +352,48 @@ class SearchAgent(Agent):
         return out
 
     # --- evaluation ------------------------------------------------------------------------------
-    def evaluate(self, d: GameView, state, candidates, start) -> np.ndarray:
-        """The mean value of each candidate over its noise samples: `Game.evaluate` of the
-        candidates' actions (as the env reads them) from the decoded position, in one batch."""
+    def evaluate(self, d: GameView, state, candidates, start) -> tuple[np.ndarray, int]:
+        """(the mean value of each candidate over its noise samples, the candidates simulated):
+        `Game.evaluate` of the candidates' actions (as the env reads them) from the decoded
+        position, in one batch (with `seconds`, in chunks until the time is up; a candidate
+        left unsimulated gets -inf)."""
         s = self.noise_samples
         self.sim.reset(balls=balls_of(d, self.radius), state=state)
-        shots = [self.sim.decode(self.action(cand, d.ball_in_hand)) for cand in candidates]
-        records = self.sim.evaluate(shots, draws=s, seed=self.rng, threads=self.threads)
+        area, pockets = self.sim.placement_area(), self.table.pockets.shape[0]  # as sim.decode reads them
+        shots = [decode_action(self.sim.layout, self.action(cand, d.ball_in_hand, area), area, pockets)
+                 for cand in candidates]
+        chunk = len(shots) if self.seconds is None else SIMULATION_CHUNK
+        records = []
+        for at in range(0, len(shots), chunk):
+            if records and time.perf_counter() - start > self.seconds:
+                break
+            records += self.sim.evaluate(shots[at:at + chunk], draws=s, seed=self.rng, threads=self.threads)
+        done = len(records) // s
         judged = [self.judge(state, records[k], candidates[k // s]) for k in range(len(records))]
-        plain = np.array([v for v, _ in judged]).reshape(len(candidates), s).mean(axis=1)
+        plain = np.full(len(candidates), -np.inf)
+        plain[:done] = np.array([v for v, _ in judged]).reshape(done, s).mean(axis=1)
         if not self.lookahead:
-            return plain
+            return plain, done
         values = plain - 10.0  # only the candidates that get the lookahead can be chosen
-        for c in np.argsort(-plain)[: max(4, LOOKAHEAD_WORK // (s * max(1, len(d.legal))))]:
+        self.look_ahead(values, np.argsort(-plain)[: max(4, LOOKAHEAD_WORK // (s * max(1, len(d.legal))))][:done],
+                        judged, start)
+        return values, done
+
+    def look_ahead(self, values, chosen, judged, start) -> None:
+        """values[c] for each chosen candidate: its mean `deep_value`, the qualities of all their
+        outcomes planned at once (with `seconds`, a few candidates at a time until the time is up)."""
+        s = self.noise_samples
+        chunk = len(chosen) if self.seconds is None else LOOKAHEAD_CHUNK
+        for at in range(0, len(chosen), chunk):
             if self.seconds is not None and time.perf_counter() - start > self.seconds:
                 break
-            values[c] = np.mean([self.deep_value(*judged[c * s + k]) for k in range(s)])
-        return values
+            part = chosen[at:at + chunk]
+            infos = [judged[c * s + k][1] for c in part for k in range(s)]
+            asked = [i for i in infos if i is not None and (i[0] == "miss" or i[3] is None)]
+            qualities = iter(self.qualities([i[1].xy for i in asked], [~i[1].pocketed for i in asked],
+                                            [i[2] for i in asked]) if asked else ())
+            for c in part:
+                values[c] = np.mean([self.deep_value(*judged[c * s + k], qualities) for k in range(s)])
 
     def judge(self, state, record, cand):
         """(plain value, what the lookahead needs) of one simulated shot (a `ShotRecord`)."""
@@ -377,44 +420,38 @@ class SearchAgent(Agent):
             return FOUL - (0.15 if after.fouls[0] >= 2 else 0.0), None
         return MISS * 0.5, ("opponent", balls, legal, None)
 
-    def deep_value(self, value, info) -> float:
-        """The value with the depth-1 lookahead: the next shooter's best ghost-ball quality."""
+    def deep_value(self, value, info, qualities=None) -> float:
+        """The value with the depth-1 lookahead: the next shooter's best ghost-ball quality
+        (`qualities`: an iterator of the qualities of the outcomes that need one, in order;
+        None: planned here)."""
         if info is None:
             return value
         who, balls, legal, in_hand = info
+        if who != "miss" and in_hand is not None:
+            q = IN_HAND_QUALITY
+        else:
+            q = self.quality(balls.xy, ~balls.pocketed, legal) if qualities is None else next(qualities)
         if who == "miss":  # PoolBreakRun-v0: our turn again after a miss
-            return MISS + 0.5 * self.quality(balls.xy, ~balls.pocketed, legal)
-        q = IN_HAND_QUALITY if in_hand is not None else self.quality(balls.xy, ~balls.pocketed, legal)
+            return MISS + 0.5 * q
         return CONTINUE + (1.0 - CONTINUE) * q if who == "self" else MISS * q
 
     def quality(self, xy, on_table, legal) -> float:
         """The best ghost-ball score (capped at 1) of a legal ball into any pocket from this layout."""
-        if not on_table[0]:
-            return IN_HAND_QUALITY
-        objects = np.flatnonzero(on_table[1:]) + 1
-        best = 0.0
-        for ball in legal:
-            others = xy[objects[objects != ball]]
-            for pocket in self.pockets:
-                if not self.cuttable(xy[0], xy[ball], pocket):
-                    continue
-                shot = self.scorer.plan(xy[0], int(ball), xy[ball], pocket, others)
-                if shot is not None:
-                    best = max(best, shot.score)
-        return min(best, 1.0)
+        return float(self.qualities([xy], [on_table], [legal])[0])
 
-    def cuttable(self, cue, obj, pocket) -> bool:
-        """A quick filter before the planner: the cut towards the pocket's centre is under 80 degrees."""
-        u = geo.unit(pocket.centre - obj)
-        ghost = obj - 2.0 * self.radius * u
-        to = ghost - cue
-        return float(to @ u) > MAX_CUT_COS * float(np.hypot(*to))
+    def qualities(self, xys, on_tables, legals) -> np.ndarray:
+        """`quality` of many layouts (each an xy, on-table flags and legal balls), planned at once."""
+        on = np.array(on_tables, dtype=bool)
+        masks = np.array([legal_mask(legal, on.shape[1]) for legal in legals]).reshape(on.shape)
+        return self.plans.qualities(np.array(xys, dtype=np.float64), on, masks, IN_HAND_QUALITY)
 
     # --- the action ------------------------------------------------------------------------------
-    def action(self, cand: Candidate, in_hand) -> np.ndarray:
-        """The env's action for a candidate (`pool_env.game.encode_action` of its shot)."""
+    def action(self, cand: Candidate, in_hand, area=False) -> np.ndarray:
+        """The env's action for a candidate (`pool_env.game.encode_action` of its shot); `area`
+        the placement area of `in_hand` if already known."""
         shot = Shot.aimed(cand.direction, min(cand.speed, MAX_SPEED), cand.tip, place=cand.spot, pocket=cand.pocket)
-        area = None if in_hand is None else placement_area(self.table, in_hand, self.radius)
+        if area is False:
+            area = None if in_hand is None else placement_area(self.table, in_hand, self.radius)
         return encode_action(self.sim.layout, shot, area, max(self.table.pockets.shape[0], 1))
 
 
@@ -428,8 +465,8 @@ def head_to_head(games: int = 20, seed: int = 0, env_id: str = "PoolNineBall-v0"
     for k in range(games):
         env = gym.make(env_id, opponent="ghost_ball", noise=noise, agent_breaks=k % 2 == 0)
         agent = SearchAgent.from_env(env, seed=seed + k, **options)
-        obs, _ = env.reset(seed=seed + k)
-        first_turn, done, info = True, False, {}
+        obs, info = env.reset(seed=seed + k)
+        first_turn, done = True, info.get("winner") is not None  # the opponent broke and ran out in reset
         while not done:
             obs, _, terminated, truncated, info = env.step(agent.act(obs))
             seconds.append(agent.last_stats["seconds"])

@@ -124,9 +124,11 @@ def test_accuracy_quick_run_writes_its_page_and_plot_and_leaves_the_docs_alone(t
 def test_game_bench_prints_every_figure_beside_its_target(capsys):
     from pool_env.bench import game
 
-    assert game.main(["--seconds", "0.2", "--repeats", "1"]) == 0
+    assert game.main(["--seconds", "0.2", "--repeats", "1", "--decisions", "2"]) == 0
     out = capsys.readouterr().out
     for label in ("Game.evaluate of 256 shots", "PoolBreakRun-v0 native vector env", "against the random player",
-                  "PoolNineBall-v0 against the ghost-ball player", "PoolEightBall-v0 against the ghost-ball player"):
+                  "PoolNineBall-v0 against the ghost-ball player", "PoolEightBall-v0 against the ghost-ball player",
+                  "native vector env of 64", "search player, 9-ball mid-game, no noise",
+                  "search player, 9-ball mid-game, olympiad noise"):
         assert label in out
-    assert out.count(">= ") == 5
+    assert out.count(">= ") == 5  # the search's target is a ratio to another checkout (--against)

@@ -131,3 +131,45 @@ def test_beats_the_ghost_ball_player_more_than_it_beats_itself():
     result = head_to_head(10, seed=100)
     assert result["wins"] > ghost_vs_ghost(10, seed=100)
     assert result["wins"] >= 7
+
+
+def test_seconds_caps_the_whole_decision():
+    env = gym.make("PoolNineBall-v0", noise="olympiad")
+    obs, _ = env.reset(seed=5)
+    obs, *_ = env.step(GameGhostBallAgent.from_env(env).act(obs))  # the break; then a mid-game position
+    free = SearchAgent.from_env(env, seed=1)
+    capped = SearchAgent.from_env(env, seed=1, seconds=0.0)  # the time is up after the first batch
+    free.act(obs)
+    action = capped.act(obs)
+    assert env.action_space.contains(action)
+    from agents.search import SIMULATION_CHUNK
+    assert capped.last_stats["simulations"] == min(SIMULATION_CHUNK, capped.last_stats["candidates"]) * 6
+    assert free.last_stats["candidates"] > SIMULATION_CHUNK
+    assert capped.last_stats["simulations"] < free.last_stats["simulations"] == 6 * free.last_stats["candidates"]
+    generous = SearchAgent.from_env(env, seed=1, seconds=1e9)  # never reached: the same decision as without
+    assert np.array_equal(generous.act(obs), SearchAgent.from_env(env, seed=1).act(obs))
+
+
+def test_quality_is_the_best_ghost_ball_score_of_the_pots_it_filters():
+    from pool_env.players import GhostBallAgent
+    from pool_env.players import geometry as geo
+
+    agent, scalar = SearchAgent("nine_ball"), GhostBallAgent(TABLE)
+    rng = np.random.default_rng(2)
+    for _ in range(12):
+        xy = rng.uniform([0.1, 0.1], [2.14, 1.02], (10, 2))
+        on = rng.uniform(size=10) < 0.7
+        on[0] = True
+        legal = {int(b) for b in np.flatnonzero(on[1:]) + 1 if rng.uniform() < 0.5}
+        objects = np.flatnonzero(on[1:]) + 1
+        best = 0.0
+        for ball in legal:
+            for pocket in scalar.pockets:
+                u = geo.unit(pocket.centre - xy[ball])
+                to = xy[ball] - 2.0 * BALL_RADIUS * u - xy[0]
+                if float(to @ u) <= np.cos(np.radians(80.0)) * float(np.hypot(*to)):
+                    continue  # the search's quick cut filter
+                pot = scalar.plan(xy[0], ball, xy[ball], pocket, xy[objects[objects != ball]])
+                best = max(best, pot.score if pot is not None else 0.0)
+        assert agent.quality(xy, on, legal) == pytest.approx(min(best, 1.0), abs=1e-12)
+    assert agent.quality(xy, np.r_[False, on[1:]], legal) == 1.0  # the cue ball in hand: IN_HAND_QUALITY

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import gymnasium as gym
 import numpy as np
 from gymnasium import logger, spaces
@@ -44,6 +46,16 @@ def captioned(shots, captions, on: bool = True) -> list:
         frames += [overlay(frame, [caption]) for frame in shot[:-1]]
         frames.append(overlay(shot[-1], [caption, *messages]))
     return frames
+
+
+@dataclass(frozen=True)
+class OpponentDecision:
+    """What `step_shots` yields (with `batch_opponent` on) when a player with `act_batch` is to
+    shoot: its driver sends back `player.act(observation)`, which it may compute for many
+    sub-envs in one `act_batch` call."""
+
+    player: object
+    observation: np.ndarray
 
 
 def resolve_opponent(opponent, env):
@@ -214,6 +226,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         self._started, self._done, self._shots, self._end_reason = False, True, 0, None
         self._quaternions, self._reset_records, self._reset_error = None, (), None
         self._window = None  # render_mode="human": a pool_env.render.window.Window
+        self.batch_opponent = False  # True: step_shots yields an OpponentDecision for the opponent's shots
         self._window_title = f"pool_env: {game}"
         self._begin_step()
 
@@ -330,7 +343,8 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         agent's, then the opponent's), is sent its outcome (the `Result`, or the SimulationError
         or ValueError it raised), and returns the step's (observation, reward, terminated,
         truncated, info); the observation is None with `observe=False`. `action` may also be a
-        `pool_env.game.Shot`."""
+        `pool_env.game.Shot`. With `batch_opponent` set, a built-in opponent's shot is asked of
+        the driver: the generator yields an `OpponentDecision` and is sent the action."""
         if not self._started:
             raise RuntimeError("call reset() before step()")
         if self._done:
@@ -354,7 +368,11 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
             if len(self._opponent_infos) >= self.max_shots:
                 self._error = f"the opponent took {self.max_shots} shots in a row"
                 return
-            action = self._opponent(self.observation(OPPONENT))
+            observation = self.observation(OPPONENT)
+            if self.batch_opponent and hasattr(self._opponent_player, "act_batch"):
+                action = yield OpponentDecision(self._opponent_player, observation)  # the driver decides (at once)
+            else:
+                action = self._opponent(observation)
             try:
                 struck = game.strike(action)
             except ValueError as exc:

@@ -14,7 +14,20 @@ from gymnasium.vector.utils import batch_space
 
 from ..game import break_observations, simulate_struck_batch
 from .break_env import PoolBreakEnv
-from .game_env import PoolGameEnv
+from .game_env import OpponentDecision, PoolGameEnv
+
+
+def decide_all(asked: dict) -> dict:
+    """{sub-env: action} for {sub-env: OpponentDecision}: one `act_batch` call per group of
+    players that plan alike (equal `batch_key`)."""
+    groups: dict = {}
+    for k, ask in asked.items():
+        groups.setdefault((type(ask.player), ask.player.batch_key), []).append(k)
+    out = {}
+    for ks in groups.values():
+        actions = asked[ks[0]].player.act_batch([asked[k].observation for k in ks])
+        out.update(zip(ks, actions))
+    return out
 
 
 class PoolVectorEnv(VectorEnv):
@@ -199,15 +212,25 @@ class PoolVectorEnv(VectorEnv):
         `simulate_batch` call. {sub-env: its step's (None, reward, terminated, truncated, info)}."""
         steps = {k: self.envs[k].step_shots(shot, observe=False) for k, shot in zip(shots, decoded)}
         outcomes, done = dict.fromkeys(steps), {}  # the first send (None) starts each generator
-        while outcomes:
-            struck = {}
-            for k, outcome in outcomes.items():
-                try:
-                    struck[k] = steps[k].send(outcome)
-                except StopIteration as stop:  # the step is over (or had no shot: its game ended at reset)
-                    done[k] = stop.value
-            results = simulate_struck_batch(list(struck.values()), self.table, self.physics, self.threads)
-            outcomes = dict(zip(struck, results))
+        for env in self.envs:
+            env.batch_opponent = True
+        try:
+            while outcomes:
+                struck, asked = {}, {}
+                for k, outcome in outcomes.items():
+                    try:
+                        item = steps[k].send(outcome)
+                    except StopIteration as stop:  # the step is over (or had no shot: its game ended at reset)
+                        done[k] = stop.value
+                        continue
+                    (asked if isinstance(item, OpponentDecision) else struck)[k] = item
+                for k, action in decide_all(asked).items():
+                    struck[k] = steps[k].send(action)
+                results = simulate_struck_batch(list(struck.values()), self.table, self.physics, self.threads)
+                outcomes = dict(zip(struck, results))
+        finally:
+            for env in self.envs:
+                env.batch_opponent = False
         return done
 
     @staticmethod

@@ -12,6 +12,8 @@ from ..game import MAX_SPEED, MAX_TIP_OFFSET, Shot, decode_game_observation, pla
 from ..players import GameGhostBallAgent, game_of
 from ..players import geometry as geo
 from ..players.game_ghost_ball import BREAK_SPEED
+from ..players.ghost_ball import pot_of
+from ..players.planner import OK
 
 # The corrections are small at |action| = 1: the ghost-ball aim is good, and a policy's
 # exploration noise on a wide correction (a side spin the aim ignores, a speed that stops short)
@@ -66,19 +68,12 @@ class GhostBallActionMap:
         return p.encode(Shot.aimed(direction, speed, tuple(tip), place, pocket), in_hand)
 
     def shots(self, xy, on_table, legal) -> dict[int, list]:
-        """Every feasible pot of each legal ball, by ball (the planner's `Pot`s)."""
-        objects = np.flatnonzero(on_table[1:]) + 1
-        if not on_table[0]:
-            return {}
-        out = {}
-        for ball in objects:
-            if legal[ball - 1]:
-                others = xy[objects[objects != ball]]
-                plans = [self.player.planner.plan(xy[0], int(ball), xy[ball], pocket, others)
-                         for pocket in self.player.planner.pockets]
-                plans = [s for s in plans if s is not None]
-                if plans:
-                    out[int(ball)] = plans
+        """Every feasible pot of each legal ball, by ball (the planner's `Pot`s), planned at once."""
+        index, rows = self.player.planner.pots(xy, on_table, np.concatenate([[False], np.asarray(legal, dtype=bool)]))
+        out: dict[int, list] = {}
+        for k in np.flatnonzero(rows[:, OK]):
+            pot = pot_of(index[k], rows[k])
+            out.setdefault(pot.ball, []).append(pot)
         return out
 
     def choose(self, xy, on_table, legal, ball_entry: float, preferences):

@@ -361,15 +361,23 @@ class Game:
         a = np.asarray(shot, dtype=np.float64)
         return self.decode(a), (tuple(a.tolist()) if a.ndim == 1 else None)
 
-    def _strike(self, shot: Shot, action, rng) -> StruckShot:
-        """`strike` of a decoded shot (`action` its vector's entries, or None)."""
+    def _strike(self, shot: Shot, action, rng, placements: dict | None = None) -> StruckShot:
+        """`strike` of a decoded shot (`action` its vector's entries, or None); `placements`
+        keeps the cue ball's placements from this state by the spot asked for (evaluate's shots
+        share their spots)."""
         placed, hand = self._balls, self.ball_in_hand
         if hand is not None:
             wanted = shot.place
             if wanted is None:
                 x_lo, x_hi, y_lo, y_hi = self.placement_area()
                 wanted = placed.xy[0] if not placed.pocketed[0] else (0.5 * (x_lo + x_hi), 0.5 * (y_lo + y_hi))
-            placed = place_cue_ball(placed, self.table, self.physics, hand, wanted)
+            key = (float(wanted[0]), float(wanted[1]))
+            found = None if placements is None else placements.get(key)
+            if found is None:
+                found = place_cue_ball(placed, self.table, self.physics, hand, wanted)
+                if placements is not None:
+                    placements[key] = found
+            placed = found
         called = shot.pocket if self._mode.rules == "eight_ball" else None
         if called is not None and called >= self.table.pockets.shape[0]:
             raise ValueError(f"Shot.pocket {called} names no pocket (the table has {self.table.pockets.shape[0]})")
@@ -474,15 +482,17 @@ class Game:
             except ValueError as exc:
                 raise ValueError(f"shot {k}: {exc}") from None
         rng = self._evaluation_rng(seed)
-        struck = [self._strike_or_fail(shot, action, rng) for shot, action in decoded for _ in range(int(draws))]
+        placements: dict = {}  # candidate shots often place the cue ball on the same spot
+        struck = [self._strike_or_fail(shot, action, rng, placements) for shot, action in decoded
+                  for _ in range(int(draws))]
         results = simulate_struck_batch(struck, self.table, self.physics, threads)
         rulings: dict = {}  # candidate shots often end alike: the rules judge each outcome once
         return [self.judge(s, r, rulings) for s, r in zip(struck, results)]
 
-    def _strike_or_fail(self, shot: Shot, action, rng) -> StruckShot:
+    def _strike_or_fail(self, shot: Shot, action, rng, placements=None) -> StruckShot:
         """`strike` of a decoded shot, a placement that finds no free spot recorded as the shot's failure."""
         try:
-            return self._strike(shot, action, rng)
+            return self._strike(shot, action, rng, placements)
         except ValueError as exc:
             zero = (0.0, 0.0)
             return StruckShot(shot, self.shooter, self.ball_in_hand, None, self._balls, zero, zero, exc)

@@ -5,11 +5,12 @@ from __future__ import annotations
 import numpy as np
 
 from .. import rules
-from ..game import GAME_BALLS, LAYOUTS, Shot, decode_game_observation, encode_action, placement_area
+from ..game import GAME_BALLS, LAYOUTS, GameView, Shot, decode_game_observation, encode_action, placement_area
 from ..physics import BALL_RADIUS, Physics, Table
 from . import geometry as geo
 from .base import Agent, game_of
-from .ghost_ball import GhostBallAgent
+from .ghost_ball import GhostBallAgent, best_row, pot_of
+from .planner import SCORE, first_best
 
 BREAK_SPEED = 9.0  # m/s, full into the rack's apex ball
 SAFETY_SPEED = 3.0  # m/s: no pot on, the cue ball sent full at a legal ball (far enough for a rail)
@@ -25,7 +26,9 @@ class GameGhostBallAgent(Agent):
     observation) into any pocket, calling that pocket for the 8; with ball in hand it tries a
     grid of spots in the area and places the cue ball where the best pot scores highest; with
     no pot on, it sends the cue ball full at the nearest legal ball (a safety that at least
-    makes contact). No spin, no kicks, no combinations. `decide(view)` is the `Shot` it plays."""
+    makes contact). No spin, no kicks, no combinations. `decide(view)` is the `Shot` it plays;
+    `decide_batch(views)` plans many views in one pass of the compiled planner
+    (`planner.ShotPlanner`), every ball x pocket x cue-ball spot at once."""
 
     name = "ghost_ball"
 
@@ -49,19 +52,54 @@ class GameGhostBallAgent(Agent):
         view = decode_game_observation(observation, self.game, self.table)
         return self.encode(self.decide(view), view.ball_in_hand)
 
+    def act_batch(self, observations) -> list[np.ndarray]:
+        """`act` of each observation, planned together (`decide_batch`): the same actions."""
+        views = [decode_game_observation(observation, self.game, self.table) for observation in observations]
+        return [self.encode(shot, view.ball_in_hand) for shot, view in zip(self.decide_batch(views), views)]
+
+    @property
+    def batch_key(self) -> tuple:
+        """Equal for players that plan alike (game, table, physics, radius): one's `act_batch` serves the others."""
+        b = self.planner.batch
+        return (self.game, b.constants.tobytes(), b.rails.tobytes(), b.jaws.tobytes(), b.captures.tobytes())
+
     def decide(self, view) -> Shot:
         """The shot for a decoded observation (`pool_env.game.GameView`)."""
-        xy, on_table, legal = view.xy, view.on_table, view.legal_mask
-        place = None
-        if view.ball_in_hand is not None:
-            xy, place = self.placement(xy, on_table, legal, view.ball_in_hand)
-        if np.all(on_table) and view.ball_in_hand == "behind_head_string":  # the break: every ball racked
-            apex = min(np.flatnonzero(legal) + 1) if legal.any() else 1
-            return Shot.aimed(geo.unit(xy[apex] - xy[0]), BREAK_SPEED, place=place)
-        pot = self.best(xy, on_table, legal)
-        if pot is not None:
-            return Shot.aimed(pot.direction, pot.speed, place=place, pocket=pot.pocket)
-        return self.safety(xy, on_table, legal, place)
+        return self.decide_batch([view])[0]
+
+    def decide_batch(self, views) -> list[Shot]:
+        """The shots of several decoded observations (`GameView`s of this game), planned together:
+        every view's legal balls into every pocket, from every cue-ball spot tried with ball in
+        hand, in one pass of the planner. The same shot for each as `decide`."""
+        if not views:
+            return []
+        xy, objects, legal = self.arrays(views)
+        index = self.planner.batch.candidates(legal)
+        aims = self.planner.batch.aims(xy, objects, index)
+        bounds = np.searchsorted(index[:, 0], np.arange(len(views) + 1))
+        cues = [self.cue_spots(view, xy[q], objects[q], index[bounds[q]:bounds[q + 1]], aims[bounds[q]:bounds[q + 1]])
+                for q, view in enumerate(views)]
+        tried = self.plan_groups(xy, objects, index, aims, bounds, cues)
+        shots = []
+        for q, view in enumerate(views):
+            (kind, _, default), (pot, spot) = cues[q], tried[q]
+            cue = default if spot is None else spot
+            place = None if view.ball_in_hand is None else (float(cue[0]), float(cue[1]))
+            if kind == "break":
+                apex = min(np.flatnonzero(view.legal_mask) + 1) if view.legal_mask.any() else 1
+                shots.append(Shot.aimed(geo.unit(xy[q, apex] - cue), BREAK_SPEED, place=place))
+                continue
+            if not view.on_table[0]:  # pots are planned for a cue ball on the table: a pocketed one plays safe
+                pot = None
+            elif spot is None and kind == "hand":  # no spot has a pot: from the area's middle
+                pot = self.best(np.vstack([cue[None], xy[q, 1:]]), view.on_table, view.legal_mask)
+            if pot is not None:
+                shots.append(Shot.aimed(pot.direction, pot.speed, place=place, pocket=pot.pocket))
+            else:
+                trial = xy[q].copy()
+                trial[0] = cue
+                shots.append(self.safety(trial, view.on_table, view.legal_mask, place))
+        return shots
 
     def encode(self, shot: Shot, in_hand) -> np.ndarray:
         """The game env's action of `shot` (`pool_env.game.encode_action`)."""
@@ -69,83 +107,108 @@ class GameGhostBallAgent(Agent):
         return encode_action(LAYOUTS[self.game], shot, area, max(self.table.pockets.shape[0], 1))
 
     # --- planning ----------------------------------------------------------------------------
+    def arrays(self, views):
+        """(xy (Q, n, 2), object balls on the table (Q, n), their legal ones (Q, n)) of views."""
+        xy = np.array([view.xy for view in views], dtype=np.float64)
+        objects = np.array([view.on_table for view in views], dtype=bool)
+        objects[:, 0] = False
+        legal = np.zeros_like(objects)
+        legal[:, 1:] = [view.legal_mask for view in views]
+        return xy, objects, legal & objects
+
+    def plan_groups(self, xy, objects, index, aims, bounds, cues):
+        """Plan every view's candidates from each of its cue-ball spots in one call: per view
+        (its best `Pot` or None, the spot it is played from or None if no spot has a pot)."""
+        group_spots = [(q, spot) for q, (_, spots, _) in enumerate(cues) for spot in spots]
+        if not group_spots:
+            return [(None, None)] * len(cues)
+        views = np.array([q for q, _ in group_spots])
+        lengths = bounds[views + 1] - bounds[views]
+        groups = np.repeat(np.arange(len(group_spots)), lengths)
+        rows_of = np.arange(len(groups)) - np.repeat(np.cumsum(lengths) - lengths - bounds[views], lengths)
+        cue = np.repeat(np.array([spot for _, spot in group_spots]), lengths, axis=0)
+        rows = self.planner.batch.plan(cue, xy, objects, index[rows_of], aims[rows_of],
+                                       np.full(len(rows_of), self.planner.arrival_speed))
+        heads = first_best(rows, groups, len(group_spots))
+        out = [(None, None)] * len(cues)
+        best = np.full(len(cues), -np.inf)
+        for g, (q, spot) in enumerate(group_spots):
+            k = heads[g]
+            if k >= 0 and rows[k, SCORE] > best[q]:  # the first spot of the highest score
+                best[q] = rows[k, SCORE]
+                out[q] = (pot_of(index[rows_of[k]], rows[k]), spot)
+        return out
+
+    def cue_spots(self, view, xy, objects, index, aims):
+        """(kind, the spots to plan from, where the cue ball goes if none has a pot): "lies"
+        (where it lies), "hand" (ball in hand: `spots`; the area's middle) or "break" (none;
+        the head spot)."""
+        in_hand = view.ball_in_hand
+        if in_hand is None:
+            return "lies", [xy[0]], xy[0]
+        if np.all(view.on_table) and in_hand == "behind_head_string":  # the break: every ball racked
+            return "break", [], np.array(rules.head_spot(self.table), dtype=np.float64)
+        area = placement_area(self.table, in_hand, self.radius)
+        middle = np.array([0.5 * (area[0] + area[1]), 0.5 * (area[2] + area[3])])
+        return "hand", self.spots(xy, objects, index, aims, area), middle
+
+    def spots(self, xy, objects, index, aims, area) -> list:
+        """The cue-ball spots worth planning from with ball in hand: straight-in spots behind
+        each legal ball for each open pocket, the best-ranked `PLACEMENT_TRIES` (by open mouth
+        and distances), or a coarse grid over the area when none is free."""
+        x_lo, x_hi, y_lo, y_hi = area
+        on = xy[objects]
+
+        def free(p):  # (K, 2) -> (K,): inside the area, clear of every object ball
+            gap = np.hypot(on[None, :, 0] - p[:, None, 0], on[None, :, 1] - p[:, None, 1]).min(axis=1, initial=np.inf)
+            return (x_lo <= p[:, 0]) & (p[:, 0] <= x_hi) & (y_lo <= p[:, 1]) & (p[:, 1] <= y_hi) & \
+                (gap >= 2.2 * self.radius)
+
+        open_ = aims[:, 2] > 0
+        ball, target, share = xy[index[open_, 1]], aims[open_, :2], aims[open_, 2]
+        v = target - ball
+        d2 = np.hypot(v[:, 0], v[:, 1])
+        u = v / np.where(d2 > 0, d2, 1.0)[:, None]
+        backs = np.array(STRAIGHT_IN_BACKS)
+        spot = (ball[:, None, :] - u[:, None, :] * (2.0 * self.radius + backs)[None, :, None]).reshape(-1, 2)
+        rank = (share[:, None] / ((d2[:, None] + 0.5) * (backs[None, :] + 0.5))).reshape(-1)
+        keep = free(spot)
+        spot, rank = spot[keep], rank[keep]
+        order = np.lexsort((spot[:, 1], spot[:, 0], rank))[::-1][:PLACEMENT_TRIES]  # sorted(reverse=True)
+        if len(order):
+            return list(spot[order])
+        grid = np.array([(x, y) for x in np.linspace(x_lo, x_hi, PLACEMENT_GRID[0])
+                         for y in np.linspace(y_lo, y_hi, PLACEMENT_GRID[1])])
+        return list(grid[free(grid)])
+
     def best(self, xy, on_table, legal):
         """The best-scoring pot (`Pot`) of a legal first contact, or None."""
-        if not on_table[0]:
-            return None
-        objects = np.flatnonzero(on_table[1:]) + 1
-        geo.pocket_aims(xy, [b for b in objects if legal[b - 1]], objects, self.planner.pockets, self.table,
-                        self.radius)  # every ball x pocket aim at once; plan below finds them
-        best = None
-        for ball in objects:
-            if not legal[ball - 1]:
-                continue
-            others = xy[objects[objects != ball]]
-            for pocket in self.planner.pockets:
-                pot = self.planner.plan(xy[0], int(ball), xy[ball], pocket, others)
-                if pot is not None and (best is None or pot.score > best.score):
-                    best = pot
-        return best
+        index, rows = self.planner.pots(xy, on_table, np.concatenate([[False], np.asarray(legal, dtype=bool)]))
+        k = best_row(rows)
+        return None if k < 0 else pot_of(index[k], rows[k])
 
     def placement(self, xy, on_table, legal, in_hand):
         """Where to put the cue ball: on the break the head spot; else the spot, among straight-in
         positions behind each legal ball for each open pocket (and a coarse grid over the area
-        when none fits), whose best pot scores highest. Returns (xy with the cue ball there, the spot)."""
-        area = placement_area(self.table, in_hand, self.radius)
-        if np.all(on_table) and in_hand == "behind_head_string":
-            spot = np.array(rules.head_spot(self.table), dtype=np.float64)
-        else:
-            spot = self._best_spot(xy, on_table, legal, area)
+        when none fits), whose best pot scores highest (the area's middle if none has a pot).
+        Returns (xy with the cue ball there, the spot)."""
+        view = GameView(np.asarray(xy, dtype=np.float64), np.asarray(on_table, dtype=bool),
+                        frozenset(int(b) + 1 for b in np.flatnonzero(legal)), in_hand)
+        place = self.decide(view).place
         xy = xy.copy()
-        xy[0] = spot
-        return xy, (float(spot[0]), float(spot[1]))
-
-    def _best_spot(self, xy, on_table, legal, area):
-        x_lo, x_hi, y_lo, y_hi = area
-        objects = np.flatnonzero(on_table[1:]) + 1
-        free = lambda p: (x_lo <= p[0] <= x_hi and y_lo <= p[1] <= y_hi  # noqa: E731
-                          and np.min(np.hypot(*(xy[objects] - p).T), initial=np.inf) >= 2.2 * self.radius)
-        ranked = []
-        geo.pocket_aims(xy, [b for b in objects if legal[b - 1]], objects, self.planner.pockets, self.table,
-                        self.radius)
-        for ball in objects:
-            if not legal[ball - 1]:
-                continue
-            others = xy[objects[objects != ball]]
-            for pocket in self.planner.pockets:
-                aim = geo.pocket_aim(xy[ball], pocket, self.table, self.radius, others)
-                if aim is None:
-                    continue
-                target, open_fraction = aim
-                u, d2 = geo.unit(target - xy[ball]), float(np.hypot(*(target - xy[ball])))
-                for back in STRAIGHT_IN_BACKS:
-                    spot = xy[ball] - u * (2.0 * self.radius + back)
-                    if free(spot):
-                        ranked.append((open_fraction / ((d2 + 0.5) * (back + 0.5)), tuple(spot)))
-        spots = [np.array(p) for _, p in sorted(ranked, reverse=True)[:PLACEMENT_TRIES]]
-        if not spots:
-            spots = [np.array((x, y)) for x in np.linspace(x_lo, x_hi, PLACEMENT_GRID[0])
-                     for y in np.linspace(y_lo, y_hi, PLACEMENT_GRID[1]) if free((x, y))]
-        best, choice = -1.0, np.array([0.5 * (x_lo + x_hi), 0.5 * (y_lo + y_hi)])
-        on = on_table.copy()
-        on[0] = True
-        for spot in spots:
-            trial = xy.copy()
-            trial[0] = spot
-            pot = self.best(trial, on, legal)
-            if pot is not None and pot.score > best:
-                best, choice = pot.score, spot
-        return choice
+        xy[0] = place
+        return xy, place
 
     def safety(self, xy, on_table, legal, place) -> Shot:
         """Full at the nearest legal ball with a clear path (any legal ball if none is clear)."""
-        objects = [b for b in np.flatnonzero(on_table[1:]) + 1 if legal[b - 1]]
-        if not objects:
-            return Shot.aimed((1.0, 0.0), SAFETY_SPEED, place=place)
-        objects.sort(key=lambda b: float(np.hypot(*(xy[b] - xy[0]))))
         everything = np.flatnonzero(on_table[1:]) + 1
-        for ball in objects:
-            others = xy[everything[everything != ball]]
-            if geo.path_clear(xy[0], xy[ball], others, 2.0 * self.radius * 1.02):
-                return Shot.aimed(geo.unit(xy[ball] - xy[0]), SAFETY_SPEED, place=place)
-        return Shot.aimed(geo.unit(xy[objects[0]] - xy[0]), SAFETY_SPEED, place=place)
+        objects = everything[np.asarray(legal, dtype=bool)[everything - 1]]
+        if not objects.size:
+            return Shot.aimed((1.0, 0.0), SAFETY_SPEED, place=place)
+        to = xy[objects] - xy[0]
+        objects = objects[np.argsort(np.hypot(to[:, 0], to[:, 1]), kind="stable")]  # nearest first
+        gaps = geo.point_segment_distance(xy[everything][None, :, :], xy[0], xy[objects][:, None, :])  # (L, E)
+        gaps[objects[:, None] == everything[None, :]] = np.inf  # a ball does not block its own path
+        clear = np.flatnonzero(gaps.min(axis=1, initial=np.inf) >= 2.0 * self.radius * 1.02)
+        ball = objects[clear[0]] if clear.size else objects[0]
+        return Shot.aimed(geo.unit(xy[ball] - xy[0]), SAFETY_SPEED, place=place)

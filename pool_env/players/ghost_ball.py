@@ -11,6 +11,7 @@ from ..game import LAYOUTS, MAX_SPEED, Shot, decode_observation, encode_action
 from ..physics import BALL_RADIUS, Physics, Table
 from . import geometry as geo
 from .base import Agent, game_of
+from .planner import DN, DX, DY, OK, SCORE, SCRATCH, SPEED, ShotPlanner
 
 
 def cue_action(direction, speed: float, spin: bool, tip=(0.0, 0.0)) -> np.ndarray:
@@ -110,6 +111,20 @@ class Pot:
     scratch_risk: bool
 
 
+def pot_of(index, row) -> Pot:
+    """The `Pot` of a candidate's index (position, ball, pocket) and its plan row (`planner.ShotPlanner.plan`)."""
+    dn = float(row[DN])
+    return Pot(int(index[1]), int(index[2]), np.array([row[DX], row[DY]]), float(row[SPEED]),
+               math.acos(min(dn, 1.0)), float(row[SCORE]), bool(row[SCRATCH]))
+
+
+def best_row(rows) -> int:
+    """The row of the best-scoring pot among plan rows (the first of equal ones), or -1."""
+    if not rows.shape[0] or not rows[:, OK].any():
+        return -1
+    return int(np.argmax(np.where(rows[:, OK] > 0, rows[:, SCORE], -np.inf)))
+
+
 class GhostBallAgent(Agent):
     """Pots balls by the ghost-ball method, for the multi-shot env (`PoolBreakRun-v0`).
 
@@ -142,6 +157,7 @@ class GhostBallAgent(Agent):
         self.max_cut = math.radians(max_cut)
         self.arrival_speed, self.fallback_speed, self.radius = float(arrival_speed), float(fallback_speed), radius
         self.pockets = geo.pockets_of(self.table)
+        self.batch = ShotPlanner(self.table, self.physics, radius, max_cut)
         self.breaker = BreakAgent(self.table, spin=self.spin, radius=radius) if break_agent is None else break_agent
 
     @classmethod
@@ -169,61 +185,43 @@ class GhostBallAgent(Agent):
         return bool(np.all(d.min(axis=1) < 2.2 * self.radius))
 
     # --- planning ---------------------------------------------------------------------------
+    def pots(self, xy, on_table, legal=None):
+        """Every ball (of `legal`, (n,) bool, by default every object ball) into every pocket
+        from one position, planned at once: (index (N, 3), plan rows (N, PLAN_COLUMNS)), see
+        `planner.ShotPlanner`."""
+        xy = np.asarray(xy, dtype=np.float64)[None]
+        on = np.asarray(on_table, dtype=bool).copy()
+        cue_on, on[0] = bool(on[0]), False
+        wanted = on if legal is None else on & np.asarray(legal, dtype=bool)
+        index = self.batch.candidates(wanted[None] if cue_on else np.zeros_like(wanted)[None])
+        aims = self.batch.aims(xy, on[None], index)
+        rows = self.batch.plan(np.repeat(xy[0, :1], len(index), axis=0), xy, on[None], index, aims,
+                               np.full(len(index), self.arrival_speed))
+        return index, rows
+
     def shots(self, xy, on_table) -> list[Pot]:
-        """Every feasible pot, unsorted."""
-        if not on_table[0]:
-            return []
-        objects = np.flatnonzero(on_table[1:]) + 1
-        out = []
-        for i in objects:
-            others = xy[objects[objects != i]]
-            for pocket in self.pockets:
-                shot = self.plan(xy[0], int(i), xy[i], pocket, others)
-                if shot is not None:
-                    out.append(shot)
-        return out
+        """Every feasible pot, ball by ball, pocket by pocket."""
+        index, rows = self.pots(xy, on_table)
+        return [pot_of(index[k], rows[k]) for k in np.flatnonzero(rows[:, OK])]
 
     def best_shot(self, xy, on_table) -> Pot | None:
-        shots = self.shots(xy, on_table)
-        return max(shots, key=lambda s: s.score) if shots else None
+        """The best-scoring pot (the first of equal ones), or None."""
+        index, rows = self.pots(xy, on_table)
+        k = best_row(rows)
+        return None if k < 0 else pot_of(index[k], rows[k])
 
     def plan(self, cue, ball, obj, pocket, others) -> Pot | None:
-        R, phys, table = self.radius, self.physics, self.table
-        aim = geo.pocket_aim(obj, pocket, table, R, others)
-        if aim is None:
-            return None
-        target, open_fraction = aim
-        u = geo.unit(target - obj)
-        d2 = float(np.hypot(*(target - obj)))
-        v_obj = geo.start_speed(self.arrival_speed, d2, phys)
-        n = u
-        for _ in range(4):  # fixed point: the throw depends on the contact normal
-            ghost = obj - 2.0 * R * n
-            to_ghost = ghost - cue
-            d1 = float(np.hypot(*to_ghost))
-            if d1 < 1e-9:
-                return None
-            d = to_ghost / d1
-            t = np.array([-n[1], n[0]])
-            dn, dt = float(d @ n), float(d @ t)
-            if dn < math.cos(self.max_cut):
-                return None
-            v_impact = v_obj / (0.5 * (1.0 + phys.e_b) * dn)
-            speed = geo.start_speed(v_impact, d1, phys)
-            roll = geo.forward_spin_after(speed, d1, phys)
-            on, ot, cn, ct = geo.collision(v_impact, roll, dn, dt, phys)
-            n = geo.rotate(u, -math.atan2(ot, on))
-        if speed > MAX_SPEED:
-            return None
-        if not (R <= ghost[0] <= table.length - R and R <= ghost[1] <= table.width - R):
-            return None
-        if not geo.path_clear(cue, ghost, others, 2.0 * R * 1.02):
-            return None
-        # Where the cue ball goes after contact: does it follow or glance into a pocket?
-        path = geo.cue_path(ghost, cn * n + ct * t, roll * d, phys, table, R)
-        scratch = geo.enters_pocket(path, self.pockets)
-        score = dn * open_fraction / ((d1 + 0.5) * (d2 + 0.5)) * (0.1 if scratch else 1.0)
-        return Pot(ball, pocket.index, d, speed, math.acos(min(dn, 1.0)), score, scratch)
+        """The pot of object ball `ball` at `obj` into `pocket` from the cue ball at `cue`, past
+        `others` (the other object balls' centres), or None if there is none."""
+        others = np.asarray(others, dtype=np.float64).reshape(-1, 2)
+        xy = np.concatenate([np.asarray(cue, dtype=np.float64)[None], np.asarray(obj, dtype=np.float64)[None],
+                             others])[None]
+        on = np.ones((1, xy.shape[1]), dtype=bool)
+        on[0, 0] = False
+        index = np.array([[0, 1, pocket.index]])
+        rows = self.batch.plan(xy[0, :1], xy, on, index, self.batch.aims(xy, on, index),
+                               np.array([self.arrival_speed]))
+        return pot_of((0, ball, pocket.index), rows[0]) if rows[0, OK] else None
 
     def fallback(self, xy, on_table) -> np.ndarray:
         """No pot on: full into the nearest object ball with a clear path (or straight up the table)."""

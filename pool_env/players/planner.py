@@ -1,0 +1,122 @@
+"""The ghost-ball planner over arrays: every (position, ball, pocket) candidate in two compiled passes.
+
+The formulas are those of `geometry` (the pocket windows of `pocket_aims`, `start_speed`,
+`forward_spin_after`, `collision`, `path_clear`, `cue_path` and `enters_pocket`), written
+once per candidate inside numba loops (`plan_kernels`): a decision plans every ball into
+every pocket, from every cue-ball spot it considers, in two calls (`ShotPlanner.aims`,
+`ShotPlanner.plan`).
+
+A batch of candidates is described by
+- `xy` (Q, n, 2): the balls of Q positions (ball 0 the cue ball; a pocketed ball's entry is ignored),
+- `on` (Q, n) bool: the object balls on the table in each (the cue ball's entry is ignored),
+- `index` (N, 3) int: each candidate's position, object ball and pocket.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..game import MAX_SPEED
+from ..physics import Physics, Table
+from .geometry import pockets_of
+from .plan_kernels import (
+    AIM_SAMPLES,
+    BALL_CLEARANCE,
+    D1,
+    D2,
+    DN,
+    DX,
+    DY,
+    MAX_CUT_DEGREES,
+    OK,
+    PATH_STEP,
+    PLAN_COLUMNS,
+    RAIL_CLEARANCE,
+    SCORE,
+    SCRATCH,
+    SPEED,
+    aim_kernel,
+    batch_fault,
+    group_best,
+    plan_kernel,
+)
+
+__all__ = ["D1", "D2", "DN", "DX", "DY", "OK", "PLAN_COLUMNS", "SCORE", "SCRATCH", "SPEED", "ShotPlanner",
+           "first_best"]
+
+
+class ShotPlanner:
+    """The compiled planner for one table, physics and ball radius: `aims` (the pocket
+    windows) and `plan` (the pots) of a batch of candidates (see the module's docstring)."""
+
+    def __init__(self, table: Table, physics: Physics, radius: float, max_cut: float = MAX_CUT_DEGREES,
+                 max_speed: float = MAX_SPEED):
+        self.table, self.physics, self.radius = table, physics, float(radius)
+        self.pockets = pockets_of(table)
+        self.jaws = np.array([np.concatenate([p.jaw_a, p.jaw_b]) for p in self.pockets]).reshape(-1, 4)
+        self.captures = np.array([[*p.centre, p.radius] for p in self.pockets]).reshape(-1, 3)
+        self.rails = np.ascontiguousarray(table.rails[:, 0:4], dtype=np.float64)
+        self.lams = np.linspace(0.05, 0.95, AIM_SAMPLES)
+        self.reach = np.array([RAIL_CLEARANCE * radius, BALL_CLEARANCE * radius])
+        self.constants = np.array([radius, physics.g, physics.mu_s, physics.mu_r, physics.e_b, physics.e_c,
+                                   math.cos(math.radians(max_cut)), max_speed, table.length, table.width, PATH_STEP])
+
+    def checked(self, xy, on, index, columns: int = 3):
+        """(xy, on, index) as the kernels read them; ValueError naming the first thing wrong
+        (the kernels do not check bounds)."""
+        xy = np.ascontiguousarray(xy, dtype=np.float64)
+        on = np.ascontiguousarray(on, dtype=bool)
+        index = np.ascontiguousarray(index, dtype=np.int64)
+        if xy.ndim != 3 or xy.shape[2] != 2 or on.shape != xy.shape[:2]:
+            raise ValueError(f"xy must be (Q, n, 2) and on (Q, n), got {xy.shape} and {on.shape}")
+        if index.ndim != 2 or index.shape[1] != columns:
+            raise ValueError(f"index must be (N, {columns}) (position, ball, pocket), got {index.shape}")
+        fault = batch_fault(xy, on, index, len(self.pockets))
+        if fault == 1:
+            raise ValueError(f"index names a position, object ball (1 to {xy.shape[1] - 1}) or pocket out of range")
+        if fault == 2:
+            raise ValueError("xy must be finite for the cue balls and the object balls on the table")
+        return xy, on, index
+
+    def aims(self, xy, on, index) -> np.ndarray:
+        """(N, 3): each candidate's aim point on the mouth and the open share of the mouth (0: closed)."""
+        xy, on, index = self.checked(xy, on, index)
+        out = np.zeros((len(index), 3))
+        aim_kernel(xy, on, index, self.jaws, self.rails, self.lams, self.reach, np.empty_like(self.rails), out)
+        return out
+
+    def plan(self, cue, xy, on, index, aims, arrival) -> np.ndarray:
+        """(N, PLAN_COLUMNS): each candidate's pot (direction, speed, dn, score, scratch, ok,
+        d1, d2); ok 0 where there is none. `arrival` (N,) is the object ball's speed at the pocket."""
+        xy, on, index = self.checked(xy, on, index)
+        cue, aims = np.ascontiguousarray(cue, dtype=np.float64), np.ascontiguousarray(aims, dtype=np.float64)
+        arrival = np.ascontiguousarray(arrival, dtype=np.float64)
+        if cue.shape != (len(index), 2) or aims.shape != (len(index), 3) or arrival.shape != (len(index),):
+            raise ValueError(f"cue, aims and arrival must be ({len(index)}, 2), ({len(index)}, 3) and ({len(index)},), "
+                             f"got {cue.shape}, {aims.shape} and {arrival.shape}")
+        if not (np.isfinite(cue).all() and np.isfinite(aims).all() and np.all(arrival >= 0.0)):
+            raise ValueError("cue and aims must be finite and arrival speeds finite and >= 0")
+        out = np.empty((len(index), PLAN_COLUMNS))
+        plan_kernel(cue, xy, on, index, aims, arrival, self.constants, self.captures, np.empty(6), out)
+        return out
+
+    def candidates(self, legal) -> np.ndarray:
+        """(N, 3) index of every legal ball (legal (Q, n) bool, column 0 the cue ball's, ignored)
+        of every position into every pocket, position by position, ball by ball, pocket by pocket."""
+        legal = np.asarray(legal, dtype=bool).copy()
+        legal[:, 0] = False
+        q, ball = np.nonzero(legal)
+        pockets = len(self.pockets)
+        index = np.empty((len(q) * pockets, 3), dtype=np.int64)
+        index[:, 0], index[:, 1] = np.repeat(q, pockets), np.repeat(ball, pockets)
+        index[:, 2] = np.tile(np.arange(pockets), len(q))
+        return index
+
+
+def first_best(rows, groups, count: int) -> np.ndarray:
+    """(count,): `group_best` of plan rows."""
+    out = np.empty(count, dtype=np.int64)
+    group_best(rows, np.asarray(groups, dtype=np.int64), out)
+    return out
