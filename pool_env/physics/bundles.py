@@ -118,16 +118,21 @@ def _pack(xy, v, w, pocketed):
     """The state rows [x, y, vx, vy, wx, wy, wz, t0 = 0], state codes (pocketed, or 0 until
     the run classifies them), and whether any ball has z-spin."""
     n = xy.shape[0]
-    S = np.zeros((n, 8))
-    st = np.zeros(n, dtype=np.int64)
+    S = np.empty((n, 8))
+    st = np.empty(n, dtype=np.int64)
+    return S, st, pack_into(xy, v, w, pocketed, S, st)
+
+
+@helper
+def pack_into(xy, v, w, pocketed, S, st):
+    """Fill S (N, 8) and st (N,) as `_pack` returns them; whether any ball has z-spin."""
     any_z_spin = False
-    for i in range(n):
+    for i in range(xy.shape[0]):
         S[i, 0], S[i, 1], S[i, 2], S[i, 3] = xy[i, 0], xy[i, 1], v[i, 0], v[i, 1]
-        S[i, 4], S[i, 5], S[i, 6] = w[i, 0], w[i, 1], w[i, 2]
+        S[i, 4], S[i, 5], S[i, 6], S[i, 7] = w[i, 0], w[i, 1], w[i, 2], 0.0
         any_z_spin = any_z_spin or w[i, 2] != 0.0
-        if pocketed[i]:
-            st[i] = POCKETED
-    return S, st, any_z_spin
+        st[i] = POCKETED if pocketed[i] else 0
+    return any_z_spin
 
 
 def prepare(balls, table, physics, max_events):
@@ -172,3 +177,14 @@ def bounds_of(table):
                         table.pocket_reach, float(table.cushion_height), float(table.length), float(table.width))
         object.__setattr__(table, "_bounds", bounds)
     return bounds
+
+
+def bounds_tuple(table):
+    """bounds_of(table) as a plain tuple (built once per Table), for engine.simulate_scene: numba
+    takes a tuple from Python several times faster than a namedtuple (it types a plain tuple in
+    C, a namedtuple in Python)."""
+    flat = table.__dict__.get("_bounds_tuple")
+    if flat is None:
+        flat = tuple(bounds_of(table))
+        object.__setattr__(table, "_bounds_tuple", flat)
+    return flat

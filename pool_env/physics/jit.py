@@ -18,11 +18,11 @@ call site with another constant compiles the callee again. Such arguments are wr
 from numba import njit
 
 # No allocation: no reference counting. Callable from Python and from compiled code.
-kernel = njit(cache=True, _nrt=False)
+kernel = njit(cache=True, _nrt=False, no_cfunc_wrapper=True)
 # No allocation, called only from compiled code.
-helper = njit(cache=True, _nrt=False, no_cpython_wrapper=True)
+helper = njit(cache=True, _nrt=False, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 # Allocates arrays (np.empty and the like): reference counting on. Releases the GIL while it
 # runs when called from Python (engine.run, fixed.run), so threads simulate scenes in parallel.
-allocating = njit(cache=True, _nrt=True, nogil=True)
+allocating = njit(cache=True, _nrt=True, nogil=True, no_cfunc_wrapper=True)
 # Allocates, called only from compiled code.
-allocating_helper = njit(cache=True, _nrt=True, no_cpython_wrapper=True)
+allocating_helper = njit(cache=True, _nrt=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
