@@ -26,7 +26,7 @@ from .bundles import (
     record_event,
     record_row,
 )
-from .jit import allocating, helper
+from .jit import allocating, entry, helper
 from .kinds import (
     BALL_BALL,
     BALL_CUSHION,
@@ -51,7 +51,7 @@ from .tolerances import GROUP_WINDOW
 ONE_EVENT, TWO_ROWS = np.int64(1), np.int64(2)
 
 
-@allocating
+@entry
 def simulate_scene(balls, physics, bounds, log):
     """One call from Python for a whole `simulate`: check where the balls are, build the
     Scene, run. Everything comes in as plain tuples, which numba takes from Python in a

@@ -9,7 +9,7 @@ import time
 
 import numpy as np
 
-from . import engine
+from . import engine, fixed, seed_loop
 from .bundles import EVENTS, Scene, bounds_of, bounds_tuple, default_event_cap, new_log, reach_of
 from .config import NOSE_HEIGHT_MODELS, Physics
 from .kinds import BUFFER_FULL, COUNTERS, EVENT_CAP, MISPLACED
@@ -91,13 +91,8 @@ def simulate(balls: Balls, table: Table, physics: Physics | None = None, method:
     if method == "events":
         return _run_events(balls, table, physics, max_events)  # its compiled call checks the scene
     check_on_table(balls, table, physics)
-    # The fixed-step methods are optional extras: imported (and compiled) on first use only.
     if method == "fixed":
-        from . import fixed
-
         return fixed.simulate_fixed(balls, table, physics, max_events, **options)
-    from . import seed_loop
-
     return seed_loop.simulate_seed(balls, table, physics, max_events, **options)
 
 
