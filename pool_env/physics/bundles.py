@@ -73,10 +73,21 @@ def new_work(n):
 def new_log(n_events, n_rows, cap, n_counters):
     """An empty log with room for n_events events (plus one: the event over the cap is kept
     for the error message) and n_rows history rows."""
-    ids = np.empty((3, n_events + 1), dtype=np.int64)
-    size = np.array([0, 0, cap, DONE], dtype=np.int64)
-    return Log(np.empty(n_events + 1), ids[0], ids[1], ids[2], np.empty((n_rows, 9)),
-               np.empty(n_rows, dtype=np.int64), np.zeros(n_counters, dtype=np.int64), size)
+    return Log._make(log_arrays(n_events, n_rows, cap, n_counters))
+
+
+# A fresh log's size row (its cap filled in per log): copying it is cheaper than np.array.
+_EMPTY_SIZE = np.array([0, 0, 0, DONE], dtype=np.int64)
+
+
+def log_arrays(n_events, n_rows, cap, n_counters):
+    """new_log's arrays as a plain tuple, in Log's field order (a tuple is cheaper to build,
+    and numba takes one from Python faster)."""
+    size = _EMPTY_SIZE.copy()
+    size[CAP] = cap
+    return (np.empty(n_events + 1), np.empty(n_events + 1, dtype=np.int64), np.empty(n_events + 1, dtype=np.int64),
+            np.empty(n_events + 1, dtype=np.int64), np.empty((n_rows, 9)), np.empty(n_rows, dtype=np.int64),
+            np.zeros(n_counters, dtype=np.int64), size)
 
 
 @helper

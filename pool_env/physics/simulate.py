@@ -10,7 +10,7 @@ import time
 import numpy as np
 
 from . import engine, fixed, seed_loop
-from .bundles import EVENTS, Scene, bounds_of, bounds_tuple, default_event_cap, new_log, reach_of
+from .bundles import EVENTS, Log, bounds_of, bounds_tuple, default_event_cap, log_arrays, reach_of
 from .config import NOSE_HEIGHT_MODELS, Physics
 from .kinds import BUFFER_FULL, COUNTERS, EVENT_CAP, MISPLACED
 from .objects import Balls, Table
@@ -100,7 +100,7 @@ def _run_events(balls, table, physics, max_events):
     if not _compiled[0]:
         return _first_run(balls, table, physics, max_events)
     wall = time.perf_counter()
-    n = len(balls)
+    n = balls.xy.shape[0]
     cap = default_event_cap(n) if max_events is None else int(max_events)
     if cap < 0:
         check_on_table(balls, table, physics)  # a misplaced ball is named first, as the other methods do
@@ -113,17 +113,19 @@ def _run_events(balls, table, physics, max_events):
     size = min(cap, 256 + 16 * n)
     while True:
         S, st = np.empty((n, 8)), np.empty(n, dtype=np.int64)
-        log = new_log(size, n + 2 * size + 2, cap, len(COUNTERS))
+        log = log_arrays(size, n + 2 * size + 2, cap, len(COUNTERS))
         code, spin = engine.simulate_scene((balls.xy, balls.v, balls.w, balls.pocketed, balls.radii, balls.masses,
-                                            reach, S, st), args, bounds_tuple(table), tuple(log))
+                                            reach, S, st), args, bounds_tuple(table), log)
         if code != BUFFER_FULL:
             break
         size = min(cap, 4 * size)
     if code == MISPLACED:
         check_on_table(balls, table, physics)  # raises the ValueError that names the ball
     if code == EVENT_CAP:
+        log = Log._make(log)
         raise SimulationError(cap_message(cap, log, int(log.size[EVENTS])))
-    scene = Scene(S, st, balls.radii, reach, balls.masses, args[0], args[1], args[2], spin)
+    # The Scene and the Log as plain tuples: the Result makes them namedtuples if it needs them.
+    scene = (S, st, balls.radii, reach, balls.masses, args[0], args[1], args[2], spin)
     return Result(balls, physics, table, scene, log, time.perf_counter() - wall, None)
 
 
