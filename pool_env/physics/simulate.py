@@ -131,8 +131,8 @@ def _run_events(balls, table, physics, max_events):
 
 # Whether engine.simulate_scene is compiled in this process (set after the first run).
 _compiled = [False]
-# The cold compile measured on 2-core machines, idle to loaded (docs/speed.md): the notice's range.
-COLD_COMPILE_SECONDS = (20, 45)
+# The cold compile measured on 2-core machines, idle to heavily shared (docs/speed.md): the notice's range.
+COLD_COMPILE_SECONDS = (15, 70)
 
 
 def compiled_here() -> bool:
