@@ -132,3 +132,18 @@ def test_game_bench_prints_every_figure_beside_its_target(capsys):
                   "search player, 9-ball mid-game, olympiad noise"):
         assert label in out
     assert out.count(">= ") == 5  # the search's target is a ratio to another checkout (--against)
+
+
+def test_speed_says_fastfiz_is_not_installed_without_a_python_that_imports_it(tmp_path, capsys, monkeypatch):
+    monkeypatch.delenv("POOL_ENV_FASTFIZ_PYTHON", raising=False)
+    args = speed.parse_args(["--quick", "--fastfiz", str(tmp_path / "no-python")])
+    assert speed.fastfiz_python(args) is None
+    speed.print_fastfiz({"ours": {"two_ball": 20e-6}})
+    assert "FastFiz not installed" in capsys.readouterr().out
+
+
+def test_fastfiz_ratio_is_theirs_over_ours_against_its_target(capsys):
+    peer = {"two_ball": 30e-6, "events": 10, "theta": 2, "python": "py"}
+    speed.print_fastfiz({"ours": {"two_ball": 20e-6}, "fastfiz": peer})
+    out = capsys.readouterr().out
+    assert "FastFiz / ours = 1.50" in out and "target >= 1.2: met" in out

@@ -3,11 +3,13 @@
 import ast
 import math
 import pathlib
+import pickle
 
 import numpy as np
 import pytest
 
 from pool_env.physics import BALL_RADIUS, Balls, Physics, Table, ball_ball, cushion, kinds, simulate
+from pool_env.physics.bundles import bounds_tuple
 from pool_env.physics.config import BALL_BALL_MODELS, CUSHION_MODELS
 
 PHYSICS = pathlib.Path(__file__).resolve().parents[1] / "pool_env" / "physics"
@@ -139,3 +141,16 @@ def test_ball_under_the_cushion_nose_is_refused():
     # Another cushion model does not use the nose height: the shot runs (and ends).
     result = simulate(balls, Table(2.0, 1.0), Physics(cushion="restitution"))
     assert result.final.v.tolist() == [[0.0, 0.0]]
+
+
+def test_an_unpickled_table_gives_the_engine_read_only_arrays_and_the_same_shot():
+    """A Table pickled after a simulation (its engine views cached) comes back with read-only
+    arrays throughout, views included: a writable array would be a new numba type, and the
+    whole engine would compile a second time for it."""
+    table = Table.eight_foot()
+    balls = Balls([[0.5, 0.5], [1.0, 0.55]], v=[[1.0, 0.0], [0.0, 0.0]])
+    before = simulate(balls, table, Physics.standard())
+    copy = pickle.loads(pickle.dumps(table))
+    assert all(not a.flags.writeable for a in bounds_tuple(copy) if isinstance(a, np.ndarray))
+    after = simulate(balls, copy, Physics.standard())
+    assert np.array_equal(after.final.xy, before.final.xy) and after.events == before.events

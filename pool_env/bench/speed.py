@@ -31,11 +31,17 @@ TARGETS = {
     "import": 0.5,
     "first_shot": 0.3,
     "cold_compile": 10.0,
+    "mid_game": None,  # no target: reported beside the break and the 2-ball shot
 }
+# The FastFiz comparison's target: its executeShot over our simulate on the 2-ball shot.
+FASTFIZ_RATIO_TARGET = 1.2
+# Where the bench looks for a Python that imports fastfiz (POOL_ENV_FASTFIZ_PYTHON overrides).
+FASTFIZ_PYTHON = "/work/venv-fastfiz/bin/python"
 # (key, what, how it must compare with its target); the table's rows, in order.
 FIGURES = (
     ("break", "16-ball break at 8 m/s, median over racks", "<="),
     ("two_ball", "2-ball shot (2 m/s, 15 deg cut)", "<="),
+    ("mid_game", "mid-game shot (2 m/s at the lowest ball, after a break)", "<="),
     ("import", "import pool_env, fresh process", "<"),
     ("first_shot", "first shot, fresh process, warm numba cache", "<="),
     ("cold_compile", "cold compile (empty numba cache)", "<="),
@@ -57,10 +63,10 @@ FIRST_SHOT = (
     "import pool_env; print(json.dumps({'file': pool_env.__file__, 'seconds': seconds}))"
 )
 WORKER = """
-import json, sys, time
+import json, math, statistics, sys, time
 import pool_env
 from pool_env.bench.speed import break_shot, two_ball_shot
-from pool_env.physics import Physics, simulate
+from pool_env.physics import BALL_MASS, Balls, Physics, simulate, strike
 
 racks, repeats, two_repeats = (int(a) for a in sys.argv[1:4])
 physics = Physics.standard()
@@ -74,15 +80,30 @@ def timed(balls, table, n):
         out.append(time.perf_counter() - t0)
     return out
 
-brk, events = [], []
+def mid_game_shot(balls, table):
+    # the break's balls at rest, the cue ball sent at 2 m/s at the lowest ball on the table
+    final = simulate(balls, table, physics).final
+    if final.pocketed[0] or final.pocketed[1:].all():
+        return None
+    k = 1 + int(final.pocketed[1:].argmin())
+    aim = final.xy[k] - final.xy[0]
+    rest = Balls(final.xy, pocketed=final.pocketed)
+    return strike(rest, force=aim / math.hypot(*aim) * 2.0 * BALL_MASS / 0.005)
+
+brk, events, mid, mid_events = [], [], [], []
 for seed in range(racks):
     balls, table = break_shot(seed)
     brk.append(timed(balls, table, repeats))
     events.append(simulate(balls, table, physics).stats["events"])
+    shot = mid_game_shot(balls, table)
+    if shot is not None:
+        mid.append(timed(shot, table, repeats))
+        mid_events.append(simulate(shot, table, physics).stats["events"])
 balls, table = two_ball_shot()
 two = timed(balls, table, two_repeats)
 print(json.dumps({"file": pool_env.__file__, "break": brk, "events": events, "two_ball": two,
-                  "two_ball_events": simulate(balls, table, physics).stats["events"]}))
+                  "two_ball_events": simulate(balls, table, physics).stats["events"],
+                  "mid_game": mid, "mid_game_events": mid_events}))
 """
 OURS = str(Path(__file__).resolve().parents[2])  # the checkout this module belongs to
 
@@ -350,21 +371,26 @@ def interleaved(versions, rounds, measure):
 
 
 def shot_figures(runs):
-    """The break and 2-ball figures of one version from its WORKER runs (one per round).
+    """The break, mid-game and 2-ball figures of one version from its WORKER runs (one per round).
 
-    break: the median over racks of each rack's median over all its timed runs; two_ball: the
-    median of all timed runs; by_round: both figures from each round alone."""
-    def brk(run_list):
-        racks = len(run_list[0]["break"])
-        return statistics.median(statistics.median(t for run in run_list for t in run["break"][s])
+    break (and mid_game): the median over racks of each rack's median over all its timed runs;
+    two_ball: the median of all timed runs; by_round: the break and 2-ball figures from each
+    round alone (mid_by_round: the mid-game figure)."""
+    def per_rack(run_list, key="break"):
+        racks = len(run_list[0].get(key, []))
+        if racks == 0:
+            return None
+        return statistics.median(statistics.median(t for run in run_list for t in run[key][s])
                                  for s in range(racks))
 
     def two(run_list):
         return statistics.median(t for run in run_list for t in run["two_ball"])
 
-    return {"break": brk(runs), "two_ball": two(runs), "events": runs[0]["events"],
+    return {"break": per_rack(runs), "two_ball": two(runs), "events": runs[0]["events"],
             "two_ball_events": runs[0]["two_ball_events"],
-            "by_round": [(brk([run]), two([run])) for run in runs]}
+            "mid_game": per_rack(runs, "mid_game"), "mid_game_events": runs[0].get("mid_game_events", []),
+            "by_round": [(per_rack([run]), two([run])) for run in runs],
+            "mid_by_round": [per_rack([run], "mid_game") for run in runs]}
 
 
 def cold_run(version):
@@ -374,13 +400,44 @@ def cold_run(version):
         return run_python(FIRST_SHOT, version, env=dict(os.environ, NUMBA_CACHE_DIR=cache))["seconds"]
 
 
+def fastfiz_python(args):
+    """The Python that runs FastFiz (--fastfiz, $POOL_ENV_FASTFIZ_PYTHON or FASTFIZ_PYTHON), or
+    None if there is none that imports fastfiz."""
+    python = args.fastfiz or os.environ.get("POOL_ENV_FASTFIZ_PYTHON") or FASTFIZ_PYTHON
+    if not Path(python).is_file():
+        return None
+    found = subprocess.run([python, "-c", "import fastfiz"], capture_output=True)
+    return python if found.returncode == 0 else None
+
+
+def fastfiz_run(python, repeats):
+    """One round of FastFiz's executeShot on the 2-ball shot (fastfiz_peer.py in its Python)."""
+    balls, _ = two_ball_shot()
+    (cx, cy), (ox, oy) = balls.xy
+    speed = math.hypot(*balls.v[0])
+    script = str(Path(__file__).with_name("fastfiz_peer.py"))
+    out = subprocess.run([python, script, *map(str, (balls.radii[0], cx, cy, ox, oy, speed, repeats))],
+                         capture_output=True, text=True)
+    if out.returncode != 0:
+        raise RuntimeError(f"FastFiz ({python}) failed:\n{out.stderr.strip()[-3000:]}")
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
 def measure_all(versions, args):
-    """{name: {figure key: seconds, ...}} for every version, each figure interleaved."""
+    """{name: {figure key: seconds, ...}} for every version, each figure interleaved (and
+    FastFiz's 2-ball shot, under "fastfiz", taking its turn in every round when installed)."""
     figures = {v.name: {} for v in versions}
     per_round = math.ceil(args.repeats / args.rounds)
     two_per_round = math.ceil(30 * args.repeats / args.rounds)
-    shots = interleaved(versions, args.rounds,
-                        lambda v: run_python(WORKER, v, (args.seeds, per_round, two_per_round)))
+    peer = fastfiz_python(args)
+    players = versions + ([Version("fastfiz", peer)] if peer else [])
+    shots = interleaved(players, args.rounds,
+                        lambda v: fastfiz_run(v.root, two_per_round) if v.name == "fastfiz"
+                        else run_python(WORKER, v, (args.seeds, per_round, two_per_round)))
+    if peer:
+        runs = shots.pop("fastfiz")
+        figures["fastfiz"] = dict(runs[0], two_ball=statistics.median(t for run in runs for t in run["seconds"]),
+                                  python=peer)
     for name, runs in shots.items():
         figures[name].update(shot_figures(runs))
     # The workers above loaded every version's compiled code, so its numba cache is warm.
@@ -389,8 +446,9 @@ def measure_all(versions, args):
         for name, samples in times.items():
             figures[name][key] = statistics.median(samples)
     if not args.no_cold:
-        for name, samples in interleaved(versions, 1, cold_run).items():
-            figures[name]["cold_compile"] = samples[0]
+        for name, samples in interleaved(versions, args.cold_runs, cold_run).items():
+            figures[name]["cold_compile"] = statistics.median(samples)
+            figures[name]["cold_runs"] = samples
     return figures
 
 
@@ -406,14 +464,23 @@ def _notes(key, ours, theirs, args):
                 f"; theirs {statistics.median(theirs['events']):.0f} events (other racks' counts differ)"
     elif key == "two_ball":
         note = f"{ours['two_ball_events']} events" + (f" (theirs {theirs['two_ball_events']})" if theirs else "")
+    elif key == "mid_game":
+        ev = ours["mid_game_events"]
+        note = (f"{len(ev)} racks whose cue ball stayed up, {statistics.median(ev):.0f} events "
+                f"(range {min(ev)}-{max(ev)})")
     elif key == "cold_compile":
-        note = "first shot, numba compiling everything (one run)"
+        runs = ours["cold_runs"]
+        note = (f"first shot, numba compiling everything: median of {len(runs)} "
+                f"(range {fmt_time(min(runs))}-{fmt_time(max(runs))})")
     else:
         what = "fresh interpreter" if key == "import" else "import + rack + strike + simulate"
         note = f"{what}, median of {args.runs}"
-    if theirs and key in ("break", "two_ball") and args.rounds > 1:
-        k = 0 if key == "break" else 1
-        ratios = [a[k] / b[k] for a, b in zip(ours["by_round"], theirs["by_round"])]
+    if theirs and key in ("break", "two_ball", "mid_game") and args.rounds > 1:
+        if key == "mid_game":
+            ratios = [a / b for a, b in zip(ours["mid_by_round"], theirs["mid_by_round"])]
+        else:
+            k = 0 if key == "break" else 1
+            ratios = [a[k] / b[k] for a, b in zip(ours["by_round"], theirs["by_round"])]
         note += f"; ratio by round {min(ratios):.2f}-{max(ratios):.2f}"
     return note
 
@@ -430,15 +497,32 @@ def print_table(figures, against, args):
     print("| " + " | ".join(["---"] * (len(head) + 1)) + " |")
     for key, what, op in FIGURES:
         value, target = ours.get(key), TARGETS[key]
+        goal = "-" if target is None else f"{op} {fmt_time(target)}"
         if value is None:
-            cells = [what, "not measured", f"{op} {fmt_time(target)}", "-"] + (["-", "-"] if theirs else [])
+            cells = [what, "not measured", goal, "-"] + (["-", "-"] if theirs else [])
             print("| " + " | ".join(cells + ["skipped (--quick)" if args.quick else "skipped (--no-cold)"]) + " |")
             continue
-        met = value < target if op == "<" else value <= target
-        cells = [what, fmt_time(value), f"{op} {fmt_time(target)}", "yes" if met else "NO"]
+        met = "-" if target is None else ("yes" if (value < target if op == "<" else value <= target) else "NO")
+        cells = [what, fmt_time(value), goal, met]
         if theirs:
             cells += [fmt_time(theirs[key]), f"{value / theirs[key]:.2f}"]
         print("| " + " | ".join(cells + [_notes(key, ours, theirs, args)]) + " |")
+
+
+def print_fastfiz(figures):
+    """FastFiz's executeShot on the 2-ball shot beside our simulate, from the same run."""
+    peer = figures.get("fastfiz")
+    if peer is None:
+        print("\nFastFiz not installed (no Python importing fastfiz: --fastfiz PYTHON or "
+              f"$POOL_ENV_FASTFIZ_PYTHON, else {FASTFIZ_PYTHON}): no FastFiz figure.")
+        return
+    ours = figures["ours"]["two_ball"]
+    ratio = peer["two_ball"] / ours
+    met = "met" if ratio >= FASTFIZ_RATIO_TARGET else "NOT met"
+    print(f"\nFastFiz executeShot, the same 2-ball shot ({peer['python']}, in turns with ours): "
+          f"{fmt_time(peer['two_ball'])} per shot, {peer['events']} events (its cue strike one of them; cue "
+          f"raised {peer['theta']} deg, the lowest it accepts); ours {fmt_time(ours)}: FastFiz / ours = "
+          f"{ratio:.2f} (target >= {FASTFIZ_RATIO_TARGET}: {met})")
 
 
 def print_work_done():
@@ -466,12 +550,19 @@ def parse_args(argv):
     parser.add_argument("--rounds", type=int, help="turns each version takes at the shots (default 6, --quick 2)")
     parser.add_argument("--runs", type=int,
                         help="fresh processes per version for import and first shot (default 5, --quick 2)")
+    parser.add_argument("--cold-runs", type=int, default=1,
+                        help="cold compiles per version, each in a fresh process with an empty cache (default 1)")
+    parser.add_argument("--fastfiz", metavar="PYTHON",
+                        help="a Python that imports fastfiz, to time its executeShot on the 2-ball shot "
+                             f"(default: $POOL_ENV_FASTFIZ_PYTHON, else {FASTFIZ_PYTHON} if present)")
     parser.add_argument("--no-cold", action="store_true",
                         help="skip the cold compile (10-20 s per version, compiling from scratch)")
     parser.add_argument("--quick", action="store_true",
                         help="a rough look in well under a minute: fewer racks, runs and rounds, no cold "
                              "compile, no pooltool")
     args = parser.parse_args(argv)
+    if args.cold_runs < 1:
+        parser.error("--cold-runs must be at least 1")
     for name, full, quick in (("seeds", 20, 5), ("repeats", 30, 8), ("rounds", 6, 2), ("runs", 5, 2)):
         if getattr(args, name) is None:
             setattr(args, name, quick if args.quick else full)
@@ -506,6 +597,7 @@ def main(argv=None) -> int:
         figures = measure_all(versions, args)
         peer = None if args.quick else pooltool_figures(args.seeds, repeats=max(3, args.repeats // 6))
     print_table(figures, args.against, args)
+    print_fastfiz(figures)
     print_work_done()
     ours = figures["ours"]
     if peer is not None:

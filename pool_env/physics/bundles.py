@@ -54,29 +54,56 @@ impulses), its balls (member (N,) flags, queue (N,) ids) and their rows at the c
 
 @allocating_helper
 def new_schedule(n):
-    """Nothing predicted yet, no ball has met another."""
-    inf = np.inf
-    return Schedule(np.full(n, inf), np.full(n, inf), np.full(n, -1), np.full(n, inf), np.full(n, -1),
-                    np.full((n, n), inf), np.full((n, n), -inf), np.full(n, -inf), np.full(n, -inf))
+    """Nothing predicted yet, no ball has met another. Three allocations cut into the nine
+    fields (each allocation costs as much as a short prediction)."""
+    times = np.empty(5 * n + 2 * n * n)
+    times[:3 * n + n * n] = np.inf
+    times[3 * n + n * n:] = -np.inf
+    ids = np.full(2 * n, -1)
+    t_tr, t_cu, t_po = times[:n], times[n:2 * n], times[2 * n:3 * n]
+    pair = times[3 * n:3 * n + n * n].reshape((n, n))
+    last = 3 * n + n * n
+    met = times[last:last + n * n].reshape((n, n))
+    bb_t, cl_t = times[last + n * n:last + n * n + n], times[last + n * n + n:]
+    return Schedule(t_tr, t_cu, ids[:n], t_po, ids[n:], pair, met, bb_t, cl_t)
 
 
 @allocating_helper
 def new_work(n):
-    """Scratch space for N balls."""
-    return Work(np.empty(n * n, dtype=np.int64), np.empty(n * n, dtype=np.int64), np.empty(n * n),
-                np.zeros(n, dtype=np.bool_), np.empty(n, dtype=np.int64), np.empty((n, 8)), np.empty((8, 2)),
-                np.empty(8, dtype=np.int64), np.empty(3, dtype=np.int64), np.empty(n, dtype=np.int64),
-                np.empty(n * n, dtype=np.int64), np.empty(n * n, dtype=np.int64), np.empty(8), np.empty((2, 8)),
-                np.zeros(n, dtype=np.bool_))
+    """Scratch space for N balls: one allocation per element type, cut into the fields."""
+    ints = np.empty(4 * n * n + 2 * n + 11, dtype=np.int64)
+    floats = np.empty(n * n + 8 * n + 16 + 8 + 16)
+    flags = np.zeros(2 * n, dtype=np.bool_)
+    nn = n * n
+    ca, cb, rec_a, rec_b = ints[:nn], ints[nn:2 * nn], ints[2 * nn:3 * nn], ints[3 * nn:4 * nn]
+    queue, touched = ints[4 * nn:4 * nn + n], ints[4 * nn + n:4 * nn + 2 * n]
+    wall_ball, cids = ints[4 * nn + 2 * n:4 * nn + 2 * n + 8], ints[4 * nn + 2 * n + 8:]
+    impulse, G = floats[:nn], floats[nn:nn + 8 * n].reshape((n, 8))
+    walls = floats[nn + 8 * n:nn + 8 * n + 16].reshape((8, 2))
+    row = floats[nn + 8 * n + 16:nn + 8 * n + 24]
+    pair_rows = floats[nn + 8 * n + 24:].reshape((2, 8))
+    return Work(ca, cb, impulse, flags[:n], queue, G, walls, wall_ball, cids, touched, rec_a, rec_b, row, pair_rows,
+                flags[n:])
 
 
 def new_log(n_events, n_rows, cap, n_counters):
     """An empty log with room for n_events events (plus one: the event over the cap is kept
     for the error message) and n_rows history rows."""
-    ids = np.empty((3, n_events + 1), dtype=np.int64)
-    size = np.array([0, 0, cap, DONE], dtype=np.int64)
-    return Log(np.empty(n_events + 1), ids[0], ids[1], ids[2], np.empty((n_rows, 9)),
-               np.empty(n_rows, dtype=np.int64), np.zeros(n_counters, dtype=np.int64), size)
+    return Log._make(log_arrays(n_events, n_rows, cap, n_counters))
+
+
+# A fresh log's size row (its cap filled in per log): copying it is cheaper than np.array.
+_EMPTY_SIZE = np.array([0, 0, 0, DONE], dtype=np.int64)
+
+
+def log_arrays(n_events, n_rows, cap, n_counters):
+    """new_log's arrays as a plain tuple, in Log's field order (a tuple is cheaper to build,
+    and numba takes one from Python faster)."""
+    size = _EMPTY_SIZE.copy()
+    size[CAP] = cap
+    return (np.empty(n_events + 1), np.empty(n_events + 1, dtype=np.int64), np.empty(n_events + 1, dtype=np.int64),
+            np.empty(n_events + 1, dtype=np.int64), np.empty((n_rows, 9)), np.empty(n_rows, dtype=np.int64),
+            np.zeros(n_counters, dtype=np.int64), size)
 
 
 @helper
@@ -118,16 +145,21 @@ def _pack(xy, v, w, pocketed):
     """The state rows [x, y, vx, vy, wx, wy, wz, t0 = 0], state codes (pocketed, or 0 until
     the run classifies them), and whether any ball has z-spin."""
     n = xy.shape[0]
-    S = np.zeros((n, 8))
-    st = np.zeros(n, dtype=np.int64)
+    S = np.empty((n, 8))
+    st = np.empty(n, dtype=np.int64)
+    return S, st, pack_into(xy, v, w, pocketed, S, st)
+
+
+@helper
+def pack_into(xy, v, w, pocketed, S, st):
+    """Fill S (N, 8) and st (N,) as `_pack` returns them; whether any ball has z-spin."""
     any_z_spin = False
-    for i in range(n):
+    for i in range(xy.shape[0]):
         S[i, 0], S[i, 1], S[i, 2], S[i, 3] = xy[i, 0], xy[i, 1], v[i, 0], v[i, 1]
-        S[i, 4], S[i, 5], S[i, 6] = w[i, 0], w[i, 1], w[i, 2]
+        S[i, 4], S[i, 5], S[i, 6], S[i, 7] = w[i, 0], w[i, 1], w[i, 2], 0.0
         any_z_spin = any_z_spin or w[i, 2] != 0.0
-        if pocketed[i]:
-            st[i] = POCKETED
-    return S, st, any_z_spin
+        st[i] = POCKETED if pocketed[i] else 0
+    return any_z_spin
 
 
 def prepare(balls, table, physics, max_events):
@@ -172,3 +204,14 @@ def bounds_of(table):
                         table.pocket_reach, float(table.cushion_height), float(table.length), float(table.width))
         object.__setattr__(table, "_bounds", bounds)
     return bounds
+
+
+def bounds_tuple(table):
+    """bounds_of(table) as a plain tuple (built once per Table), for engine.simulate_scene: numba
+    takes a tuple from Python several times faster than a namedtuple (it types a plain tuple in
+    C, a namedtuple in Python)."""
+    flat = table.__dict__.get("_bounds_tuple")
+    if flat is None:
+        flat = tuple(bounds_of(table))
+        object.__setattr__(table, "_bounds_tuple", flat)
+    return flat

@@ -74,6 +74,8 @@ class Physics:
         # The model ids the compiled code dispatches on (each name's position in its tuple).
         ids = (BALL_BALL_MODELS.index(self.ball_ball), CUSHION_MODELS.index(self.cushion))
         object.__setattr__(self, "_model_ids", ids)
+        engine = (params, ids[0], ids[1], bool(self.spin), self.can_create_spin(), self.cushion in NOSE_HEIGHT_MODELS)
+        object.__setattr__(self, "_engine_args", engine)
 
     @classmethod
     def seed(cls) -> Physics:
@@ -100,6 +102,12 @@ class Physics:
     def model_ids(self) -> tuple[int, int]:
         """The ball-ball and cushion model ids the compiled engine dispatches on."""
         return self._model_ids
+
+    def engine_args(self) -> tuple:
+        """What engine.simulate_scene reads, built once: (the coefficients, the ball-ball and
+        cushion model ids, spin tracked, whether a collision can create z-spin, whether the
+        cushion touches at the nose height)."""
+        return self._engine_args
 
     def as_array(self) -> np.ndarray:
         """The coefficients in the order the compiled engine reads them (see motion.P_*)."""

@@ -12,8 +12,21 @@ objects.py and result.py, and simulate.py connects the two.
 import numpy as np
 
 from . import contacts, pocket, transition
-from .bundles import CAP, CODE, EVENTS, ROWS, new_schedule, new_work, record_event, record_row
-from .jit import allocating, helper
+from .bundles import (
+    CAP,
+    CODE,
+    EVENTS,
+    ROWS,
+    Bounds,
+    Log,
+    Scene,
+    new_schedule,
+    new_work,
+    pack_into,
+    record_event,
+    record_row,
+)
+from .jit import allocating, entry, helper
 from .kinds import (
     BALL_BALL,
     BALL_CUSHION,
@@ -21,6 +34,7 @@ from .kinds import (
     BUFFER_FULL,
     DONE,
     EVENT_CAP,
+    MISPLACED,
     NO_EVENT,
     POCKETED,
     T0,
@@ -28,12 +42,36 @@ from .kinds import (
     WZ,
 )
 from .motion import classify, copy_row, state_at
+from .placement import first_misplaced
 from .predict import predict
 from .tolerances import GROUP_WINDOW
 
 # The room every event needs at least: one event, up to two history rows (typed, not literal
 # constants: see jit.py).
 ONE_EVENT, TWO_ROWS = np.int64(1), np.int64(2)
+
+
+@entry
+def simulate_scene(balls, physics, bounds, log):
+    """One call from Python for a whole `simulate`: check where the balls are, build the
+    Scene, run. Everything comes in as plain tuples, which numba takes from Python in a
+    fraction of the time namedtuples cost (a 2-ball shot's wrapper was mostly that):
+
+    balls: (xy, v, w, pocketed, R, M, Rc, S, st), the Balls' arrays, each ball's cushion
+    reach, and the Scene's rows and states to fill (N, 8) and (N,); physics:
+    Physics.engine_args(); bounds: bundles.bounds_tuple(table); log: a Log as a tuple.
+    Returns (exit code, spin tracked): MISPLACED (nothing ran) if first_misplaced finds a
+    ball that may not be where it is, else engine.run's code.
+    """
+    xy, v, w, pocketed, R, M, Rc, S, st = balls
+    params, bb_model, cu_model, spin, makes_spin, nose_model = physics
+    table = Bounds(*bounds)
+    nose = table.height if nose_model else 0.0
+    if first_misplaced(xy, R, Rc, 0.0, pocketed, table, nose)[0] != 0:
+        return MISPLACED, False
+    any_z_spin = pack_into(xy, v, w, pocketed, S, st)
+    tracked = spin and (any_z_spin or makes_spin)
+    return run(Scene(S, st, R, Rc, M, params, bb_model, cu_model, tracked), table, Log(*log)), tracked
 
 
 @allocating

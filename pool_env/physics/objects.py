@@ -270,8 +270,11 @@ class Table:
         return self
 
     def __setstate__(self, state):
-        # Unpickling: numpy loads arrays writable; make them read-only again.
+        # Unpickling: numpy loads arrays writable; make them read-only again. The engine's
+        # cached views of them (bundles.bounds_of) are dropped: they would hold writable copies.
         for name, value in state.items():
+            if name.startswith("_bounds"):
+                continue
             object.__setattr__(self, name, _readonly(value) if isinstance(value, np.ndarray) else value)
 
     def __repr__(self):

@@ -6,7 +6,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .bundles import EVENTS, ROWS
+from .bundles import EVENTS, ROWS, Log, Scene
 from .engine import sample
 from .kinds import COUNTERS, EVENT_KINDS, POCKETED
 
@@ -28,10 +28,11 @@ class Event(NamedTuple):
 class Result:
     """The outcome of `simulate`: see `events`, `at`, `sample`, `final`, `duration`, `stats`.
 
-    Built from a finished run (its final Scene and its Log, and for the fixed-step methods
-    their own counters; None means the event engine's, read from the Log); everything is
-    derived from them on first use, so a caller that reads only the final state pays for
-    nothing else. Plain arrays and namedtuples: a Result pickles and deep-copies."""
+    Built from a finished run (its final Scene and its Log, as those namedtuples or plain
+    tuples of their fields, and for the fixed-step methods their own counters; None means
+    the event engine's, read from the Log); everything is derived from them on first use, so
+    a caller that reads only the final state pays for nothing else. Plain arrays and tuples:
+    a Result pickles and deep-copies."""
 
     def __init__(self, balls, physics, table, scene, log, wall, counters):
         self._balls, self.physics, self.table = balls, physics, table
@@ -39,11 +40,21 @@ class Result:
         self._arrays = self._final = self._stats = self._events = None
 
     @property
+    def _run(self):
+        """The run's Scene and Log as namedtuples (made from plain tuples once, on first use)."""
+        if type(self._scene) is tuple:
+            self._scene = Scene._make(self._scene)
+        if type(self._log) is tuple:
+            self._log = Log._make(self._log)
+        return self._scene, self._log
+
+    @property
     def event_arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """The events as arrays (times, kind ids into EVENT_KINDS, i, j): what `events` holds,
         without building a Python object per event."""
         if self._arrays is None:
-            log, n = self._log, int(self._log.size[EVENTS])
+            log = self._run[1]
+            n = int(log.size[EVENTS])
             self._arrays = (log.t[:n], log.kind[:n], log.i[:n], log.j[:n])
         return self._arrays
 
@@ -58,7 +69,8 @@ class Result:
     def final(self):
         """The balls when everything rests (Balls; `.pocketed` marks balls off the table)."""
         if self._final is None:
-            S, st = self._scene.S, self._scene.st
+            scene = self._run[0]
+            S, st = scene.S, scene.st
             self._final = self._balls._trusted(S[:, 0:2].copy(), S[:, 2:4].copy(), S[:, 4:7].copy(), st == POCKETED,
                                                self._balls)
         return self._final
@@ -72,8 +84,9 @@ class Result:
             kinds = self.event_arrays[1]
             out = {kind: int(c) for kind, c in zip(EVENT_KINDS, np.bincount(kinds, minlength=len(EVENT_KINDS)))}
             out["events"] = int(kinds.size)
-            out.update(engine_counters(self._log) if self._counters is None else self._counters)
-            out["spin_tracked"] = self._scene.spin
+            scene, log = self._run
+            out.update(engine_counters(log) if self._counters is None else self._counters)
+            out["spin_tracked"] = scene.spin
             out["pockets"] = int(self.table.pockets.shape[0])
             out["wall_time"] = self._wall
             self._stats = out
@@ -95,11 +108,12 @@ class Result:
         wz, t; states (T, N) motion-state codes, see STATE_NAMES)."""
         times = np.asarray(times, dtype=np.float64)
         order = np.argsort(times, kind="stable")
-        n_rows, n = int(self._log.size[ROWS]), len(self._balls)
+        scene, log = self._run
+        n_rows, n = int(log.size[ROWS]), len(self._balls)
         rows = np.empty((times.size, n, 8))
         states = np.empty((times.size, n), dtype=np.int64)
-        sample(self._log.hist[:n_rows], self._log.hist_ball[:n_rows], n, np.ascontiguousarray(times[order]),
-               self._balls.radii, self._scene.params, rows, states)
+        sample(log.hist[:n_rows], log.hist_ball[:n_rows], n, np.ascontiguousarray(times[order]),
+               self._balls.radii, scene.params, rows, states)
         inverse = np.empty_like(order)
         inverse[order] = np.arange(order.size)
         return rows[inverse], states[inverse]

@@ -7,10 +7,12 @@ import os
 import sys
 import time
 
+import numpy as np
+
 from . import engine, fixed, seed_loop
-from .bundles import EVENTS, bounds_of, new_log, prepare, reach_of, scene_of
+from .bundles import EVENTS, Log, bounds_of, bounds_tuple, default_event_cap, log_arrays, reach_of
 from .config import NOSE_HEIGHT_MODELS, Physics
-from .kinds import BUFFER_FULL, COUNTERS, EVENT_CAP
+from .kinds import BUFFER_FULL, COUNTERS, EVENT_CAP, MISPLACED
 from .objects import Balls, Table
 from .placement import first_misplaced
 from .result import Result, SimulationError, cap_message
@@ -86,40 +88,51 @@ def simulate(balls: Balls, table: Table, physics: Physics | None = None, method:
         raise ValueError(f"unknown method {method!r}; available: 'events', 'fixed', 'seed'")
     if method == "events" and options:
         raise TypeError(f"method 'events' takes no options, got {sorted(options)}")
+    if method == "events":
+        return _run_events(balls, table, physics, max_events)  # its compiled call checks the scene
     check_on_table(balls, table, physics)
     if method == "fixed":
         return fixed.simulate_fixed(balls, table, physics, max_events, **options)
-    if method == "seed":
-        return seed_loop.simulate_seed(balls, table, physics, max_events, **options)
-    return _run_events(balls, table, physics, max_events)
+    return seed_loop.simulate_seed(balls, table, physics, max_events, **options)
 
 
 def _run_events(balls, table, physics, max_events):
     if not _compiled[0]:
         return _first_run(balls, table, physics, max_events)
     wall = time.perf_counter()
-    n = len(balls)
-    scene, bounds, cap = prepare(balls, table, physics, max_events)
+    n = balls.xy.shape[0]
+    cap = default_event_cap(n) if max_events is None else int(max_events)
+    if cap < 0:
+        check_on_table(balls, table, physics)  # a misplaced ball is named first, as the other methods do
+        raise ValueError(f"max_events must be >= 0, got {max_events!r}")
+    reach = reach_of(balls, table, physics.cushion)
+    args = physics.engine_args()
     # Output buffers start small (a break takes ~100 events) and grow on demand; a rerun from
-    # the start (a fresh Scene: the run works in place) is exact, the simulation being
-    # deterministic.
+    # the start (simulate_scene packs the rows afresh: the run works in place) is exact, the
+    # simulation being deterministic.
     size = min(cap, 256 + 16 * n)
     while True:
-        log = new_log(size, n + 2 * size + 2, cap, len(COUNTERS))
-        code = engine.run(scene, bounds, log)
+        S, st = np.empty((n, 8)), np.empty(n, dtype=np.int64)
+        log = log_arrays(size, n + 2 * size + 2, cap, len(COUNTERS))
+        code, spin = engine.simulate_scene((balls.xy, balls.v, balls.w, balls.pocketed, balls.radii, balls.masses,
+                                            reach, S, st), args, bounds_tuple(table), log)
         if code != BUFFER_FULL:
             break
         size = min(cap, 4 * size)
-        scene = scene_of(balls, physics, table)
+    if code == MISPLACED:
+        check_on_table(balls, table, physics)  # raises the ValueError that names the ball
     if code == EVENT_CAP:
+        log = Log._make(log)
         raise SimulationError(cap_message(cap, log, int(log.size[EVENTS])))
+    # The Scene and the Log as plain tuples: the Result makes them namedtuples if it needs them.
+    scene = (S, st, balls.radii, reach, balls.masses, args[0], args[1], args[2], spin)
     return Result(balls, physics, table, scene, log, time.perf_counter() - wall, None)
 
 
-# Whether engine.run is compiled in this process (set after the first run).
+# Whether engine.simulate_scene is compiled in this process (set after the first run).
 _compiled = [False]
-# The cold compile measured on 2-core machines, idle to loaded (docs/speed.md): the notice's range.
-COLD_COMPILE_SECONDS = (20, 45)
+# The cold compile measured on 2-core machines, idle to heavily shared (docs/speed.md): the notice's range.
+COLD_COMPILE_SECONDS = (15, 70)
 
 
 def compiled_here() -> bool:
@@ -131,7 +144,7 @@ def engine_is_cached() -> bool:
     """True if numba's on-disk cache holds the compiled engine (a run loads it in well under a
     second); False on a machine where it was never compiled (or the cache was cleared)."""
     try:
-        return os.path.exists(engine.run._cache._cache_file._index_path)
+        return os.path.exists(engine.simulate_scene._cache._cache_file._index_path)
     except AttributeError:  # numba's private layout changed: assume cached, say nothing
         return True
 
