@@ -466,7 +466,7 @@ def head_to_head(games: int = 20, seed: int = 0, env_id: str = "PoolNineBall-v0"
         env = gym.make(env_id, opponent="ghost_ball", noise=noise, agent_breaks=k % 2 == 0)
         agent = SearchAgent.from_env(env, seed=seed + k, **options)
         obs, info = env.reset(seed=seed + k)
-        first_turn, done = True, info.get("winner") is not None  # the opponent broke and ran out in reset
+        first_turn, done = True, info["winner"] >= 0  # the opponent broke and ran out in reset
         while not done:
             obs, _, terminated, truncated, info = env.step(agent.act(obs))
             seconds.append(agent.last_stats["seconds"])

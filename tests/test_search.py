@@ -122,7 +122,7 @@ def ghost_vs_ghost(games, seed):
         while not done:
             obs, _, terminated, truncated, info = env.step(agent.act(obs))
             done = terminated or truncated
-        wins += info.get("winner") == "agent"
+        wins += info["winner"] == 0  # the agent is player 0
     return wins
 
 
