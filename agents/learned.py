@@ -1,0 +1,245 @@
+"""`LearnedPlayer`: scores the search's candidate shots with a small network, one evaluation per shot, no simulation."""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from pool_env import rules
+from pool_env.game import GAME_BALLS, MAX_SPEED
+from pool_env.physics import BALL_RADIUS, Physics, Table
+from pool_env.players import Agent, game_of
+from pool_env.players import geometry as geo
+
+from .search import Candidate, SearchAgent, decode, game_state, racked
+
+WEIGHTS = Path(__file__).with_name("weights")  # the shipped networks, one file per game and noise setting
+KINDS = ("pot", "safety", "kick", "break")
+N_POCKETS = 6
+CANDIDATE_FEATURES = 33  # see `candidate_features`
+
+
+@dataclass
+class Menu:
+    """A decision's candidate shots (`agents.search.Candidate`) and their feature rows (K, F)."""
+
+    candidates: list
+    features: np.ndarray
+
+
+def roll_at_contact(v0: float, top: float, distance: float, physics) -> float:
+    """R times the forward spin of a cue ball struck at `v0` m/s with the tip `top` ball radii
+    above centre (R w = 5/2 top v0 at the strike) after `distance` m: the slip v - R w decays at
+    7/2 mu_s g (v changes at mu_s g, R w at 5/2 mu_s g, opposite ways) until it rolls, then
+    v = R w falls at mu_r g."""
+    g, mu_s, mu_r = physics.g, physics.mu_s, physics.mu_r
+    slip = v0 * (1.0 - 2.5 * top)
+    a = mu_s * g * np.sign(slip)  # the deceleration of v while sliding
+    t_slide = 2.0 * abs(slip) / (7.0 * mu_s * g)
+    x_slide = v0 * t_slide - 0.5 * a * t_slide**2
+    if distance <= x_slide:
+        disc = max(v0 * v0 - 2.0 * a * distance, 0.0)
+        t = distance / v0 if abs(a) < 1e-12 else (v0 - np.sqrt(disc)) / a
+        return 2.5 * top * v0 + 2.5 * a * t
+    v_roll = v0 - a * t_slide
+    return float(np.sqrt(max(v_roll * v_roll - 2.0 * mu_r * g * (distance - x_slide), 0.0)))
+
+
+def cue_rest(search: SearchAgent, cue, obj, shot, top: float):
+    """Where the ghost-ball model leaves the cue ball after the pot `shot` (a `Pot`) with the tip
+    `top` (`geometry.cue_path`'s last point: the contact by `geometry.collision`, no throw)."""
+    phys, R = search.physics, search.radius
+    d = shot.direction
+    to_obj = obj - cue
+    along = float(to_obj @ d)
+    off = float(d[0] * to_obj[1] - d[1] * to_obj[0])
+    travel = along - np.sqrt(max(4.0 * R * R - off * off, 0.0))  # the cue ball's run to the contact
+    ghost = cue + d * travel
+    n = geo.unit(obj - ghost)
+    t = np.array([-n[1], n[0]])
+    v = geo.speed_after(shot.speed, travel, phys)
+    roll = roll_at_contact(shot.speed, top, travel, phys)
+    _, _, cn, ct = geo.collision(v, roll, float(d @ n), float(d @ t), phys)
+    path = geo.cue_path(ghost, cn * n + ct * t, roll * d, phys, search.table, R)
+    return path[-1] if len(path) else ghost
+
+
+def next_quality(search: SearchAgent, xy, on_table, ball: int, state, rest) -> float:
+    """The best ghost-ball score (capped at 1) of the shooter's next shot if `ball` drops and the
+    cue ball stops at `rest`: 1 if that ball wins the game."""
+    if state is None:
+        return 0.0
+    if ball == (9 if state.kind == "nine_ball" else 8) or len(state.on_table) <= 1:
+        return 1.0
+    legal = rules.legal_targets(dataclasses.replace(state, on_table=state.on_table - {ball}, is_break=False))
+    xy = xy.copy()
+    xy[0] = rest
+    on = on_table.copy()
+    on[ball] = False
+    return search.quality(xy, on, sorted(legal))
+
+
+def pot_candidates(search: SearchAgent, xy, on_table, legal, state=None) -> tuple[list, list]:
+    """The ghost-ball pots of `SearchAgent` (every legal ball x pocket x arrival speed x tip, the
+    aim not jittered) with what the planner knew of each: (candidates, their planner rows)."""
+    objects = np.flatnonzero(on_table[1:]) + 1
+    geo.pocket_aims(xy, sorted(legal), objects, search.pockets, search.table, search.radius)
+    cands, rows = [], []
+    for ball in sorted(legal):
+        others = xy[objects[objects != ball]]
+        for pocket in search.pockets:
+            if not search.cuttable(xy[0], xy[ball], pocket):
+                continue
+            for k, planner in enumerate(search.planners):
+                shot = planner.plan(xy[0], ball, xy[ball], pocket, others)
+                if shot is None:
+                    continue
+                aim = geo.pocket_aim(xy[ball], pocket, search.table, search.radius, others)
+                d1 = float(np.hypot(*(xy[ball] - xy[0])))
+                d2 = float(np.hypot(*(aim[0] - xy[ball])))
+                for t, tip in enumerate(search.tips()):
+                    rest = cue_rest(search, xy[0], xy[ball], shot, tip[1])
+                    cands.append(Candidate(shot.direction, shot.speed, tip, pocket=pocket.index,
+                                           prior=shot.score * (1.0 - 0.05 * t - 0.02 * k)))
+                    rows.append((ball, pocket.index, k, shot.score, np.cos(shot.cut), d1, d2, aim[1],
+                                 float(shot.scratch_risk), rest, next_quality(search, xy, on_table, ball, state, rest)))
+    return cands, rows
+
+
+def shot_menu(search: SearchAgent, d, state) -> tuple[list, list]:
+    """Every candidate of a decision with its planner row (None for a shot that is not a pot)."""
+    if racked(d.xy, d.on_table, search.radius):
+        cands = search.break_candidates(d, state)
+        return cands, [None] * len(cands)
+    spots = [None] if d.ball_in_hand is None else search.spots(d)
+    cands, rows = [], []
+    for spot in spots:
+        xy = d.xy
+        if spot is not None:
+            xy = d.xy.copy()
+            xy[0] = spot
+        pots, pot_rows = pot_candidates(search, xy, d.on_table, d.legal, state)
+        rest = search.safeties(xy, d.on_table, d.legal)
+        if not pots:
+            rest += search.kicks(xy, d.legal)
+        cands += [dataclasses.replace(c, spot=spot) for c in pots + rest]
+        rows += pot_rows + [None] * len(rest)
+    return cands, rows
+
+
+def candidate_features(cands, rows, d, table: Table, game_ball: int, pockets) -> np.ndarray:
+    """(K, CANDIDATE_FEATURES) float32: kind (4), speed / MAX_SPEED, tip (side, top), direction
+    (cos, sin), placed, the cue ball's spot (x, y in [-1, 1]), and for a pot: the planner's score,
+    cos of the cut, cue-object and object-pocket distances (m), the pocket's open fraction,
+    scratch risk, arrival-speed index, the pocket (one-hot, 6), the object ball (x, y), is it the
+    game ball (the 9, the 8), the cue ball's predicted rest (x, y), the next shot's ghost-ball
+    quality from there (`next_quality`), the rest in a pocket."""
+    out = np.zeros((len(cands), CANDIDATE_FEATURES), dtype=np.float32)
+    scale = np.array([2.0 / table.length, 2.0 / table.width])
+    for i, (c, row) in enumerate(zip(cands, rows, strict=True)):
+        out[i, KINDS.index(c.kind)] = 1.0
+        out[i, 4] = c.speed / MAX_SPEED
+        out[i, 5:7] = c.tip
+        out[i, 7:9] = c.direction
+        cue = d.xy[0] if c.spot is None else np.asarray(c.spot)
+        out[i, 9] = c.spot is not None
+        out[i, 10:12] = cue * scale - 1.0
+        if row is not None:
+            ball, pocket, k, score, cos_cut, d1, d2, open_fraction, scratch, rest, quality = row
+            out[i, 12:20] = (min(score, 2.0), cos_cut, d1, d2, open_fraction, scratch, k, 1.0)
+            out[i, 20 + pocket] = 1.0
+            out[i, 26:28] = d.xy[ball] * scale - 1.0
+            out[i, 28] = ball == game_ball
+            out[i, 29:31] = np.asarray(rest) * scale - 1.0
+            out[i, 31] = quality
+            out[i, 32] = geo.enters_pocket(np.asarray(rest).reshape(1, 2), pockets)
+    return out
+
+
+def menu(search: SearchAgent, observation, game: str | None) -> tuple[Menu, object]:
+    """The decision's `Menu` for a game observation, and its decoded view."""
+    d = decode(observation, search.n_balls, search.table, game=game is not None)
+    state = game_state(d, game, search.rule_options) if game is not None else None
+    cands, rows = shot_menu(search, d, state)
+    game_ball = 9 if game == "nine_ball" else 8
+    feats = candidate_features(cands, rows, d, search.table, game_ball, search.pockets)
+    obs = np.broadcast_to(np.asarray(observation, dtype=np.float32), (len(cands), len(observation)))
+    return Menu(cands, np.concatenate([feats, obs], axis=1)), d
+
+
+class ValueNet:
+    """A small MLP in NumPy (tanh hidden layers, linear output) with the input standardised:
+    the arrays of `save`/`load` (an .npz file)."""
+
+    def __init__(self, arrays: dict):
+        self.arrays = {k: np.asarray(v, dtype=np.float32) for k, v in arrays.items()}
+        self.layers = sorted({int(k[1:]) for k in self.arrays if k.startswith("w")})
+
+    def __call__(self, x: np.ndarray) -> np.ndarray:
+        h = (np.asarray(x, dtype=np.float32) - self.arrays["mean"]) / self.arrays["std"]
+        for n in self.layers:
+            h = h @ self.arrays[f"w{n}"] + self.arrays[f"b{n}"]
+            if n != self.layers[-1]:
+                h = np.tanh(h)
+        return h[:, 0]
+
+    def save(self, path) -> None:
+        np.savez_compressed(path, **self.arrays)
+
+    @classmethod
+    def load(cls, path) -> ValueNet:
+        with np.load(path) as f:
+            return cls(dict(f))
+
+
+def weights_path(game: str, noise) -> Path:
+    """The shipped network of a game ("nine_ball", "eight_ball") and noise setting (None or "olympiad")."""
+    return WEIGHTS / f"{game}-{'none' if noise is None else noise}.npz"
+
+
+class LearnedPlayer(Agent):
+    """Plays a game by one network evaluation per shot: the `SearchAgent`'s candidate shots
+    (ghost-ball pots of the legal balls at three speeds with stun, follow and draw, safeties,
+    kicks, ball-in-hand spots, breaks), each described by what the ghost-ball planner knows of it
+    and the observation, are scored by a value network trained to predict the search's simulated
+    value of the shot; the best-scoring one is played. Nothing is simulated at decision time."""
+
+    name = "learned"
+
+    def __init__(self, game: str = "nine_ball", net: ValueNet | None = None, table: Table | None = None,
+                 physics: Physics | None = None, noise=None, radius: float = BALL_RADIUS):
+        if game not in GAME_BALLS:
+            raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
+        self.game = game
+        self.search = SearchAgent(game, table=table, physics=physics, noise=None, radius=radius)
+        if net is None:
+            path = weights_path(game, noise if isinstance(noise, str) or noise is None else "olympiad")
+            if not path.exists():
+                raise FileNotFoundError(f"no learned {game} player is shipped for noise {noise!r} ({path.name})")
+            net = ValueNet.load(path)
+        self.net = net
+        self.last_stats: dict = {}
+
+    @classmethod
+    def from_env(cls, env, **options) -> LearnedPlayer:
+        game = game_of(env)
+        if not game.has_rules:
+            raise TypeError("the learned player plays the games (PoolNineBall-v0, PoolEightBall-v0)")
+        noise = None if game.noise is None else "olympiad"  # the one noisy network shipped
+        return cls(game.mode, table=game.table, physics=game.physics, noise=noise, **options)
+
+    def act(self, observation) -> np.ndarray:
+        m, d = menu(self.search, observation, self.game)
+        values = self.net(m.features)
+        best = int(np.argmax(values))
+        self.last_stats = {"candidates": len(m.candidates), "value": float(values[best]),
+                           "kind": m.candidates[best].kind}
+        return self.search.action(m.candidates[best], d.ball_in_hand)
+
+
+def learned_player(env, seed=None, **options) -> LearnedPlayer:
+    """The player registry's "learned" (`pool_env.make_player("learned", env)`)."""
+    return LearnedPlayer.from_env(env, **options)

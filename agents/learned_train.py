@@ -1,0 +1,230 @@
+"""The learned player's recipe: positions from games, the search's values as labels, a fitted value net, games."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from pool_env.game import Game, game_observation
+from pool_env.players import GameGhostBallAgent
+
+from .learned import LearnedPlayer, ValueNet, menu
+from .search import SearchAgent, balls_of, game_state
+from .stats import wilson
+
+MAX_SHOTS = 100  # each player's shots in a game, as the game envs' max_shots
+EXPLORE = 0.25  # share of the data games' shots played by a random menu candidate (positions off the usual path)
+
+
+def observe(game: Game, counts) -> np.ndarray:
+    """The shooter's observation, as the game envs give it."""
+    return game_observation(game.balls, game.state, game.shooter, counts[game.shooter], MAX_SHOTS, game.table)
+
+
+def play_game(game: Game, players, seed: int, breaker: int, on_decision=None) -> int | None:
+    """One game on `game` (reset with `seed`, `breaker` breaking) between two players with `act`;
+    `on_decision(observation, shooter)` may return an action to play instead. The winner (0, 1) or None."""
+    game.reset(seed=seed, breaker=breaker)
+    counts = [0, 0]
+    while not game.over and max(counts) < MAX_SHOTS:
+        obs = observe(game, counts)
+        who = game.shooter
+        action = on_decision(obs, who) if on_decision is not None else None
+        record = game.play(players[who].act(obs) if action is None else action)
+        counts[who] += 1
+        if record.error is not None:
+            return None
+    return game.winner
+
+
+def labels(search: SearchAgent, observation, game: str) -> tuple[np.ndarray, np.ndarray]:
+    """(features (K, F), values (K,)) of a decision: the search's value of every menu candidate
+    (its judged outcome with the depth-1 lookahead, the mean over its noise draws)."""
+    m, d = menu(search, observation, game)
+    state = game_state(d, game, search.rule_options)
+    s = search.noise_samples
+    search.sim.reset(balls=balls_of(d, search.radius), state=state)
+    shots = [search.sim.decode(search.action(c, d.ball_in_hand)) for c in m.candidates]
+    records = search.sim.evaluate(shots, draws=s, seed=search.rng)
+    values = np.array([search.deep_value(*search.judge(state, r, m.candidates[k // s]))
+                       for k, r in enumerate(records)]).reshape(len(m.candidates), s).mean(axis=1)
+    return m.features, values.astype(np.float32)
+
+
+def make_dataset(game: str = "nine_ball", noise=None, games: int = 200, seed: int = 0, log=print,
+                 net: ValueNet | None = None) -> dict:
+    """Positions from games (seeds `seed`...): ghost-ball self-play, or with `net` the learned
+    player against the ghost-ball player (its own positions: a second round); a share EXPLORE of
+    the shots replaced by a random menu candidate. Every decision is labelled by `labels`.
+    Returns arrays features (N, F), values (N,), decision (N,) (which decision each row is of)."""
+    sim = Game(game, noise=noise)
+    ghost = GameGhostBallAgent.from_env(sim)
+    players = (ghost, ghost) if net is None else (LearnedPlayer(game, net, noise=noise), ghost)
+    search = SearchAgent(game, noise=noise, seed=seed)
+    rng = np.random.default_rng(seed)
+    feats, values, decision = [], [], []
+    start = time.perf_counter()
+
+    def on_decision(obs, who):
+        f, v = labels(search, obs, game)
+        feats.append(f)
+        values.append(v)
+        decision.append(np.full(len(v), len(values) - 1, dtype=np.int32))
+        if rng.random() < EXPLORE:  # a random candidate of the menu, as the search would play it
+            m, d = menu(search, obs, game)
+            return search.action(m.candidates[int(rng.integers(len(m.candidates)))], d.ball_in_hand)
+        return None
+
+    for k in range(games):
+        play_game(sim, players if k % 4 < 2 else players[::-1], seed + k, k % 2, on_decision)
+        if log is not None and (k + 1) % 10 == 0:
+            log(f"data: {k + 1}/{games} games, {len(values)} decisions, {time.perf_counter() - start:.0f} s")
+    return {"features": np.concatenate(feats), "values": np.concatenate(values),
+            "decision": np.concatenate(decision)}
+
+
+def _dataset_part(job) -> dict:
+    game, noise, games, seed, net = job
+    return make_dataset(game, noise, games, seed, log=None, net=None if net is None else ValueNet(net))
+
+
+def parallel_dataset(game: str, noise, games: int, seed: int, workers: int = 2, net: ValueNet | None = None) -> dict:
+    """`make_dataset` split over `workers` processes (seeds seed + k * games for part k), joined
+    in order: the same data whatever the number of processes finishing first."""
+    from concurrent.futures import ProcessPoolExecutor
+    from multiprocessing import get_context
+
+    share = -(-games // workers)
+    jobs = [(game, noise, min(share, games - k * share), seed + k * share, None if net is None else net.arrays)
+            for k in range(workers) if games - k * share > 0]
+    with ProcessPoolExecutor(len(jobs), mp_context=get_context("spawn")) as pool:
+        parts = list(pool.map(_dataset_part, jobs))
+    return join(parts)
+
+
+def join(parts) -> dict:
+    """Datasets one after another (decision numbers renumbered)."""
+    out, offset = {"features": [], "values": [], "decision": []}, 0
+    for part in parts:
+        out["features"].append(part["features"])
+        out["values"].append(part["values"])
+        out["decision"].append(part["decision"] + offset)
+        offset += int(part["decision"].max()) + 1 if len(part["decision"]) else 0
+    return {k: np.concatenate(v) for k, v in out.items()}
+
+
+def padded(decision: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Rows grouped by decision: (index (D, K) into the rows, mask (D, K)), K the largest menu."""
+    starts = np.flatnonzero(np.r_[True, decision[1:] != decision[:-1]])
+    sizes = np.diff(np.r_[starts, len(decision)])
+    k = np.arange(sizes.max())
+    mask = k[None, :] < sizes[:, None]
+    index = np.where(mask, starts[:, None] + k[None, :], 0)
+    return index, mask
+
+
+def decision_batches(decision: np.ndarray, size: int) -> list:
+    """Minibatches of `size` decisions of similar menu sizes (sorted by size, so little padding):
+    each (row index (B, K), mask (B, K)) as torch tensors."""
+    import torch
+
+    index, mask = padded(decision)
+    order = np.argsort(mask.sum(axis=1), kind="stable")
+    out = []
+    for i in range(0, len(order), size):
+        rows = order[i:i + size]
+        k = int(mask[rows].sum(axis=1).max())
+        out.append((torch.from_numpy(index[rows, :k]), torch.from_numpy(mask[rows, :k])))
+    return out
+
+
+def fit(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, lr: float = 2e-3,
+        temperature: float = 0.05, ce_weight: float = 0.1, log=print) -> ValueNet:
+    """A value net fitted to the labels with torch (Adam, minibatches of 64 decisions): the mean
+    squared error of the values plus the cross-entropy of each decision's choice, the softmax of
+    the predictions against the softmax of the labels at `temperature` (the ranking is what plays)."""
+    import torch
+
+    torch.manual_seed(seed)
+    x = np.asarray(data["features"], dtype=np.float32)
+    y = np.asarray(data["values"], dtype=np.float32)
+    mean, std = x.mean(axis=0), x.std(axis=0) + 1e-3
+    sizes = (x.shape[1], *hidden, 1)
+    layers = []
+    for i in range(len(sizes) - 1):
+        layers += [torch.nn.Linear(sizes[i], sizes[i + 1]), torch.nn.Tanh()]
+    model = torch.nn.Sequential(*layers[:-1])
+    opt = torch.optim.Adam(model.parameters(), lr=lr)
+    batches = decision_batches(np.asarray(data["decision"]), 64)
+    xt, yt = torch.from_numpy((x - mean) / std), torch.from_numpy(y)
+    gen = torch.Generator().manual_seed(seed)
+    for epoch in range(epochs):
+        total = 0.0
+        for b in torch.randperm(len(batches), generator=gen).tolist():
+            idx, m = batches[b]
+            pred, target = model(xt[idx])[..., 0], yt[idx]
+            mse = torch.sum(((pred - target) ** 2) * m) / m.sum()
+            logp = torch.log_softmax(torch.where(m, pred / temperature, -1e9), dim=1)
+            q = torch.softmax(torch.where(m, target / temperature, -1e9), dim=1)
+            loss = mse + torch.mean(torch.sum(-q * torch.where(m, logp, 0.0), dim=1)) * ce_weight
+            opt.zero_grad()
+            loss.backward()
+            opt.step()
+            total += float(loss.detach())
+        if log is not None and (epoch + 1) % 5 == 0:
+            log(f"fit: epoch {epoch + 1}/{epochs}, loss {total / len(batches):.4f}")
+    arrays = {"mean": mean, "std": std}
+    linear = [m for m in model if isinstance(m, torch.nn.Linear)]
+    for n, m in enumerate(linear):
+        arrays[f"w{n}"] = m.weight.detach().numpy().T.copy()
+        arrays[f"b{n}"] = m.bias.detach().numpy().copy()
+    return ValueNet(arrays)
+
+
+def regret(net: ValueNet, data: dict) -> dict:
+    """How far the net's choices fall below the best label of each decision: mean regret, the
+    share of decisions where it picks the best (within 0.01), the labels' own spread."""
+    index, mask = padded(np.asarray(data["decision"]))
+    pred = np.where(mask, net(data["features"])[index], -np.inf)
+    y = np.where(mask, data["values"][index], -np.inf)
+    chosen = y[np.arange(len(y)), np.argmax(pred, axis=1)]
+    best = y.max(axis=1)
+    mean_value = np.nanmean(np.where(mask, y, np.nan), axis=1)
+    return {"regret": float(np.mean(best - chosen)), "best_share": float(np.mean(best - chosen < 0.01)),
+            "random_regret": float(np.mean(best - mean_value)), "decisions": len(y)}
+
+
+def match(player, game: str = "nine_ball", noise=None, games: int = 400, seed: int = 1_000_000) -> dict:
+    """`player` against the ghost-ball player, game k seeded `seed + k`, the player breaking the
+    even-numbered games: wins (an unfinished game half a win), the win rate and its 95 % interval."""
+    sim = Game(game, noise=noise)
+    ghost = GameGhostBallAgent.from_env(sim)
+    wins = 0.0
+    for k in range(games):
+        first = k % 2  # the player's seat: 0 breaks
+        players = (player, ghost) if first == 0 else (ghost, player)
+        winner = play_game(sim, players, seed + k, 0)
+        wins += 0.5 if winner is None else float(winner == first)
+    lo, hi = wilson(wins, games)
+    return {"games": games, "wins": wins, "win_rate": wins / games, "ci95": (lo, hi)}
+
+
+if __name__ == "__main__":
+    import argparse
+
+    parser = argparse.ArgumentParser(description="make the learned player's data, fit it, play it")
+    parser.add_argument("--games", type=int, default=100)
+    parser.add_argument("--eval-games", type=int, default=100)
+    parser.add_argument("--noise", default=None)
+    parser.add_argument("--out", default="/tmp/learned")
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--data-only", action="store_true")
+    args = parser.parse_args()
+    data = make_dataset("nine_ball", args.noise, args.games, seed=args.seed)
+    np.savez_compressed(args.out + "-data.npz", **data)
+    if args.data_only:
+        raise SystemExit(0)
+    net = fit(data)
+    net.save(args.out + ".npz")
+    print(match(LearnedPlayer("nine_ball", net, noise=args.noise), noise=args.noise, games=args.eval_games))

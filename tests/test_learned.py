@@ -1,0 +1,89 @@
+"""agents.learned: the learned player's shot menu, its features' closed forms, the net, one evaluation per shot."""
+
+import math
+
+import numpy as np
+import pytest
+
+import pool_env
+from agents.learned import LearnedPlayer, ValueNet, roll_at_contact, weights_path
+from agents.learned_train import padded, play_game
+from pool_env.game import Game
+from pool_env.physics import Physics
+from pool_env.players import GameGhostBallAgent
+
+PHYS = Physics.standard()
+G, MU_S, MU_R = PHYS.g, PHYS.mu_s, PHYS.mu_r
+
+
+def test_a_cue_ball_struck_at_natural_roll_height_rolls_from_the_start():
+    # top = 2/5 R: R w = 5/2 * 2/5 * v0 = v0, no slip; rolling friction alone: v^2 = v0^2 - 2 mu_r g d
+    v0, d = 2.0, 0.8
+    assert roll_at_contact(v0, 0.4, d, PHYS) == pytest.approx(math.sqrt(v0 * v0 - 2 * MU_R * G * d), rel=1e-12)
+
+
+def test_a_centre_hit_gains_five_halves_of_the_speed_it_loses_while_sliding():
+    # v falls at mu_s g, R w rises at 5/2 mu_s g from 0: R w = 5/2 (v0 - v), v^2 = v0^2 - 2 mu_s g d
+    v0, d = 3.0, 0.2
+    v = math.sqrt(v0 * v0 - 2 * MU_S * G * d)
+    assert roll_at_contact(v0, 0.0, d, PHYS) == pytest.approx(2.5 * (v0 - v), rel=1e-12)
+
+
+def test_a_centre_hit_past_its_slide_rolls_at_five_sevenths_then_slows_by_rolling_friction():
+    v0 = 1.5
+    slide = 12 * v0 * v0 / (49 * MU_S * G)  # the sliding distance of a centre hit
+    d = slide + 0.5
+    expected = math.sqrt((5 / 7 * v0) ** 2 - 2 * MU_R * G * 0.5)
+    assert roll_at_contact(v0, 0.0, d, PHYS) == pytest.approx(expected, rel=1e-9)
+
+
+def test_draw_keeps_its_backspin_shrinking_linearly_in_time():
+    # top = -0.3: R w(0) = -0.75 v0, rising at 5/2 mu_s g; v0 t - mu_s g t^2 / 2 = d gives t
+    v0, d = 4.0, 0.3
+    t = (v0 - math.sqrt(v0 * v0 - 2 * MU_S * G * d)) / (MU_S * G)
+    assert roll_at_contact(v0, -0.3, d, PHYS) == pytest.approx(-0.75 * v0 + 2.5 * MU_S * G * t, rel=1e-12)
+
+
+def test_the_value_net_is_a_standardised_tanh_mlp_and_survives_a_file(tmp_path):
+    w0, b0 = np.array([[1.0, -1.0], [0.5, 2.0]]), np.array([0.1, -0.2])
+    w1, b1 = np.array([[2.0], [-3.0]]), np.array([0.5])
+    mean, std = np.array([1.0, 0.0]), np.array([2.0, 1.0])
+    net = ValueNet({"w0": w0, "b0": b0, "w1": w1, "b1": b1, "mean": mean, "std": std})
+    x = np.array([[3.0, 1.0], [-1.0, 0.5]])
+    h = np.tanh(((x - mean) / std) @ w0 + b0)
+    assert np.allclose(net(x), (h @ w1 + b1)[:, 0], atol=1e-6)
+    net.save(tmp_path / "n.npz")
+    assert np.array_equal(ValueNet.load(tmp_path / "n.npz")(x), net(x))
+
+
+def test_padded_groups_each_decisions_rows():
+    index, mask = padded(np.array([0, 0, 0, 1, 2, 2]))
+    assert mask.tolist() == [[True, True, True], [True, False, False], [True, True, False]]
+    assert index[mask].tolist() == [0, 1, 2, 3, 4, 5]
+
+
+@pytest.mark.skipif(not weights_path("nine_ball", None).exists(), reason="no shipped 9-ball network")
+def test_the_shipped_player_makes_one_net_evaluation_per_shot_and_plays_whole_games():
+    player = LearnedPlayer("nine_ball")
+    calls = []
+    net = player.net
+    player.net = lambda x: calls.append(len(x)) or net(x)
+    game = Game("nine_ball")
+    ghost = GameGhostBallAgent.from_env(game)
+    decisions = []
+    act = player.act
+    player.act = lambda obs: decisions.append(1) or act(obs)
+    winner = play_game(game, (player, ghost), seed=3, breaker=0)
+    assert winner in (0, 1) and game.over
+    assert len(calls) == len(decisions) >= 1 and all(n >= 1 for n in calls)
+    player.act = act
+    # The same observation gives the same action (nothing random at decision time).
+    game.reset(seed=5)
+    obs = pool_env.game.game_observation(game.balls, game.state, 0, 0, 100, game.table)
+    assert np.array_equal(player.act(obs), player.act(obs))
+
+
+def test_a_game_without_a_shipped_network_is_refused_by_name(monkeypatch, tmp_path):
+    monkeypatch.setattr("agents.learned.WEIGHTS", tmp_path)
+    with pytest.raises(FileNotFoundError, match="no learned eight_ball player"):
+        LearnedPlayer("eight_ball")
