@@ -46,7 +46,9 @@ class Args:
     # --- what to train ---
     env_id: str = option("PoolBreak-v0", "PoolBreak-v0 (the break: one shot), PoolBreakRun-v0 (play on), "
                          "PoolNineBall-v0 or PoolEightBall-v0 (a game against --opponent)")
-    algo: str = option("ppo", "learning algorithm", choices=("ppo", "sac"))
+    algo: str = option("ppo", "learning algorithm; value: the learned player's recipe (game envs: a value net over "
+                       "the search player's candidate shots, fitted to its simulated values; agents/learned_train.py)",
+                       choices=("ppo", "sac", "value"))
     timesteps: int = option(250_000, "total environment steps (shots) to train for")
     n_envs: int = option(2, "parallel environments")
     vec_env: str = option("native", "native: one process, every step's shots in one simulate_batch call on all "
@@ -63,6 +65,12 @@ class Args:
     ghost_ball_action: bool = option(False, "game envs: act through pool_env.envs.wrappers.GhostBallAction (choose "
                                      "ball and pocket, correct the ghost-ball aim, speed, tip, placement)")
     shaping: bool = option(False, "game envs against an opponent: +0.1 per ball pocketed legally, -0.1 per foul")
+    noise: str = option("none", "game envs: the cue's noise in every game (none, or olympiad: "
+                        "pool_env.game.NOISE_PRESETS)", choices=("none", "olympiad"))
+    # --- the learned player (--algo value) ---
+    data_games: int = option(800, "--algo value: games per labelling round (each decision's candidate shots simulated)")
+    rounds: int = option(2, "--algo value: labelling rounds (the first on ghost-ball self-play, each later one on "
+                         "the last net's games against the ghost-ball player)")
     # --- hyperparameters (PPO unless marked) ---
     learning_rate: float = option(1e-3, "optimizer step size (PPO and SAC)")
     lr_schedule: str = option("linear", "learning rate over training: constant, or linear decay to 0",
@@ -118,9 +126,9 @@ def parse_args(argv=None) -> tuple[Args, bool]:
     return args, debug
 
 
-AT_LEAST = {"timesteps": 1, "n_envs": 1, "seed": 0, "n_steps": 1, "batch_size": 2, "n_epochs": 1,
-            "eval_episodes": 1, "eval_seed": 0, "curve_points": 0, "curve_episodes": 1, "video_episodes": 0,
-            "progress_every": 0, "min_timesteps": 0}  # the least value of each numeric option (SB3: batch_size 2)
+AT_LEAST = {"data_games": 1, "rounds": 1, "timesteps": 1, "n_envs": 1, "seed": 0, "n_steps": 1, "batch_size": 2,
+            "n_epochs": 1, "eval_episodes": 1, "eval_seed": 0, "curve_points": 0, "curve_episodes": 1,
+            "video_episodes": 0, "progress_every": 0, "min_timesteps": 0}  # least values (SB3: batch_size 2)
 
 
 def check_args(args: Args) -> None:
@@ -137,6 +145,9 @@ def check_args(args: Args) -> None:
         value = getattr(args, name)
         if value is not None and not value >= least:
             raise ValueError(f"--{name.replace('_', '-')} must be >= {least}, got {value}")
+    if args.algo == "value" and not is_game(args.env_id):
+        raise ValueError(f"--algo value trains a game player: --env-id PoolNineBall-v0 or PoolEightBall-v0, "
+                         f"not {args.env_id}")
     if not args.learning_rate > 0:
         raise ValueError(f"--learning-rate must be > 0, got {args.learning_rate}")
     if not 0 <= args.gamma <= 1:
@@ -165,6 +176,8 @@ def main(args: Args) -> Path:
     needs (not the top of the file): subprocess envs re-import this file, and --help stays instant."""
     started = time.perf_counter()
     run = open_run(args)                                 # run folder, logging, the env's facts, compiled physics
+    if args.algo == "value":                             # the learned player: labelled data and a value net
+        return learned_player(args, run)
     model = make_model(args, run)                        # vectorised training envs and the PPO or SAC model
     model, curve, train_time = train(args, run, model)   # learn, keep the best checkpoint
     summary = final_evaluation(args, run, model, curve)  # every agent on the same seeds: table, verdict, results.md
@@ -179,6 +192,18 @@ def main(args: Args) -> Path:
     (run.dir / "eval.json").write_text(json.dumps(summary, indent=2))
     log.info("eval.json: %s; total wall time %.0f s", run.dir / "eval.json", summary["wall_time_s"]["total"])
     log.info("TensorBoard: tensorboard --logdir %s", run.dir / "tb")
+    log.info("run folder: %s", run.dir.resolve())
+    return run.dir
+
+
+def learned_player(args: Args, run) -> Path:
+    """`--algo value`: `agents.learned_train.recipe` in the run folder (learned.npz, learned.json)."""
+    from agents.learned_train import recipe
+
+    game = "nine_ball" if args.env_id == "PoolNineBall-v0" else "eight_ball"
+    noise = None if args.noise == "none" else args.noise
+    recipe(game, noise, args.data_games, args.rounds, run.eval_seeds, args.seed, args.n_envs, run.dir,
+           log=log.info)
     log.info("run folder: %s", run.dir.resolve())
     return run.dir
 
@@ -218,10 +243,13 @@ def open_run(args: Args) -> Run:
 
     game = is_game(args.env_id)
     env_kwargs = {"opponent": args.opponent} if game else {"spin": args.spin, "randomize_cue": args.randomize_cue}
+    if game and args.noise != "none":
+        env_kwargs["noise"] = args.noise
     train_kwargs = ({"opponent": None} if args.practice else {**env_kwargs, "shaping": args.shaping}) if game else None
     probe = quiet_env(args.env_id, **env_kwargs)
     multi_shot = probe.unwrapped.max_shots > 1
-    eval_episodes = args.eval_episodes or (200 if game else 100 if multi_shot else 1000)
+    default_episodes = 400 if args.algo == "value" else 200 if game else 100 if multi_shot else 1000
+    eval_episodes = args.eval_episodes or default_episodes
     eval_seeds = list(range(args.eval_seed, args.eval_seed + eval_episodes))
     curve_seeds = list(range(args.eval_seed + 10_000_000, args.eval_seed + 10_000_000 + args.curve_episodes))
     log.info("env %s %s, pool_env %s, algo %s, %d timesteps on %d envs", args.env_id, env_kwargs,

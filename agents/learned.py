@@ -13,13 +13,14 @@ from pool_env.game import GAME_BALLS, MAX_SPEED
 from pool_env.physics import BALL_RADIUS, Physics, Table
 from pool_env.players import Agent, game_of
 from pool_env.players import geometry as geo
+from pool_env.players.planner import D1, D2, DN, DX, DY, OK, SCORE, SCRATCH, SPEED
 
-from .search import Candidate, SearchAgent, decode, game_state, racked
+from .search import ARRIVALS, Candidate, SearchAgent, decode, game_state, legal_mask, racked
 
-WEIGHTS = Path(__file__).with_name("weights")  # the shipped networks, one file per game and noise setting
+WEIGHTS = Path(__file__).with_name("weights")  # the shipped networks, one file per game
 KINDS = ("pot", "safety", "kick", "break")
 N_POCKETS = 6
-CANDIDATE_FEATURES = 33  # see `candidate_features`
+CANDIDATE_FEATURES = 36  # see `candidate_features`
 
 
 @dataclass
@@ -48,11 +49,10 @@ def roll_at_contact(v0: float, top: float, distance: float, physics) -> float:
     return float(np.sqrt(max(v_roll * v_roll - 2.0 * mu_r * g * (distance - x_slide), 0.0)))
 
 
-def cue_rest(search: SearchAgent, cue, obj, shot, top: float):
-    """Where the ghost-ball model leaves the cue ball after the pot `shot` (a `Pot`) with the tip
-    `top` (`geometry.cue_path`'s last point: the contact by `geometry.collision`, no throw)."""
+def cue_rest(search: SearchAgent, cue, obj, d, speed: float, top: float):
+    """Where the ghost-ball model leaves the cue ball sent along `d` at `speed` m/s with the tip
+    `top` at the ball `obj` (`geometry.cue_path`'s last point: the contact by `geometry.collision`)."""
     phys, R = search.physics, search.radius
-    d = shot.direction
     to_obj = obj - cue
     along = float(to_obj @ d)
     off = float(d[0] * to_obj[1] - d[1] * to_obj[0])
@@ -60,52 +60,89 @@ def cue_rest(search: SearchAgent, cue, obj, shot, top: float):
     ghost = cue + d * travel
     n = geo.unit(obj - ghost)
     t = np.array([-n[1], n[0]])
-    v = geo.speed_after(shot.speed, travel, phys)
-    roll = roll_at_contact(shot.speed, top, travel, phys)
+    v = geo.speed_after(speed, travel, phys)
+    roll = roll_at_contact(speed, top, travel, phys)
     _, _, cn, ct = geo.collision(v, roll, float(d @ n), float(d @ t), phys)
     path = geo.cue_path(ghost, cn * n + ct * t, roll * d, phys, search.table, R)
     return path[-1] if len(path) else ghost
 
 
-def next_quality(search: SearchAgent, xy, on_table, ball: int, state, rest) -> float:
-    """The best ghost-ball score (capped at 1) of the shooter's next shot if `ball` drops and the
-    cue ball stops at `rest`: 1 if that ball wins the game."""
-    if state is None:
-        return 0.0
-    if ball == (9 if state.kind == "nine_ball" else 8) or len(state.on_table) <= 1:
-        return 1.0
-    legal = rules.legal_targets(dataclasses.replace(state, on_table=state.on_table - {ball}, is_break=False))
-    xy = xy.copy()
-    xy[0] = rest
-    on = on_table.copy()
-    on[ball] = False
-    return search.quality(xy, on, sorted(legal))
+def next_qualities(search: SearchAgent, xy, on_table, state, balls, rests) -> np.ndarray:
+    """(M,): the best ghost-ball score (capped at 1) of the shooter's next shot if ball `balls[m]`
+    drops and the cue ball stops at `rests[m]` (1 if that ball wins the game), all at once."""
+    if state is None or not len(balls):
+        return np.zeros(len(balls))
+    game_ball = 9 if state.kind == "nine_ball" else 8
+    n = len(on_table)
+    xys = np.repeat(np.asarray(xy, dtype=np.float64)[None], len(balls), axis=0)
+    xys[:, 0] = rests
+    ons = np.repeat(np.asarray(on_table, dtype=bool)[None], len(balls), axis=0)
+    ons[np.arange(len(balls)), balls] = False
+    legal = {}
+    for ball in set(int(b) for b in balls):
+        if ball != game_ball and len(state.on_table) > 1:
+            after = dataclasses.replace(state, on_table=state.on_table - {ball}, is_break=False)
+            legal[ball] = legal_mask(rules.legal_targets(after), n)
+    masks = np.array([legal.get(int(b), np.zeros(n, dtype=bool)) for b in balls])
+    q = search.plans.qualities(xys, ons, masks, 1.0)
+    return np.where([int(b) in legal for b in balls], q, 1.0)
+
+
+def first_contacts(xy, on_table, cue, directions, radius: float, table: Table) -> np.ndarray:
+    """(K, 3): for the cue ball sent from `cue` along each direction, the first object ball it
+    meets (0: none before the first rail), the distance to that contact, and the first ball it
+    meets after one reflection off that rail (0: none)."""
+    objects = np.flatnonzero(on_table[1:]) + 1
+    d = np.asarray(directions, dtype=np.float64).reshape(-1, 2)
+    out = np.zeros((len(d), 3))
+    lo, hi = np.array([radius, radius]), np.array([table.length - radius, table.width - radius])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        to_rail = np.where(d > 0, (hi - cue) / d, np.where(d < 0, (lo - cue) / d, np.inf)).min(axis=1)
+    first, dist = _first_ball(xy[objects], cue[None], d, radius)
+    out[:, 0] = np.where(dist < to_rail, objects[first] if len(objects) else 0, 0)
+    out[:, 1] = np.minimum(dist, to_rail)
+    bounce = cue + d * to_rail[:, None]
+    hit_x = np.isclose(bounce[:, 0], lo[0]) | np.isclose(bounce[:, 0], hi[0])
+    reflected = np.where(hit_x[:, None], d * [-1.0, 1.0], d * [1.0, -1.0])
+    second, dist2 = _first_ball(xy[objects], bounce, reflected, radius)
+    out[:, 2] = np.where((out[:, 0] == 0) & np.isfinite(dist2), objects[second] if len(objects) else 0, 0)
+    return out
+
+
+def _first_ball(balls, start, d, radius):
+    """(index of the first ball met, distance to the contact) of rays start + s d (K rays)."""
+    if not len(balls):
+        return np.zeros(len(d), dtype=int), np.full(len(d), np.inf)
+    rel = balls[None, :, :] - start[:, None, :]  # (K, B, 2)
+    along = rel[..., 0] * d[:, None, 0] + rel[..., 1] * d[:, None, 1]
+    perp2 = rel[..., 0] ** 2 + rel[..., 1] ** 2 - along**2
+    reach = 4.0 * radius * radius - perp2
+    contact = np.where((along > 0) & (reach > 0), along - np.sqrt(np.maximum(reach, 0.0)), np.inf)
+    first = np.argmin(contact, axis=1)
+    return first, contact[np.arange(len(d)), first]
 
 
 def pot_candidates(search: SearchAgent, xy, on_table, legal, state=None) -> tuple[list, list]:
     """The ghost-ball pots of `SearchAgent` (every legal ball x pocket x arrival speed x tip, the
     aim not jittered) with what the planner knew of each: (candidates, their planner rows)."""
-    objects = np.flatnonzero(on_table[1:]) + 1
-    geo.pocket_aims(xy, sorted(legal), objects, search.pockets, search.table, search.radius)
-    cands, rows = [], []
-    for ball in sorted(legal):
-        others = xy[objects[objects != ball]]
-        for pocket in search.pockets:
-            if not search.cuttable(xy[0], xy[ball], pocket):
-                continue
-            for k, planner in enumerate(search.planners):
-                shot = planner.plan(xy[0], ball, xy[ball], pocket, others)
-                if shot is None:
-                    continue
-                aim = geo.pocket_aim(xy[ball], pocket, search.table, search.radius, others)
-                d1 = float(np.hypot(*(xy[ball] - xy[0])))
-                d2 = float(np.hypot(*(aim[0] - xy[ball])))
-                for t, tip in enumerate(search.tips()):
-                    rest = cue_rest(search, xy[0], xy[ball], shot, tip[1])
-                    cands.append(Candidate(shot.direction, shot.speed, tip, pocket=pocket.index,
-                                           prior=shot.score * (1.0 - 0.05 * t - 0.02 * k)))
-                    rows.append((ball, pocket.index, k, shot.score, np.cos(shot.cut), d1, d2, aim[1],
-                                 float(shot.scratch_risk), rest, next_quality(search, xy, on_table, ball, state, rest)))
+    xy = np.asarray(xy, dtype=np.float64)
+    mask = legal_mask(legal, len(on_table))
+    index, plan = search.plans.pots(xy[None], np.asarray(on_table)[None], mask[None], ARRIVALS)
+    cands, rows, balls, rests = [], [], [], []
+    for i in np.flatnonzero(plan[:, OK] > 0):
+        ball, pocket, k = int(index[i, 1]), int(index[i, 2]), i % len(ARRIVALS)
+        direction, speed = np.array([plan[i, DX], plan[i, DY]]), float(plan[i, SPEED])
+        for t, tip in enumerate(search.tips()):
+            rest = cue_rest(search, xy[0], xy[ball], direction, speed, tip[1])
+            cands.append(Candidate(direction, speed, tip, pocket=pocket,
+                                   prior=float(plan[i, SCORE]) * (1.0 - 0.05 * t - 0.02 * k)))
+            rows.append([ball, pocket, k, float(plan[i, SCORE]), float(plan[i, DN]), float(plan[i, D1]),
+                         float(plan[i, D2]), float(plan[i, SCRATCH]), rest])
+            balls.append(ball)
+            rests.append(rest)
+    quality = next_qualities(search, xy, on_table, state, np.array(balls, dtype=int), np.array(rests).reshape(-1, 2))
+    for row, q in zip(rows, quality, strict=True):
+        row.append(float(q))
     return cands, rows
 
 
@@ -130,13 +167,14 @@ def shot_menu(search: SearchAgent, d, state) -> tuple[list, list]:
     return cands, rows
 
 
-def candidate_features(cands, rows, d, table: Table, game_ball: int, pockets) -> np.ndarray:
+def candidate_features(cands, rows, d, table: Table, game_ball: int, pockets, radius: float) -> np.ndarray:
     """(K, CANDIDATE_FEATURES) float32: kind (4), speed / MAX_SPEED, tip (side, top), direction
     (cos, sin), placed, the cue ball's spot (x, y in [-1, 1]), and for a pot: the planner's score,
     cos of the cut, cue-object and object-pocket distances (m), the pocket's open fraction,
     scratch risk, arrival-speed index, the pocket (one-hot, 6), the object ball (x, y), is it the
     game ball (the 9, the 8), the cue ball's predicted rest (x, y), the next shot's ghost-ball
-    quality from there (`next_quality`), the rest in a pocket."""
+    quality from there (`next_qualities`), the rest in a pocket; for every shot: the first ball
+    it meets is legal, the distance to it, the first ball met after one rail is legal."""
     out = np.zeros((len(cands), CANDIDATE_FEATURES), dtype=np.float32)
     scale = np.array([2.0 / table.length, 2.0 / table.width])
     for i, (c, row) in enumerate(zip(cands, rows, strict=True)):
@@ -148,14 +186,23 @@ def candidate_features(cands, rows, d, table: Table, game_ball: int, pockets) ->
         out[i, 9] = c.spot is not None
         out[i, 10:12] = cue * scale - 1.0
         if row is not None:
-            ball, pocket, k, score, cos_cut, d1, d2, open_fraction, scratch, rest, quality = row
-            out[i, 12:20] = (min(score, 2.0), cos_cut, d1, d2, open_fraction, scratch, k, 1.0)
+            ball, pocket, k, score, cos_cut, d1, d2, scratch, rest, quality = row
+            out[i, 12:20] = (min(score, 2.0), cos_cut, d1, d2, 0.0, scratch, k, 1.0)
             out[i, 20 + pocket] = 1.0
             out[i, 26:28] = d.xy[ball] * scale - 1.0
             out[i, 28] = ball == game_ball
             out[i, 29:31] = np.asarray(rest) * scale - 1.0
             out[i, 31] = quality
             out[i, 32] = geo.enters_pocket(np.asarray(rest).reshape(1, 2), pockets)
+    for spot in {None if c.spot is None else tuple(c.spot) for c in cands}:
+        rows_here = [i for i, c in enumerate(cands) if (None if c.spot is None else tuple(c.spot)) == spot]
+        cue = d.xy[0] if spot is None else np.asarray(spot)
+        hits = first_contacts(d.xy, d.on_table, cue, [cands[i].direction for i in rows_here], radius, table)
+        legal = np.array([int(b) in d.legal for b in hits[:, 0]])
+        legal_after = np.array([int(b) in d.legal for b in hits[:, 2]])
+        out[rows_here, 33] = legal
+        out[rows_here, 34] = np.minimum(hits[:, 1], 3.0)
+        out[rows_here, 35] = legal_after
     return out
 
 
@@ -165,7 +212,7 @@ def menu(search: SearchAgent, observation, game: str | None) -> tuple[Menu, obje
     state = game_state(d, game, search.rule_options) if game is not None else None
     cands, rows = shot_menu(search, d, state)
     game_ball = 9 if game == "nine_ball" else 8
-    feats = candidate_features(cands, rows, d, search.table, game_ball, search.pockets)
+    feats = candidate_features(cands, rows, d, search.table, game_ball, search.pockets, search.radius)
     obs = np.broadcast_to(np.asarray(observation, dtype=np.float32), (len(cands), len(observation)))
     return Menu(cands, np.concatenate([feats, obs], axis=1)), d
 
@@ -195,9 +242,10 @@ class ValueNet:
             return cls(dict(f))
 
 
-def weights_path(game: str, noise) -> Path:
-    """The shipped network of a game ("nine_ball", "eight_ball") and noise setting (None or "olympiad")."""
-    return WEIGHTS / f"{game}-{'none' if noise is None else noise}.npz"
+def weights_path(game: str) -> Path:
+    """The shipped network of a game ("nine_ball", "eight_ball"), fitted to noiseless labels and
+    played at any noise (docs/players.md gives its results at both settings)."""
+    return WEIGHTS / f"{game}.npz"
 
 
 class LearnedPlayer(Agent):
@@ -210,15 +258,15 @@ class LearnedPlayer(Agent):
     name = "learned"
 
     def __init__(self, game: str = "nine_ball", net: ValueNet | None = None, table: Table | None = None,
-                 physics: Physics | None = None, noise=None, radius: float = BALL_RADIUS):
+                 physics: Physics | None = None, radius: float = BALL_RADIUS):
         if game not in GAME_BALLS:
             raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
         self.game = game
         self.search = SearchAgent(game, table=table, physics=physics, noise=None, radius=radius)
         if net is None:
-            path = weights_path(game, noise if isinstance(noise, str) or noise is None else "olympiad")
+            path = weights_path(game)
             if not path.exists():
-                raise FileNotFoundError(f"no learned {game} player is shipped for noise {noise!r} ({path.name})")
+                raise FileNotFoundError(f"no learned {game} player is shipped ({path.name} is missing)")
             net = ValueNet.load(path)
         self.net = net
         self.last_stats: dict = {}
@@ -228,8 +276,7 @@ class LearnedPlayer(Agent):
         game = game_of(env)
         if not game.has_rules:
             raise TypeError("the learned player plays the games (PoolNineBall-v0, PoolEightBall-v0)")
-        noise = None if game.noise is None else "olympiad"  # the one noisy network shipped
-        return cls(game.mode, table=game.table, physics=game.physics, noise=noise, **options)
+        return cls(game.mode, table=game.table, physics=game.physics, **options)
 
     def act(self, observation) -> np.ndarray:
         m, d = menu(self.search, observation, self.game)

@@ -60,7 +60,7 @@ def make_dataset(game: str = "nine_ball", noise=None, games: int = 200, seed: in
     Returns arrays features (N, F), values (N,), decision (N,) (which decision each row is of)."""
     sim = Game(game, noise=noise)
     ghost = GameGhostBallAgent.from_env(sim)
-    players = (ghost, ghost) if net is None else (LearnedPlayer(game, net, noise=noise), ghost)
+    players = (ghost, ghost) if net is None else (LearnedPlayer(game, net), ghost)
     search = SearchAgent(game, noise=noise, seed=seed)
     rng = np.random.default_rng(seed)
     feats, values, decision = [], [], []
@@ -210,6 +210,39 @@ def match(player, game: str = "nine_ball", noise=None, games: int = 400, seed: i
     return {"games": games, "wins": wins, "win_rate": wins / games, "ci95": (lo, hi)}
 
 
+def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int, workers: int, out, log=print) -> dict:
+    """The learned player, start to finish: `data_games` ghost-ball self-play games labelled
+    (`parallel_dataset`), a value net fitted; then `rounds - 1` times as many games again of
+    that net against the ghost-ball player, labelled and added, the net fitted anew; the last
+    net against the ghost-ball player on `eval_seeds`. Writes the net (`learned.npz`) and the
+    result (`learned.json`) into `out`; returns the result."""
+    import json
+    import time
+    from pathlib import Path
+
+    started, net, parts, timing = time.perf_counter(), None, [], {}
+    for r in range(rounds):
+        t = time.perf_counter()
+        parts.append(parallel_dataset(game, noise, data_games, seed + 1_000_000 * r, workers, net))
+        data = join(parts)
+        timing[f"data_round_{r}"] = time.perf_counter() - t
+        log(f"round {r}: {int(data['decision'].max()) + 1} decisions labelled in {timing[f'data_round_{r}']:.0f} s")
+        t = time.perf_counter()
+        net = fit(data, seed=seed, log=log)
+        timing[f"fit_round_{r}"] = time.perf_counter() - t
+    Path(out).mkdir(parents=True, exist_ok=True)
+    net.save(Path(out) / "learned.npz")
+    t = time.perf_counter()
+    result = match(LearnedPlayer(game, net), game, noise, len(eval_seeds), int(eval_seeds[0]))
+    timing["evaluation"], timing["total"] = time.perf_counter() - t, time.perf_counter() - started
+    result = {**result, "game": game, "noise": noise, "data_games": data_games, "rounds": rounds,
+              "decisions": int(data["decision"].max()) + 1, "rows": len(data["values"]), "seconds": timing}
+    (Path(out) / "learned.json").write_text(json.dumps(result, indent=2))
+    log(f"learned player against ghost_ball: {result['wins']:g}/{result['games']} = {result['win_rate']:.1%} "
+        f"[{result['ci95'][0]:.1%}, {result['ci95'][1]:.1%}], {timing['total']:.0f} s in all")
+    return result
+
+
 if __name__ == "__main__":
     import argparse
 
@@ -220,8 +253,10 @@ if __name__ == "__main__":
     parser.add_argument("--out", default="/tmp/learned")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--data-only", action="store_true")
+    parser.add_argument("--net", default=None, help="positions from this net's games against the ghost-ball player")
     args = parser.parse_args()
-    data = make_dataset("nine_ball", args.noise, args.games, seed=args.seed)
+    net = None if args.net is None else ValueNet.load(args.net)
+    data = make_dataset("nine_ball", args.noise, args.games, seed=args.seed, net=net)
     np.savez_compressed(args.out + "-data.npz", **data)
     if args.data_only:
         raise SystemExit(0)

@@ -62,7 +62,7 @@ def test_padded_groups_each_decisions_rows():
     assert index[mask].tolist() == [0, 1, 2, 3, 4, 5]
 
 
-@pytest.mark.skipif(not weights_path("nine_ball", None).exists(), reason="no shipped 9-ball network")
+@pytest.mark.skipif(not weights_path("nine_ball").exists(), reason="no shipped 9-ball network")
 def test_the_shipped_player_makes_one_net_evaluation_per_shot_and_plays_whole_games():
     player = LearnedPlayer("nine_ball")
     calls = []
@@ -85,5 +85,29 @@ def test_the_shipped_player_makes_one_net_evaluation_per_shot_and_plays_whole_ga
 
 def test_a_game_without_a_shipped_network_is_refused_by_name(monkeypatch, tmp_path):
     monkeypatch.setattr("agents.learned.WEIGHTS", tmp_path)
-    with pytest.raises(FileNotFoundError, match="no learned eight_ball player"):
+    with pytest.raises(FileNotFoundError, match="no learned eight_ball player is shipped"):
         LearnedPlayer("eight_ball")
+
+
+def test_the_recipe_runs_end_to_end_and_writes_its_net_and_result(tmp_path):
+    import json
+
+    import train
+
+    code = train.cli(["--algo", "value", "--env-id", "PoolNineBall-v0", "--data-games", "2", "--rounds", "2",
+                      "--eval-episodes", "2", "--n-envs", "1", "--out", str(tmp_path), "--run-name", "r",
+                      "--no-progress-bar"])
+    assert code == 0
+    result = json.loads((tmp_path / "r" / "learned.json").read_text())
+    assert result["games"] == 2 and 0 <= result["wins"] <= 2 and result["rounds"] == 2 and result["decisions"] >= 2
+    net = ValueNet.load(tmp_path / "r" / "learned.npz")
+    assert net.arrays["w0"].shape[0] == net.arrays["mean"].shape[0]
+
+
+def test_the_recipe_refuses_a_break_env_in_one_line():
+    import subprocess
+    import sys
+
+    out = subprocess.run([sys.executable, "train.py", "--algo", "value", "--env-id", "PoolBreak-v0"],
+                         capture_output=True, text=True)
+    assert out.returncode == 2 and len(out.stderr.strip().splitlines()) == 1 and "PoolNineBall-v0" in out.stderr
