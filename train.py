@@ -145,6 +145,9 @@ def check_args(args: Args) -> None:
         value = getattr(args, name)
         if value is not None and not value >= least:
             raise ValueError(f"--{name.replace('_', '-')} must be >= {least}, got {value}")
+    if args.algo == "value" and args.seed + args.rounds * 100_000 > args.eval_seed:
+        raise ValueError(f"--algo value: the labelled games' seeds (--seed {args.seed} + 100,000 a round) would reach "
+                         f"the evaluation's (--eval-seed {args.eval_seed})")
     if args.algo == "value" and not is_game(args.env_id):
         raise ValueError(f"--algo value trains a game player: --env-id PoolNineBall-v0 or PoolEightBall-v0, "
                          f"not {args.env_id}")
@@ -252,9 +255,13 @@ def open_run(args: Args) -> Run:
     eval_episodes = args.eval_episodes or default_episodes
     eval_seeds = list(range(args.eval_seed, args.eval_seed + eval_episodes))
     curve_seeds = list(range(args.eval_seed + 10_000_000, args.eval_seed + 10_000_000 + args.curve_episodes))
-    log.info("env %s %s, pool_env %s, algo %s, %d timesteps on %d envs", args.env_id, env_kwargs,
-             pool_env.__version__, args.algo.upper(), args.timesteps, args.n_envs)
-    if game:
+    if args.algo == "value":
+        log.info("env %s %s, pool_env %s, the learned player: %d rounds of %d labelled games on %d processes",
+                 args.env_id, env_kwargs, pool_env.__version__, args.rounds, args.data_games, args.n_envs)
+    else:
+        log.info("env %s %s, pool_env %s, algo %s, %d timesteps on %d envs", args.env_id, env_kwargs,
+                 pool_env.__version__, args.algo.upper(), args.timesteps, args.n_envs)
+    if game and args.algo != "value":
         log.info("training envs %s%s", train_kwargs, ", through GhostBallAction" if args.ghost_ball_action else "")
     # Compile the physics (or load it from numba's cache) once, here, with a word on a first
     # run, rather than in each worker process behind a frozen progress bar.

@@ -10,6 +10,7 @@ them alike:
 | `GhostBallAgent(table, physics, spin)` | breaks, then pots by the ghost-ball method (multi-shot env) |
 | `GameGhostBallAgent(game, table, physics)` | the game envs' rule-aware ghost-ball player (their default opponent) |
 | `SearchAgent.from_env(env, budget, seed)` | simulates candidate shots in a batch, plays the best by the rules |
+| `LearnedPlayer.from_env(env)` | scores the search's candidate shots with a shipped value net (9-ball) |
 | `SB3Agent(model)` / `SB3Agent.load(path)` | a Stable-Baselines3 model; `load_model` reads the algorithm from the zip |
 
 ```python
@@ -26,11 +27,13 @@ print(evaluate(agent, "PoolBreakRun-v0", seeds=range(20))["pocketed_per_episode"
 from pool_env.players import Agent, BreakAgent, GameGhostBallAgent, GhostBallAgent, Pot, RandomAgent
 
 from .evaluate import baselines, evaluate, format_table, heuristic_for, paired_difference, play_episode, summarize
+from .learned import LearnedPlayer
 from .sb3 import SB3Agent, algorithm_of, load_model
 from .search import SearchAgent
 
 __all__ = [
-    "Agent", "RandomAgent", "BreakAgent", "GhostBallAgent", "GameGhostBallAgent", "SearchAgent", "Pot", "SB3Agent",
+    "Agent", "RandomAgent", "BreakAgent", "GhostBallAgent", "GameGhostBallAgent", "SearchAgent", "LearnedPlayer", "Pot",
+    "SB3Agent",
     "load_model", "algorithm_of",
     "evaluate", "play_episode", "summarize", "paired_difference", "format_table", "baselines", "heuristic_for",
 ]

