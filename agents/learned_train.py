@@ -2,7 +2,11 @@
 
 from __future__ import annotations
 
+import json
 import time
+from concurrent.futures import ProcessPoolExecutor
+from multiprocessing import get_context
+from pathlib import Path
 
 import numpy as np
 
@@ -93,9 +97,6 @@ def _dataset_part(job) -> dict:
 def parallel_dataset(game: str, noise, games: int, seed: int, workers: int = 2, net: ValueNet | None = None) -> dict:
     """`make_dataset` split over `workers` processes (seeds seed + k * games for part k), joined
     in order: the same data whatever the number of processes finishing first."""
-    from concurrent.futures import ProcessPoolExecutor
-    from multiprocessing import get_context
-
     share = -(-games // workers)
     jobs = [(game, noise, min(share, games - k * share), seed + k * share, None if net is None else net.arrays)
             for k in range(workers) if games - k * share > 0]
@@ -213,10 +214,6 @@ def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int
     that net against the ghost-ball player, labelled and added, the net fitted anew; the last
     net against the ghost-ball player on `eval_seeds`. Writes the net (`learned.npz`) and the
     result (`learned.json`) into `out`; returns the result."""
-    import json
-    import time
-    from pathlib import Path
-
     started, net, parts, timing = time.perf_counter(), None, [], {}
     for r in range(rounds):
         t = time.perf_counter()
