@@ -41,7 +41,7 @@ CASES = [
     ("train-timesteps-negative", (*TRAIN, "--timesteps", "-5"), ["--timesteps must be >= 1, got -5"], []),
     ("train-env-id", (*TRAIN, "--env-id", "PoolBrake-v0"), ["--env-id PoolBrake-v0", "PoolBreak-v0"], []),
     ("tournament-typo", (*TOURNAMENT, "--players", "random,ghost_ball,serch"),
-     ["unknown player 'serch'", "ghost_ball, random, search"], []),
+     ["unknown player 'serch'", "ghost_ball, learned, random, search"], []),
     ("tournament-one-left", (*TOURNAMENT, "--players", "random,serch"), ["unknown player 'serch'"], []),
     ("tournament-one-player", (*TOURNAMENT, "--players", "random"), ["at least two players, got random"], []),
     ("tournament-games-0", (*TOURNAMENT, "--games", "0"), ["--games must be >= 1, got 0"], []),
