@@ -145,9 +145,11 @@ def check_args(args: Args) -> None:
         value = getattr(args, name)
         if value is not None and not value >= least:
             raise ValueError(f"--{name.replace('_', '-')} must be >= {least}, got {value}")
-    if args.algo == "value" and args.seed + args.rounds * 100_000 > args.eval_seed:
-        raise ValueError(f"--algo value: the labelled games' seeds (--seed {args.seed} + 100,000 a round) would reach "
-                         f"the evaluation's (--eval-seed {args.eval_seed})")
+    from agents.learned_train import ROUND_SEEDS
+
+    if args.algo == "value" and args.seed + args.rounds * ROUND_SEEDS > args.eval_seed:
+        raise ValueError(f"--algo value: the labelled games' seeds (--seed {args.seed} + {ROUND_SEEDS:,} a round) "
+                         f"would reach the evaluation's (--eval-seed {args.eval_seed})")
     if args.algo == "value" and not is_game(args.env_id):
         raise ValueError(f"--algo value trains a game player: --env-id PoolNineBall-v0 or PoolEightBall-v0, "
                          f"not {args.env_id}")

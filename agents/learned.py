@@ -19,7 +19,6 @@ from .search import ARRIVALS, Candidate, SearchAgent, decode, game_state, legal_
 
 WEIGHTS = Path(__file__).with_name("weights")  # the shipped networks, one file per game
 KINDS = ("pot", "safety", "kick", "break")
-N_POCKETS = 6
 CANDIDATE_FEATURES = 36  # see `candidate_features`
 
 
@@ -170,8 +169,9 @@ def shot_menu(search: SearchAgent, d, state) -> tuple[list, list]:
 def candidate_features(cands, rows, d, table: Table, game_ball: int, pockets, radius: float) -> np.ndarray:
     """(K, CANDIDATE_FEATURES) float32: kind (4), speed / MAX_SPEED, tip (side, top), direction
     (cos, sin), placed, the cue ball's spot (x, y in [-1, 1]), and for a pot: the planner's score,
-    cos of the cut, cue-object and object-pocket distances (m), the pocket's open fraction,
-    scratch risk, arrival-speed index, the pocket (one-hot, 6), the object ball (x, y), is it the
+    cos of the cut, cue-object and object-pocket distances (m), a slot kept at 0 (the shipped
+    net's layout has it: the batched planner gives no open fraction), scratch risk,
+    arrival-speed index, the pocket (one-hot, 6), the object ball (x, y), is it the
     game ball (the 9, the 8), the cue ball's predicted rest (x, y), the next shot's ghost-ball
     quality from there (`next_qualities`), the rest in a pocket; for every shot: the first ball
     it meets is legal, the distance to it, the first ball met after one rail is legal."""

@@ -43,9 +43,9 @@ def play_game(game: Game, players, seed: int, breaker: int, on_decision=None) ->
     return game.winner
 
 
-def labels(search: SearchAgent, observation, game: str) -> tuple[np.ndarray, np.ndarray]:
-    """(features (K, F), values (K,)) of a decision: the search's value of every menu candidate
-    (its judged outcome with the depth-1 lookahead, the mean over its noise draws)."""
+def labels(search: SearchAgent, observation, game: str) -> tuple:
+    """(the decision's `Menu`, its decoded view, values (K,)): the search's value of every menu
+    candidate (its judged outcome with the depth-1 lookahead, the mean over its noise draws)."""
     m, d = menu(search, observation, game)
     state = game_state(d, game, search.rule_options)
     s = search.noise_samples
@@ -54,7 +54,7 @@ def labels(search: SearchAgent, observation, game: str) -> tuple[np.ndarray, np.
     records = search.sim.evaluate(shots, draws=s, seed=search.rng)
     values = np.array([search.deep_value(*search.judge(state, r, m.candidates[k // s]))
                        for k, r in enumerate(records)]).reshape(len(m.candidates), s).mean(axis=1)
-    return m.features, values.astype(np.float32)
+    return m, d, values.astype(np.float32)
 
 
 def make_dataset(game: str = "nine_ball", noise=None, games: int = 200, seed: int = 0, log=print,
@@ -72,12 +72,11 @@ def make_dataset(game: str = "nine_ball", noise=None, games: int = 200, seed: in
     start = time.perf_counter()
 
     def on_decision(obs, who):
-        f, v = labels(search, obs, game)
-        feats.append(f)
+        m, d, v = labels(search, obs, game)
+        feats.append(m.features)
         values.append(v)
         decision.append(np.full(len(v), len(values) - 1, dtype=np.int32))
         if rng.random() < EXPLORE:  # a random candidate of the menu, as the search would play it
-            m, d = menu(search, obs, game)
             return search.action(m.candidates[int(rng.integers(len(m.candidates)))], d.ball_in_hand)
         return None
 
@@ -95,8 +94,8 @@ def _dataset_part(job) -> dict:
 
 
 def parallel_dataset(game: str, noise, games: int, seed: int, workers: int = 2, net: ValueNet | None = None) -> dict:
-    """`make_dataset` split over `workers` processes (seeds seed + k * games for part k), joined
-    in order: the same data whatever the number of processes finishing first."""
+    """`make_dataset` split over `workers` processes (part k: the games seeded from seed + k *
+    ceil(games / workers)), joined in order: the same data whatever process finishes first."""
     share = -(-games // workers)
     jobs = [(game, noise, min(share, games - k * share), seed + k * share, None if net is None else net.arrays)
             for k in range(workers) if games - k * share > 0]
