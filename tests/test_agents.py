@@ -207,26 +207,3 @@ def test_evaluation_is_deterministic_and_complete():
     for key in ("reward", "pocketed_per_shot", "scratch_rate", "shots_per_episode"):
         assert np.isfinite(first[key]["mean"])
     assert first["episodes"] == 30 and len(first["per_episode"]) == 30
-
-
-def test_the_batched_pocket_aims_are_the_single_ones():
-    """geometry.pocket_aims (every ball x pocket at once, every rail measured) gives what one
-    pocket_aim call each gives (the rails near the path only), on random layouts."""
-    from pool_env.physics import BALL_RADIUS, Table
-
-    table = Table.eight_foot()
-    pockets = geo.pockets_of(table)
-    rng = np.random.default_rng(5)
-    for _ in range(25):
-        xy = np.column_stack([rng.uniform(0.05, 2.19, 16), rng.uniform(0.05, 1.07, 16)])
-        objects = np.sort(rng.choice(np.arange(1, 16), size=int(rng.integers(2, 16)), replace=False))
-        geo.forget_aims()
-        single = {(b, p.index): geo.pocket_aim(xy[b], p, table, BALL_RADIUS, xy[objects[objects != b]])
-                  for b in objects for p in pockets}
-        geo.forget_aims()
-        geo.pocket_aims(xy, list(objects), objects, pockets, table, BALL_RADIUS)
-        for (b, k), want in single.items():
-            got = geo.pocket_aim(xy[b], pockets[k], table, BALL_RADIUS, xy[objects[objects != b]])
-            assert (want is None) == (got is None)
-            if want is not None:
-                assert np.array_equal(want[0], got[0]) and want[1] == got[1]

@@ -130,68 +130,14 @@ def pockets_of(table: Table) -> list[Pocket]:
             for k, ((x, y, r), mouth) in enumerate(zip(table.pockets, table.mouths, strict=True))]
 
 
-_AIMS: dict = {}  # pocket_aim's results by its inputs: a decision asks the same ones many times
-AIM_CACHE = 20_000  # entries kept (the cache is emptied when full)
-
-
-def forget_aims() -> None:
-    """Empty `pocket_aim`'s store of answers (they stay right: it is a pure function; for tests and memory)."""
-    _AIMS.clear()
-
-
 def pocket_aim(obj, pocket: Pocket, table: Table, radius: float, obstacles, samples: int = 21):
     """Where to send a ball at `obj` into `pocket`: the middle of the widest run of points on
     the mouth chord that the ball's centre reaches without touching a jaw, a rail or another
-    ball. Returns (aim point, fraction of the mouth that is open) or None if none is. A pure
-    function of its inputs, so its answers are kept (a player planning from several cue-ball
-    spots asks for the same object ball, pocket and obstacles again)."""
+    ball. Returns (aim point, fraction of the mouth that is open) or None if none is (the
+    scalar reference of `planner.ShotPlanner.aims`)."""
     obj = np.asarray(obj, dtype=np.float64)
     obstacles = np.asarray(obstacles, dtype=np.float64).reshape(-1, 2)
-    key = (obj.tobytes(), pocket.index, pocket.jaw_a.tobytes(), pocket.jaw_b.tobytes(), id(table), float(radius),
-           obstacles.tobytes(), samples)
-    found = _AIMS.get(key)
-    if found is None:
-        if len(_AIMS) >= AIM_CACHE:
-            _AIMS.clear()
-        found = _AIMS[key] = (_pocket_aim(obj, pocket, table, radius, obstacles, samples), table)
-    return found[0]
-
-
-def pocket_aims(xy, balls, objects, pockets: list[Pocket], table: Table, radius: float, samples: int = 21) -> None:
-    """`pocket_aim` of every ball of `balls` into every pocket of `pockets`, the obstacles of each
-    being the other balls of `objects` (object balls on the table, by number; `xy` every ball's
-    position), computed in one vectorised pass and kept, so that the planner's calls find them.
-    The same answers as one call each (every rail is measured here: a far one changes no verdict)."""
-    todo = []
-    for ball in balls:
-        obj = np.asarray(xy[ball], dtype=np.float64)
-        obstacles = np.asarray(xy[objects[objects != ball]], dtype=np.float64).reshape(-1, 2)
-        keys = [(obj.tobytes(), p.index, p.jaw_a.tobytes(), p.jaw_b.tobytes(), id(table), float(radius),
-                 obstacles.tobytes(), samples) for p in pockets]
-        if any(key not in _AIMS for key in keys):
-            todo.append((ball, obj, keys))
-    if not todo:
-        return
-    if len(_AIMS) >= AIM_CACHE - len(todo) * len(pockets):
-        _AIMS.clear()
-    lams = np.linspace(0.05, 0.95, samples)
-    ends = np.array([[p.jaw_a, p.jaw_b] for p in pockets])  # (P, 2, 2)
-    points = ends[:, None, 0] + lams[None, :, None] * (ends[:, None, 1] - ends[:, None, 0])  # (P, S, 2)
-    objs = np.array([obj for _, obj, _ in todo])  # (B, 2)
-    rails = table.rails
-    to_rails = segments_distance(objs[:, None, None, None, :], points[None, :, :, None, :],
-                                 rails[None, None, None, :, 0:2], rails[None, None, None, :, 2:4])
-    ok = to_rails.min(axis=-1, initial=np.inf) >= 1.05 * radius  # (B, P, S)
-    on = np.asarray(xy[objects], dtype=np.float64).reshape(-1, 2)
-    if on.shape[0] > 1:
-        to_balls = point_segment_distance(on[None, None, None, :, :], objs[:, None, None, None, :],
-                                          points[None, :, :, None, :])  # (B, P, S, O)
-        itself = np.array([[ball == other for other in objects] for ball, _, _ in todo])  # (B, O)
-        to_balls[np.broadcast_to(itself[:, None, None, :], to_balls.shape)] = np.inf
-        ok &= to_balls.min(axis=-1) >= 2.04 * radius
-    for b, (_, _, keys) in enumerate(todo):
-        for k, pocket in enumerate(pockets):
-            _AIMS[keys[k]] = (_widest_run(ok[b, k], lams, pocket, samples), table)
+    return _pocket_aim(obj, pocket, table, radius, obstacles, samples)
 
 
 def _rails_near(rails, obj, pocket, reach):
@@ -225,7 +171,6 @@ def _widest_run(ok, lams, pocket, samples):
     k = int(np.argmax(stops - starts))
     middle = 0.5 * (lams[starts[k]] + lams[stops[k] - 1])
     point = pocket.jaw_a + middle * (pocket.jaw_b - pocket.jaw_a)
-    point.flags.writeable = False  # kept and shared (see pocket_aim)
     return point, (stops[k] - starts[k]) / samples
 
 

@@ -1,6 +1,6 @@
 """The ghost-ball planner over arrays: every (position, ball, pocket) candidate in two compiled passes.
 
-The formulas are those of `geometry` (the pocket windows of `pocket_aims`, `start_speed`,
+The formulas are those of `geometry` (the pocket windows of `pocket_aim`, `start_speed`,
 `forward_spin_after`, `collision`, `path_clear`, `cue_path` and `enters_pocket`), written
 once per candidate inside numba loops (`plan_kernels`): a decision plans every ball into
 every pocket, from every cue-ball spot it considers, in two calls (`ShotPlanner.aims`,
