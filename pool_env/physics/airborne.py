@@ -165,13 +165,13 @@ def _rail_entry(here, r, off, rail, horizon, g):
     x, y, vx, vy, z, vz = here
     s0 = rail_gap(rail, x, y, 0.0)
     s1 = rail[4] * vx + rail[5] * vy
-    if s0 < 0.0 or s0 + min(s1, 0.0) * horizon > r:  # behind it, or never within R of its line
+    if s0 + min(s1, 0.0) * horizon > r:  # never within R of its line
         return np.inf, False
     lo, hi = _alongside_span(rail, here, horizon)
-    if lo > hi:
+    sa = s0 + s1 * lo
+    if lo > hi or sa < 0.0:  # never alongside, or behind it when alongside (a facing's line runs on)
         return np.inf, False
     # Touching the edge from lo on: s^2 + (z - off)^2 - R^2, s = sa + s1 tau, z - off = d0 + d1 tau + d2 tau^2.
-    sa = s0 + s1 * lo
     d0, d1, d2 = z + (vz - 0.5 * g * lo) * lo - off, vz - g * lo, -0.5 * g
     dist = math.hypot(sa, d0)
     tau = np.inf
@@ -272,21 +272,27 @@ def drop(row, po, bounds):
 
 
 @helper
-def cushion_bounce(row, radius, reach, params, bounds, c):
-    """An airborne ball (row at the contact) touching cushion c (a rail's or a facing's nose
-    edge by row, else a jaw tip): restitution e_c along the 3D normal from the edge (or the
-    tip's sphere) to the centre, no friction, spin kept."""
+def _cushion_normal(row, radius, reach, bounds, c):
+    """The unit 3D normal from cushion c (a rail's or a facing's nose edge by row, else a jaw
+    tip's sphere) to the centre of a ball touching it (row at the contact)."""
     n_rails = bounds.rails.shape[0]
+    off = edge_offset(radius, reach, bounds.height)
     if c < n_rails:
         rail = bounds.rails[c]
         s = rail_gap(rail, row[X], row[Y], 0.0)
-        dz = row[Z] - edge_offset(radius, reach, bounds.height)
-        nx, ny, nz = s * rail[4], s * rail[5], dz
+        nx, ny, nz = s * rail[4], s * rail[5], row[Z] - off
     else:
         jaw = bounds.jaws[c - n_rails]
-        nx, ny, nz = row[X] - jaw[0], row[Y] - jaw[1], row[Z] - edge_offset(radius, reach, bounds.height)
+        nx, ny, nz = row[X] - jaw[0], row[Y] - jaw[1], row[Z] - off
     norm = math.sqrt(nx * nx + ny * ny + nz * nz)
-    nx, ny, nz = nx / norm, ny / norm, nz / norm
+    return nx / norm, ny / norm, nz / norm
+
+
+@helper
+def cushion_bounce(row, radius, reach, params, bounds, c):
+    """An airborne ball (row at the contact) touching cushion c: restitution e_c along the 3D
+    normal from the edge (or the tip's sphere) to the centre, no friction, spin kept."""
+    nx, ny, nz = _cushion_normal(row, radius, reach, bounds, c)
     vn = row[VX] * nx + row[VY] * ny + row[VZ] * nz
     if vn >= 0.0:
         return
@@ -294,6 +300,27 @@ def cushion_bounce(row, radius, reach, params, bounds, c):
     row[VX] -= k * nx
     row[VY] -= k * ny
     row[VZ] -= k * nz
+
+
+@helper
+def perch(scene, bounds, work, now, i, c):
+    """Whether airborne ball i, meeting cushion c at `now` from above, stays on the rail: its
+    rebound along the normal n would rise less than BOUNCE_STOP_HEIGHT against gravity's part
+    g n_z (WPA: a ball that comes to rest other than on the bed is off the table; the rail's
+    top is not modelled, and balls bouncing ever lower on a nose would never end). If so it
+    is stopped there and marked off the table (the caller records "ball_off_table", j = c)."""
+    S, st, R, params = scene.S, scene.st, scene.R, scene.params
+    state_at(S[i], st[i], now, R[i], params, work.row)
+    nx, ny, nz = _cushion_normal(work.row, R[i], scene.Rc[i], bounds, c)
+    vn = params[P_E_C] * (work.row[VX] * nx + work.row[VY] * ny + work.row[VZ] * nz)
+    if nz <= 0.0 or vn * vn >= 2.0 * params[P_G] * nz * BOUNCE_STOP_HEIGHT:
+        return False
+    copy_row(S[i], work.row)
+    drop(S[i], np.int64(0), bounds)
+    st[i] = POCKETED
+    work.touched[0] = i
+    work.rec_a[0], work.rec_b[0] = i, c
+    return True
 
 
 @helper

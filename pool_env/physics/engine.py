@@ -31,6 +31,7 @@ from .kinds import (
     AIRBORNE,
     BALL_BALL,
     BALL_CUSHION,
+    BALL_OFF_TABLE,
     BALL_POCKET,
     BUFFER_FULL,
     DONE,
@@ -161,6 +162,8 @@ def _resolve(scene, bounds, sched, work, log, now, event):
         contacts.remember_meetings(sched, work, n_rec, now)
         return kind, n_rec, n_touched
     if kind == BALL_CUSHION:
+        if st[bi] == AIRBORNE and airborne.perch(scene, bounds, work, now, bi, bj):
+            return BALL_OFF_TABLE, 1, 1
         return _resolve_cushions(scene, bounds, sched, work, log, now, event)
     work.touched[0] = bi
     work.rec_a[0], work.rec_b[0] = bi, bj
