@@ -45,6 +45,7 @@ from .kinds import (
     BALL_POCKET,
     BALL_TABLE,
     C_AIR,
+    NO_EVENT,
     POCKETED,
     T0,
     VX,
@@ -60,7 +61,7 @@ from .kinds import (
 from .motion import P_E_B, P_E_C, P_E_T, P_G, P_MU_T, copy_row, slip, state_at, trajectory
 from .placement import on_playing_area
 from .roots import first_entry
-from .tolerances import BOUNCE_STOP_HEIGHT, CONTACT_TOLERANCE, MIN_APPROACH, MIN_DEPTH
+from .tolerances import BOUNCE_STOP_HEIGHT, CONTACT_TOLERANCE, GENTLE_TIME, MIN_APPROACH, MIN_DEPTH
 
 
 @kernel
@@ -364,4 +365,24 @@ def resolve_pair(scene, work, now, bi, bj):
         jn = -(1.0 + params[P_E_B]) * vn / inv
         _kick(a, st[bi], -jn, M[bi], n, n[2] > 0.0)
         _kick(b, st[bj], jn, M[bj], n, n[2] < 0.0)
+    if _perched(st[bi], st[bj], n[2], -vn * params[P_E_B], params[P_G]):
+        return NO_EVENT, np.int64(0), np.int64(0), False
     return BALL_BALL, np.int64(1), np.int64(2), False
+
+
+@helper
+def _perched(st_i, st_j, nz, rebound, g):
+    """Whether a ball in the air has come to rest on top of a ball on the cloth: it sits on
+    the upper side (its normal's vertical part nz, from the lower ball's centre, > 0) and
+    gravity's part g nz would bring its rebound along the normal back within GENTLE_TIME
+    (bounces shrinking towards rest; a rebound that is small only because the lower ball
+    was knocked back into it at once is not this). On a convex ball it would roll off, a
+    constrained motion the engine does not model (engine.run stops with PERCHED: simulate
+    raises NotModelledError)."""
+    if st_i == AIRBORNE and st_j != AIRBORNE:
+        up = -nz  # bi above bj when the normal from bi to bj points down
+    elif st_j == AIRBORNE and st_i != AIRBORNE:
+        up = nz
+    else:
+        return False
+    return up > 0.0 and 2.0 * rebound < g * up * GENTLE_TIME

@@ -38,6 +38,7 @@ from .kinds import (
     EVENT_CAP,
     MISPLACED,
     NO_EVENT,
+    PERCHED,
     POCKETED,
     ROW_WIDTH,
     T0,
@@ -154,6 +155,11 @@ def _resolve(scene, bounds, sched, work, log, now, event):
     _, kind, bi, bj = event
     if kind == BALL_BALL:
         kind, n_rec, n_touched, grouped = contacts.resolve_ball_ball(scene, bounds, sched, work, now, bi, bj, kind)
+        if kind == NO_EVENT:  # a ball perched on another (airborne._perched): the event kept, as past the cap
+            e = log.size[EVENTS]
+            log.t[e], log.kind[e], log.i[e], log.j[e] = event[0], BALL_BALL, bi, bj
+            log.size[CODE] = PERCHED
+            return NO_EVENT, 0, 0
         if grouped:
             if not _room(log, (event[0], kind, bi, bj), n_rec, n_touched):
                 return NO_EVENT, 0, 0
