@@ -174,3 +174,15 @@ def test_elevated_breaks_keep_every_invariant():
         balls = strike(rack(TABLE, seed=seed), force=(180.0, 5.0), offset=(0.1, -0.2), elevation=math.radians(degrees))
         _, violations = run_checked(balls, TABLE, STANDARD, rerun=True)
         assert violations == []
+
+
+def test_a_ball_in_the_air_cannot_be_struck():
+    with pytest.raises(ValueError, match="in the air"):
+        strike(Balls([[1.0, 0.5]], z=[0.01]), force=(10.0, 0.0))
+
+
+def test_striking_one_ball_keeps_another_in_the_air():
+    balls = Balls([[1.0, 0.5], [1.5, 0.5]], z=[0.0, 0.02], vz=[0.0, -0.1])
+    for elevation in (0.0, 0.3):
+        out = strike(balls, force=(10.0, 0.0), elevation=elevation)
+        assert out.z[1] == 0.02 and out.vz[1] == -0.1

@@ -94,6 +94,8 @@ def strike(balls: Balls, force, offset=(0.0, 0.0), contact_time=0.005, ball=0, e
         raise ValueError(f"there is no ball {ball} to strike (have {len(balls)})")
     if balls.pocketed[ball]:
         raise ValueError(f"ball {ball} is pocketed and cannot be struck")
+    if balls.airborne[ball]:
+        raise ValueError(f"ball {ball} is in the air and cannot be struck")
     m, r = balls.masses[ball], balls.radii[ball]
     v_d = magnitude * contact_time / m
     v_l = v_d * squirt_tangent(side, top, m, end_mass)
@@ -107,7 +109,7 @@ def strike(balls: Balls, force, offset=(0.0, 0.0), contact_time=0.005, ball=0, e
     w = balls.w.copy()
     v[ball] = (vx, vy)
     w[ball] = (-k * top * vy, k * top * vx, k * (side * v_d - depth * v_l))
-    return Balls._trusted(balls.xy, v, w, balls.pocketed, balls)
+    return Balls._trusted(balls.xy, v, w, balls.pocketed, balls, balls.air)
 
 
 def squirt_tangent(side, top, mass, end_mass):
@@ -151,8 +153,8 @@ def _elevated(balls, ball, aim, tip, speeds, physics):
     v, w = balls.v.copy(), balls.w.copy()
     v[ball] = row[VX], row[VY]
     w[ball] = row[WX], row[WY], row[WZ]
-    air = None
-    if row[VZ] != 0.0 or balls.airborne.any():
+    air = balls.air
+    if row[VZ] != 0.0:
         air = balls.air.copy()
         air[ball] = 0.0, row[VZ]
     return Balls._trusted(balls.xy, v, w, balls.pocketed, balls, air)

@@ -163,8 +163,9 @@ class Balls:
         return Balls._trusted(xy_new, self.v, self.w, pocketed, self, self.air)
 
     def energy(self) -> float:
-        """Kinetic energy (translation and rotation) of the balls on the table (J)."""
-        return float(np.sum(kinetic_energy(self.v, self.w, self._radii, self._masses)[~self.pocketed]))
+        """Kinetic energy (translation, vz included, and rotation) of the balls on the table (J)."""
+        kinetic = kinetic_energy(self.v, self.w, self._radii, self._masses) + 0.5 * self._masses * self.air[:, 1] ** 2
+        return float(np.sum(kinetic[~self.pocketed]))
 
 
 def kinetic_energy(v, w, radii, masses) -> np.ndarray:
