@@ -214,3 +214,14 @@ def test_airborne_input_is_refused_by_the_fixed_step_methods():
 def test_bad_heights_are_refused(kwargs, match):
     with pytest.raises(ValueError, match=match):
         Balls([[0.5, 0.5]], **kwargs)
+
+
+def test_a_ball_come_to_rest_on_top_of_a_ball_is_refused_not_sunk_through():
+    """Dropped exactly onto a resting ball, it bounces on it ever lower (e_b per bounce, the
+    slate holding the lower one up) and would rest on top, which the engine does not model:
+    NotModelledError naming both balls, never a ball sinking into the other."""
+    from pool_env.physics.result import NotModelledError
+
+    balls = Balls([[0.8, 0.5], [0.8, 0.5]], z=[2.0 * R + 0.05, 0.0], vz=[0.0, 0.0])
+    with pytest.raises(NotModelledError, match="ball 0 came to rest on top of ball 1"):
+        simulate(balls, TABLE, Physics(e_b=0.5))
