@@ -201,13 +201,15 @@ def run_ours(strikes):
     matched = {k: v for k, v in (("e_t", E_T), ("mu_t", MU_T)) if k in names}
     physics = dataclasses.replace(Physics.standard(), **matched)
     table = Table.eight_foot()
+    # The slate answers the downward strike at once, with the physics' e_t and mu_t.
+    slate_kw = {"physics": physics} if "physics" in inspect.signature(strike).parameters else {}
     contacts = {EVENT_KINDS[k] for k in BALL_BALL_KINDS}
     traces = []
     for job in jobs(strikes):
         xy = [[X0, table.width / 2.0]] + ([[X0 + job["blocker"], table.width / 2.0]] if job["blocker"] else [])
         impulse = BALL_MASS * ball_speed(job["V0"], job["side"], job["top"])
         balls = strike(Balls(xy), (impulse / CONTACT_TIME, 0.0), offset=(job["side"], job["top"]),
-                       contact_time=CONTACT_TIME, end_mass=0.0, elevation=math.radians(job["theta_deg"]))
+                       contact_time=CONTACT_TIME, end_mass=0.0, elevation=math.radians(job["theta_deg"]), **slate_kw)
         result = simulate(balls, table, physics)
         rows = []
         for ev in result.events:
@@ -290,10 +292,42 @@ LONE_ROWS = (("first flight (ms)", lambda r: _ms(r["flight_times"], 1)),
              ("first far-cushion contact (s, mm)", lambda r: _rail(r["rail"])))
 
 
+def agreement(rows, engine):
+    """The largest gaps between `engine`'s lone-ball figures and the closed forms (s and m), over
+    the strikes where both have the same number of flights; the strikes where the counts differ."""
+    gaps = {"flight_time": 0.0, "height": 0.0, "first_landing": 0.0, "settle": 0.0}
+    differ = []
+    for r in rows:
+        got, want = r[engine], r["closed"]
+        if got is None or r["job"]["blocker"] is not None:
+            continue
+        if len(got["flight_times"]) != len(want["flight_times"]) or got["settle"] is None:
+            differ.append(label(r["job"]))
+            continue
+        for key, a, b in (("flight_time", got["flight_times"], want["flight_times"]),
+                          ("height", got["heights"], want["heights"]),
+                          ("first_landing", got["first_landing"] or [], want["first_landing"] or []),
+                          ("settle", got["settle"]["xy"], want["settle"]["xy"])):
+            gaps[key] = max([gaps[key]] + [abs(x - y) for x, y in zip(a, b)])
+    return {"largest_gap": gaps, "flight_counts_differ": differ}
+
+
+def _gaps(name, a):
+    g = a["largest_gap"]
+    line = (f"{name} against the closed forms, largest gaps: flight time {g['flight_time']:.2e} s, bounce height "
+            f"{g['height']:.2e} m, first landing {g['first_landing']:.2e} m, settling point {g['settle']:.2e} m")
+    differ = a["flight_counts_differ"]
+    return line + (f"; other flight counts: {', '.join(differ)}" if differ else "")
+
+
 def markdown(rows, notes):
     """The side-by-side tables: the lone cue ball, then the blocker."""
     cols = lambda r, f: [f(x) if x is not None else "skipped" for x in (r["closed"], r["ours"], r["pooltool"])]  # noqa: E731
-    out = [f"ours: {notes['ours']}; pooltool: {notes['pooltool']}.", "",
+    out = [f"ours: {notes['ours']}; pooltool: {notes['pooltool']}.", ""]
+    for engine in ("ours", "pooltool"):
+        if any(r[engine] is not None for r in rows):
+            out += [_gaps(engine, agreement(rows, engine)) + ".", ""]
+    out += [
            "| strike (cue speed, elevation, tip) | ball speed | quantity | closed form | ours | pooltool |",
            "| --- | ---: | --- | ---: | ---: | ---: |"]
     for r in rows:
@@ -346,7 +380,9 @@ def main(argv=None):
     params = {"radius": BALL_RADIUS, "mass": BALL_MASS, "g": G, "e_t": E_T, "mu_t": MU_T, "bounce_stop": BOUNCE_STOP,
               "cue_mass": CUE_MASS, "x0": X0, "contact_time": CONTACT_TIME}
     text = markdown(rows, notes)
-    payload = json.dumps({"params": params, "notes": notes, "rows": rows}, indent=1, default=float)
+    summary = {e: agreement(rows, e) for e in ("ours", "pooltool")}
+    payload = json.dumps({"params": params, "notes": notes, "agreement": summary, "rows": rows}, indent=1,
+                         default=float)
     (folder / "pooltool_3d.json").write_text(payload)
     (folder / "pooltool_3d.md").write_text(text + "\n")
     print(text)
