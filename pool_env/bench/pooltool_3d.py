@@ -126,36 +126,56 @@ def clearance(path, settle, d, g=G, r=BALL_RADIUS):
     return {"verdict": "jumped", "t": None, "x": None, "bottom_at_d": height}
 
 
-def jobs(strikes):
-    """The strikes as the plain dicts both engines read."""
-    return [{"V0": v0, "theta_deg": th, "side": a, "top": b, "x0": X0, "blocker": d} for v0, th, a, b, d in strikes]
+def jobs(strikes, width):
+    """The strikes as the plain dicts both engines read: the cue ball at (x0, y0), y0 = W/2."""
+    return [{"V0": v0, "theta_deg": th, "side": a, "top": b, "x0": X0, "y0": width / 2.0, "blocker": d}
+            for v0, th, a, b, d in strikes]
 
 
 def job_file(strikes, table):
     return {"table": {"length": table.length, "width": table.width, "cushion_height": table.cushion_height},
             "radius": BALL_RADIUS, "mass": BALL_MASS, "g": G, "e_t": E_T, "mu_t": MU_T, "bounce_stop": BOUNCE_STOP,
-            "strikes": jobs(strikes)}
+            "strikes": jobs(strikes, table.width)}
 
 
-def far_rail(path, settle, reach, g=G):
-    """Where the closed-form path first meets the far cushion, `reach` along the aim (the centre
-    at R from the nose line): in which flight and with the bottom how high (its nose is at
-    Table.cushion_height), or, when no flight reaches it, rolling on the cloth after it settles."""
+def far_rail(path, wall, nose, g=G, r=BALL_RADIUS):
+    """Where the closed-form flights first meet the far cushion, taken as a wall `wall` along the
+    aim from the start (the nose line) up to the nose height `nose`: the face when the centre is
+    below the nose (the centre R before the wall), else the nose's edge (the centre R from the
+    point (wall, nose), a quartic in the flight's time). A flight that reaches the nose line
+    without touching either flies over the rail. When no flight reaches it, the ball rolls into
+    it after settling."""
     for k, f in enumerate(path):
-        if f["landing"][0] >= reach:
-            tau = (reach - f["start"][0]) / f["vh"][0]
-            return {"flight": k + 1, "t": f["t0"] + tau, "bottom": float(f["vz"] * tau - 0.5 * g * tau * tau)}
-    return {"flight": None, "t": None, "bottom": 0.0}
+        xs, vx, vz = f["start"][0], f["vh"][0], f["vz"]
+        def bottom(tau, vz=vz):
+            return vz * tau - 0.5 * g * tau * tau
+
+        times = []
+        tau = (wall - r - xs) / vx
+        if 0.0 <= tau <= f["duration"] and r + bottom(tau) <= nose:
+            times.append((tau, "face"))
+        k0, k1 = xs - wall, r - nose
+        roots = np.roots([0.25 * g * g, -g * vz, vx * vx + vz * vz - g * k1, 2.0 * (vx * k0 + vz * k1),
+                          k0 * k0 + k1 * k1 - r * r])
+        times += [(float(z.real), "nose") for z in roots if abs(z.imag) < 1e-9 and 0.0 <= z.real <= f["duration"]
+                  and r + bottom(z.real) > nose and xs + vx * z.real <= wall]
+        if times:
+            tau, where = min(times)
+            return {"flight": k + 1, "t": f["t0"] + tau, "bottom": float(bottom(tau)), "where": where, "nose": nose}
+        if f["landing"][0] >= wall:
+            tau = (wall - xs) / vx
+            return {"flight": k + 1, "t": f["t0"] + tau, "bottom": float(bottom(tau)), "where": "over", "nose": nose}
+    return {"flight": None, "t": None, "bottom": 0.0, "where": "rolling"}
 
 
-def closed_form(job, length):
-    """The closed forms of one strike on a table `length` long: the ball speed, its flights,
-    its settling (ignoring the cushions), the far cushion, the blocker."""
+def closed_form(job, table):
+    """The closed forms of one strike on `table`: the ball speed, its flights, its settling
+    (ignoring the cushions), the far cushion, the blocker."""
     speed = ball_speed(job["V0"], job["side"], job["top"])
     path, settle = flights(*struck(speed, math.radians(job["theta_deg"]), job["side"], job["top"]))
     out = {"speed": speed, "flight_times": [f["duration"] for f in path], "heights": [f["peak"] for f in path],
            "first_landing": path[0]["landing"] if path else None, "settle": settle,
-           "rail": far_rail(path, settle, length - BALL_RADIUS - job["x0"])}
+           "rail": far_rail(path, table.length - job["x0"], table.cushion_height)}
     if job["blocker"] is not None:
         out["blocker"] = clearance(path, settle, job["blocker"])
     return out
@@ -167,18 +187,19 @@ def measure(trace, job, g=G):
     landings and peaks at g tau^2 / 8 (the bottom's height: a flight of 2 v_z / g rises
     v_z^2 / (2g)); the last landing is where the ball settles. Over a blocker: the first cue
     contact with it, a hit if the cue ball has not passed the blocker's centre by then."""
-    x0, y0 = job["x0"], None
+    x0, y0 = job["x0"], job["y0"]
     landings = [row for row in trace if row[1] == "ball_table" and row[0] > 1e-12]
     contact = next((row for row in trace if row[1] in ("ball_ball", "ball_ball_settle") and row[3] == 1), None)
     if job["blocker"] is not None and contact is not None:
         landings = [row for row in landings if row[0] < contact[0]]
     times = [row[0] for row in landings]
     taus = np.diff([0.0] + times).tolist()
-    y0 = trace[0][5] if trace else 0.0
-    rail = next((row for row in trace if row[1] == "ball_cushion"), None)
+    rail = next((row for row in trace if row[1] in ("ball_cushion", "ball_off_table")), None)
     last = trace[-1] if trace else None
+    end = None if last is None else {"kind": last[1], "t": last[0], "x": last[4] - x0, "y": last[5] - y0}
     out = {"flight_times": taus, "heights": [g * tau * tau / 8.0 for tau in taus],
-           "rail": None if rail is None else {"t": rail[0], "x": rail[4] - x0},
+           "rail": None if rail is None else {"t": rail[0], "x": rail[4] - x0, "off": rail[1] == "ball_off_table"},
+           "end": end,
            "final_height": None if last is None or not math.isfinite(last[6]) else last[6] - BALL_RADIUS,
            "first_landing": [landings[0][4] - x0, landings[0][5] - y0] if landings else None,
            "settle": {"t": times[-1], "xy": [landings[-1][4] - x0, landings[-1][5] - y0]} if landings else None}
@@ -205,18 +226,19 @@ def run_ours(strikes):
     slate_kw = {"physics": physics} if "physics" in inspect.signature(strike).parameters else {}
     contacts = {EVENT_KINDS[k] for k in BALL_BALL_KINDS}
     traces = []
-    for job in jobs(strikes):
-        xy = [[X0, table.width / 2.0]] + ([[X0 + job["blocker"], table.width / 2.0]] if job["blocker"] else [])
+    for job in jobs(strikes, table.width):
+        xy = [[job["x0"], job["y0"]]] + ([[job["x0"] + job["blocker"], job["y0"]]] if job["blocker"] else [])
         impulse = BALL_MASS * ball_speed(job["V0"], job["side"], job["top"])
         balls = strike(Balls(xy), (impulse / CONTACT_TIME, 0.0), offset=(job["side"], job["top"]),
                        contact_time=CONTACT_TIME, end_mass=0.0, elevation=math.radians(job["theta_deg"]), **slate_kw)
         result = simulate(balls, table, physics)
-        rows = []
-        for ev in result.events:
-            if ev.i == 0 or (ev.kind in contacts and ev.j == 0):
-                x, y = (float(c) for c in result.at(ev.time).xy[0])
-                rows.append([ev.time, ev.kind, 0, ev.j if ev.i == 0 else ev.i, x, y, float("nan")])
-        traces.append(rows)
+        mine = [ev for ev in result.events if ev.i == 0 or (ev.kind in contacts and ev.j == 0)]
+        times = np.array([ev.time for ev in mine])
+        xy = result.sample(times)[0][:, 0, 0:2] if mine else np.zeros((0, 2))
+        # The centre's height above the cloth's plane (pooltool's z), where the Result gives it.
+        z = result.heights(times)[:, 0] if hasattr(result, "heights") and mine else np.full(len(mine), np.nan)
+        traces.append([[ev.time, ev.kind, 0, ev.j if ev.i == 0 else ev.i, float(p[0]), float(p[1]), float(h)]
+                       for ev, p, h in zip(mine, xy, z)])
     missing = sorted({"e_t", "mu_t"} - names)
     note = "ran" + (f" (Physics has no {', '.join(missing)}: its own defaults)" if missing else "")
     return traces, note
@@ -269,27 +291,47 @@ def _verdict(b):
 
 
 def _rail(r):
-    if r is None:
-        return "none"
-    if "x" in r:
-        return f"at {r['t']:.3f} s, x {1e3 * r['x']:.0f}"
-    if r["flight"] is None:
+    """The first far-cushion contact: an engine's first cushion or off-table event, or the
+    closed form's (face, nose edge, over the rail, rolling)."""
+    rail = r["rail"]
+    if rail is None:
+        end = r.get("end")
+        return "none" + (f" (pocketed at {end['t']:.3f} s)" if end and end["kind"] == "ball_pocket" else "")
+    if "x" in rail:
+        return f"leaves the table over it at {rail['t']:.3f} s" if rail["off"] else f"at {rail['t']:.3f} s"
+    where = rail["where"]
+    if where == "rolling":
         return "rolls into it after settling"
-    return f"at {r['t']:.3f} s in flight {r['flight']}, bottom {1e3 * r['bottom']:.0f} mm up"
+    what = {"face": "meets its face", "nose": "meets its nose", "over": "flies over the rail"}[where]
+    return (f"{what} at {rail['t']:.3f} s in flight {rail['flight']}, bottom {1e3 * rail['bottom']:.1f} mm up "
+            f"(nose {1e3 * rail['nose']:.1f} mm)")
 
 
 def _blocker(r):
     """The verdict, and a cue ball left resting above the cloth (pooltool's 2D ball-ball model
     in the air)."""
-    h = r.get("final_height")
-    return _verdict(r["blocker"]) + (f"; rests {1e3 * h:.0f} mm above the cloth" if h is not None and h > 5e-4 else "")
+    return _verdict(r["blocker"]) + _end(r)
+
+
+def _end(r):
+    """Where the cue ball's run ends: off the table, pocketed, or at rest (and how high)."""
+    end, h = r.get("end"), r.get("final_height")
+    if end is None:
+        return ""
+    if end["kind"] == "ball_off_table":
+        return f"; then off the table at {end['t']:.3f} s"
+    if end["kind"] == "ball_pocket":
+        return f"; then pocketed at {end['t']:.3f} s"
+    up = f", {1e3 * h:.0f} mm above the cloth" if h is not None and h > 5e-4 else ""
+    far = "" if abs(end["x"]) < 10.0 else " (past the table's end: no rail behind it)"
+    return f"; rests at x {1e3 * end['x']:.0f}{far}{up}"
 
 
 LONE_ROWS = (("first flight (ms)", lambda r: _ms(r["flight_times"], 1)),
              ("bounce heights of the bottom (mm)", lambda r: _ms(r["heights"])),
              ("first landing (mm from the start)", lambda r: _point(r["first_landing"])),
              ("settles on the cloth (mm, s)", lambda r: _settle(r["settle"])),
-             ("first far-cushion contact (s, mm)", lambda r: _rail(r["rail"])))
+             ("far cushion", _rail))
 
 
 def agreement(rows, engine):
@@ -370,8 +412,8 @@ def main(argv=None):
     else:
         theirs, note_pt = run_pooltool(strikes, table, args.pooltool, folder.resolve())
     rows = []
-    for k, job in enumerate(jobs(strikes)):
-        rows.append({"job": job, "closed": closed_form(job, table.length),
+    for k, job in enumerate(jobs(strikes, table.width)):
+        rows.append({"job": job, "closed": closed_form(job, table),
                      "ours": None if ours is None else measure(ours[k], job),
                      "pooltool": None if theirs is None else measure(theirs[k], job),
                      "traces": {"ours": None if ours is None else ours[k],

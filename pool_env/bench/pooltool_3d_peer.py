@@ -5,8 +5,8 @@
 Also imported by pooltool_3d.py when pooltool is importable there (`traces(job)`). jobs.json
 holds {"table": {"length", "width", "cushion_height"}, "radius", "mass", "e_t", "mu_t",
 "bounce_stop", "strikes": [{"V0", "theta_deg", "side", "top", "x0", "blocker"}]} in our frame
-(x along the length, y across, the cue ball at (x0, W/2) aimed along +x, a blocker at
-(x0 + blocker, W/2) when "blocker" is a number). Each strike runs on pooltool's 3D engine
+(x along the length, y across, the cue ball at (x0, y0) aimed along +x, a blocker at
+(x0 + blocker, y0) when "blocker" is a number). Each strike runs on pooltool's 3D engine
 (`SimulationEngine(is_3d=True)` with `InstantaneousPoint3D`, squirt off): on pooltool's main
 branch every ball-ball and cushion model is tagged 2D, so, as pooltool's own tests and airborne
 demo do, each strategy's `dim` tag is set to BOTH on the instances to let the engine build.
@@ -54,9 +54,9 @@ def _system(pt, job, strike):
         l=geo["length"], w=W, cushion_height=geo["cushion_height"]))
     # The table's friction at a bounce is the ball's sliding friction u_s in pooltool.
     params = {"m": m, "R": R, "u_s": job["mu_t"], "e_t": job["e_t"], "g": job["g"]}
-    balls = [pt.Ball.create("cue", xy=(W / 2.0, strike["x0"]), **params)]
+    balls = [pt.Ball.create("cue", xy=(W - strike["y0"], strike["x0"]), **params)]
     if strike["blocker"] is not None:
-        balls.append(pt.Ball.create("1", xy=(W / 2.0, strike["x0"] + strike["blocker"]), **params))
+        balls.append(pt.Ball.create("1", xy=(W - strike["y0"], strike["x0"] + strike["blocker"]), **params))
     cue = pt.Cue(cue_ball_id="cue")
     # pooltool's a > 0 is left English; our side > 0 is right English.
     cue.set_state(V0=strike["V0"], phi=90.0, theta=strike["theta_deg"], a=-strike["side"], b=strike["top"])
