@@ -92,9 +92,14 @@ def traces(job):
 
 
 def version():
+    """pooltool's version string, and whether it has the 3D engine (its main branch still reads
+    0.6.0; `pooltool.physics.dimensionality` came with the 3D work)."""
+    import importlib.util
+
     import pooltool as pt
 
-    return str(getattr(pt, "__version__", "unknown"))
+    three_d = importlib.util.find_spec("pooltool.physics.dimensionality") is not None
+    return str(getattr(pt, "__version__", "unknown")) + (", the main branch's 3D engine" if three_d else "")
 
 
 def main(argv):
