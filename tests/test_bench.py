@@ -178,3 +178,18 @@ def test_pooltool3d_closed_forms_follow_the_bounce_laws():
     assert [f["peak"] for f in path] == pytest.approx(heights[:n], rel=1e-12)
     assert path[0]["landing"] == pytest.approx([vh * 2 * vz / g, 0.0], abs=1e-12)
     assert settle["t"] == pytest.approx(sum(2 * vz * e ** k / g for k in range(n)), rel=1e-12)
+
+
+def test_pooltool3d_blocker_is_cleared_exactly_when_the_apex_over_it_is_two_radii_up():
+    """A flight whose apex is over the blocker, centre H above the blocker's, passes it at the
+    distance D(s)^2 = vx^2 s^2 + (H - g s^2 / 2)^2 (s the time from the apex), whose least value
+    is H^2 at the apex when vx^2 >= g H: the ball clears iff H >= 2R."""
+    p, r, g = pooltool_3d, pooltool_3d.BALL_RADIUS, pooltool_3d.G
+    vx, d = 3.0, 0.5
+    for scale, verdict in ((1.0 + 1e-6, "jumped"), (1.0 - 1e-6, "hit")):
+        vz = math.sqrt(2.0 * g * 2.0 * r * scale)
+        apex = vz / g
+        flight = {"t0": 0.0, "start": [d - vx * apex, 0.0], "vh": [vx, 0.0], "vz": vz, "duration": 2.0 * apex,
+                  "landing": [d + vx * apex, 0.0]}
+        assert vx * vx >= g * 2.0 * r * scale
+        assert p.clearance([flight], {"t": 2.0 * apex, "xy": flight["landing"]}, d)["verdict"] == verdict
