@@ -10,7 +10,11 @@ numpy.random.default_rng([seed, k]), so any shot can be rerun alone (`--first k 
 `--physics` picks the physics: the standard preset, the seed preset, a mix (default: half
 standard, the rest the seed preset or random model switches with realistic coefficients),
 or `extreme` (any model, restitution anywhere in [0, 1], friction from a tenth to twice the
-standard values).
+standard values). `--elevated` raises the cue of every shot: half the shots at 0-30 degrees
+(swerves and jumps), half at 30-85 (masse), at a cue speed redrawn in 0.5-6 m/s (harder
+elevated hits mostly fly off the table), with the slate's e_t in [0.2, 0.8] and mu_t in
+[0.05, 0.4] unless the physics is the standard preset; those draws come after the rest, so
+shot k's scene is the level sweep's shot k with the cue raised.
 
 Reported: failures by kind (see invariants.KINDS) with the first few shots of each, events
 per shot (median, p99, max), contacts per pair (the most contacts between two bodies in one
@@ -70,10 +74,10 @@ def _free_spot(rng, xy, table, radius, tries=200):
     return None
 
 
-def random_break(rng, physics="mixed"):
+def random_break(rng, physics="mixed", elevated=False):
     """(balls, table, physics, description) of one random shot (see the module docstring)."""
-    from pool_env.physics import BALL_MASS, BALL_RADIUS, Balls, Table, rack, strike
-    from pool_env.physics.cue import MISCUE_LIMIT
+    from pool_env.physics import BALL_MASS, BALL_RADIUS, Balls, Physics, Table, rack, strike
+    from pool_env.physics.cue import MAX_ELEVATION, MISCUE_LIMIT
 
     table = Table.eight_foot() if rng.random() < 0.8 else Table.seed()
     jitter = float(rng.choice([0.0, 1e-6, 1e-5, 2e-4, 1e-3]))
@@ -95,12 +99,22 @@ def random_break(rng, physics="mixed"):
     force = speed * BALL_MASS / 0.005
     r, a = MISCUE_LIMIT * math.sqrt(rng.random()), rng.uniform(0, 2 * math.pi)  # any tip offset short of a miscue
     offset = (r * math.cos(a), r * math.sin(a))
-    balls = strike(balls, force=(force * math.cos(angle), force * math.sin(angle)), offset=offset)
     phys = random_physics(rng, physics)
+    elevation = 0.0
+    if elevated:
+        low, high = (math.radians(30.0), MAX_ELEVATION) if rng.random() < 0.5 else (0.0, math.radians(30.0))
+        elevation = float(rng.uniform(low, high))
+        speed = float(rng.uniform(0.5, 6.0))
+        force = speed * BALL_MASS / 0.005
+        if phys != Physics.standard():
+            phys = dataclasses.replace(phys, e_t=float(rng.uniform(0.2, 0.8)), mu_t=float(rng.uniform(0.05, 0.4)))
+    balls = strike(balls, force=(force * math.cos(angle), force * math.sin(angle)), offset=offset,
+                   elevation=elevation, physics=phys)
     description = (f"{len(xy)} balls (rack jitter {jitter:g} m, {len(xy) - 16} extra) on the "
                    f"{table.length} x {table.width} m table with {len(table.pockets)} pockets; cue ball at "
                    f"({xy[0, 0]:.3f}, {xy[0, 1]:.3f}) struck at {speed:.2f} m/s towards {math.degrees(angle):.1f} deg, "
-                   f"tip offset ({offset[0]:.2f}, {offset[1]:.2f}); {phys}")
+                   f"tip offset ({offset[0]:.2f}, {offset[1]:.2f}), elevation {math.degrees(elevation):.1f} deg; "
+                   f"{phys}")
     return balls, table, phys, description
 
 
@@ -117,7 +131,7 @@ def most_contacts(result):
     return int(np.unique(keys, axis=0, return_counts=True)[1].max())
 
 
-def run(shots, seed=0, first=0, physics="mixed", rerun_every=10, show=3, verbose=True):
+def run(shots, seed=0, first=0, physics="mixed", rerun_every=10, show=3, verbose=True, elevated=False):
     """Run the sweep; returns a summary dict (see `main` for what it prints)."""
     from pool_env.physics.invariants import run_checked
     from pool_env.physics.kinds import BALL_BALL_SETTLE
@@ -128,7 +142,7 @@ def run(shots, seed=0, first=0, physics="mixed", rerun_every=10, show=3, verbose
     wall = time.perf_counter()
     for k in range(first, first + shots):
         rng = np.random.default_rng([seed, k])
-        balls, table, phys, description = random_break(rng, physics)
+        balls, table, phys, description = random_break(rng, physics, elevated)
         result, violations = run_checked(balls, table, phys, rerun=rerun_every > 0 and k % rerun_every == 0)
         for v in violations:
             failures[v.kind].append((k, v, description))
@@ -193,6 +207,8 @@ def main(argv=None) -> int:
     parser.add_argument("--rerun-every", type=int, default=10,
                         help="re-simulate every n-th shot and require an identical result (0: never)")
     parser.add_argument("--show", type=int, default=3, help="failing shots listed per kind")
+    parser.add_argument("--elevated", action="store_true",
+                        help="raise the cue of every shot to a random elevation (0-85 deg): balls in the air")
     parser.add_argument("--no-pooltool", action="store_true", help="skip the pooltool comparison")
     parser.add_argument("--multi-shot", action="store_true",
                         help="random shot sequences from wherever the balls stop (bench/sequences.py): --shots "
@@ -208,9 +224,9 @@ def main(argv=None) -> int:
               f"every final state must be a valid start, invariants on every {args.check_every}-th shot")
         return 1 if sequences.report(sequences.run(args.shots, args.length, args.seed, None, args.check_every)) else 0
 
-    print(f"stability: {args.shots} random breaks (seed {args.seed}, shots {args.first}-"
-          f"{args.first + args.shots - 1}, physics {args.physics}), invariants checked at every event")
-    s = run(args.shots, args.seed, args.first, args.physics, args.rerun_every, args.show)
+    print(f"stability: {args.shots} random {'elevated ' if args.elevated else ''}breaks (seed {args.seed}, shots "
+          f"{args.first}-{args.first + args.shots - 1}, physics {args.physics}), invariants checked at every event")
+    s = run(args.shots, args.seed, args.first, args.physics, args.rerun_every, args.show, elevated=args.elevated)
     print(f"wall time {s['wall']:.1f} s ({1e3 * s['wall'] / max(args.shots, 1):.2f} ms a shot, checks included)")
     total = sum(len(v) for v in s["failures"].values())
     if not total:
@@ -229,8 +245,9 @@ def main(argv=None) -> int:
     if s["worst"] is not None:
         k, n, description = s["worst"]
         print(f"worst case: shot {k}, {n} events: {description}\n  rerun: python -m pool_env.bench stability "
-              f"--seed {args.seed} --first {k} --shots 1 --physics {args.physics}")
-    if not args.no_pooltool:
+              f"--seed {args.seed} --first {k} --shots 1 --physics {args.physics}"
+              + (" --elevated" if args.elevated else ""))
+    if not args.no_pooltool and not args.elevated:
         figures, reason = pooltool_sweep(args.shots, args.seed, args.first)
         if figures is None:
             print(f"pooltool: not importable ({reason}); comparison skipped")

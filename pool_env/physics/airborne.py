@@ -23,8 +23,8 @@ linear, its centre's height z above its resting height quadratic under g, spin c
   frictionless, restitution e_c along that 3D normal. A ball whose centre crosses the nose
   line (alongside the segment) with its bottom above the edge clears the cushion: it leaves
   the table there ("ball_off_table", j the rail's row; the rail's top and what lies beyond
-  are not modelled). Jaw tips are taken as vertical cylinders up to the nose height: met at
-  the cloth's reach Rc + r_tip when the ball's bottom is below the edge, else flown over.
+  are not modelled). A jaw tip is a sphere of its radius r_tip at the nose height (so its
+  rim meets the nose edges' ends): met when the centres are R + r_tip apart (a quartic).
 - Balls: two balls meet when their centres are R_i + R_j apart in 3D (a quartic). The
   impulse is frictionless, restitution e_b along the 3D normal; a ball on the cloth that it
   would push down into the slate is held by it: its vertical velocity stays 0, so its
@@ -36,7 +36,7 @@ import math
 
 import numpy as np
 
-from .geometry import alongside, distance_entry, rail_gap
+from .geometry import along_rail, rail_gap
 from .jit import helper, kernel
 from .kinds import (
     AIRBORNE,
@@ -140,39 +140,61 @@ def _entry3(d, dv, h, reach, horizon):
 
 
 @helper
+def _alongside_span(rail, here, horizon):
+    """The times (lo, hi) within [0, horizon] while a centre moving at here = (x, y, vx, vy,
+    ...) projects onto the rail segment (lo > hi if never): along_rail is linear in time."""
+    x, y, vx, vy = here[0], here[1], here[2], here[3]
+    u0 = along_rail(rail, x, y)
+    dx, dy = rail[2] - rail[0], rail[3] - rail[1]
+    u1 = (vx * dx + vy * dy) / (dx * dx + dy * dy)
+    if u1 == 0.0:
+        return (0.0, horizon) if 0.0 <= u0 <= 1.0 else (1.0, 0.0)
+    lo, hi = -u0 / u1, (1.0 - u0) / u1
+    if lo > hi:
+        lo, hi = hi, lo
+    return max(lo, 0.0), min(hi, horizon)
+
+
+@helper
 def _rail_entry(here, r, off, rail, horizon, g):
     """(tau, over) for an airborne ball at here = (x, y, vx, vy, z, vz) and one rail or
-    facing: tau the first touch of its nose edge, or crossing of its nose line alongside the
-    segment, within horizon (inf if neither); over is True for a crossing clear of the edge."""
+    facing: tau the first touch of its nose edge, or crossing of its nose line, while the
+    centre is alongside the segment, within horizon (inf if neither); over is True for a
+    crossing clear of the edge. Coming alongside past the segment's end already within R
+    of the edge's line is no touch (the end is a jaw tip's, or a pocket's opening)."""
     x, y, vx, vy, z, vz = here
     s0 = rail_gap(rail, x, y, 0.0)
     s1 = rail[4] * vx + rail[5] * vy
     if s0 < 0.0 or s0 + min(s1, 0.0) * horizon > r:  # behind it, or never within R of its line
         return np.inf, False
-    # Touching the edge: s^2 + (z - off)^2 - R^2 with s = s0 + s1 tau, z - off = d0 + d1 tau + d2 tau^2.
-    d0, d1, d2 = z - off, vz, -0.5 * g
-    dist = math.hypot(s0, d0)
-    tau = first_entry((dist - r) * (dist + r), 2.0 * (s0 * s1 + d0 * d1), s1 * s1 + d1 * d1 + 2.0 * d0 * d2,
-                      2.0 * d1 * d2, d2 * d2, horizon, 2.0 * r * MIN_APPROACH, 2.0 * r * MIN_DEPTH)
-    if tau < np.inf and (s0 + s1 * tau < 0.0 or not alongside(rail, x + vx * tau, y + vy * tau)):
-        tau = np.inf
+    lo, hi = _alongside_span(rail, here, horizon)
+    if lo > hi:
+        return np.inf, False
+    # Touching the edge from lo on: s^2 + (z - off)^2 - R^2, s = sa + s1 tau, z - off = d0 + d1 tau + d2 tau^2.
+    sa = s0 + s1 * lo
+    d0, d1, d2 = z + (vz - 0.5 * g * lo) * lo - off, vz - g * lo, -0.5 * g
+    dist = math.hypot(sa, d0)
+    tau = np.inf
+    if lo == 0.0 or dist > r:
+        tau = lo + first_entry((dist - r) * (dist + r), 2.0 * (sa * s1 + d0 * d1), s1 * s1 + d1 * d1 + 2.0 * d0 * d2,
+                               2.0 * d1 * d2, d2 * d2, hi - lo, 2.0 * r * MIN_APPROACH, 2.0 * r * MIN_DEPTH)
+        if s0 + s1 * tau < 0.0:
+            tau = np.inf
     if s1 < 0.0:
         cross = -s0 / s1
-        if cross < tau and cross <= horizon and alongside(rail, x + vx * cross, y + vy * cross):
+        if cross < tau and lo <= cross <= hi:
             return cross, True
     return tau, False
 
 
 @helper
-def _jaw_entry(here, r, rc, off, jaw, horizon, g):
+def _jaw_entry(here, r, off, jaw, horizon, g):
     """First tau at which an airborne ball at here = (x, y, vx, vy, z, vz) meets a jaw tip
-    [x, y, r_tip], taken as a vertical cylinder up to the nose edge: its centre Rc + r_tip
-    from the tip's axis while its bottom is below the edge (z < R + off); inf if never."""
+    [x, y, r_tip], taken as a sphere of radius r_tip centred on the tip's axis at the nose
+    edge's height (R + off above the cloth): its rim reaches the nose edge's end, so a ball
+    coming round a segment's end meets it first; inf if never."""
     x, y, vx, vy, z, vz = here
-    tau = distance_entry(x - jaw[0], y - jaw[1], vx, vy, 0.0, 0.0, rc + jaw[2], horizon)
-    if tau < np.inf and z + (vz - 0.5 * g * tau) * tau >= r + off:
-        return np.inf
-    return tau
+    return _entry3((x - jaw[0], y - jaw[1], z - off), (vx, vy, vz), (0.0, 0.0, -0.5 * g), r + jaw[2], horizon)
 
 
 @helper
@@ -217,7 +239,7 @@ def boundary_times(scene, bounds, sched, i, now, counters):
         elif not over and now + tau < t_cu:
             t_cu, cu = now + tau, c
     for p in range(bounds.jaws.shape[0]):
-        tau = _jaw_entry(here, r, rc, off, bounds.jaws[p], horizon, g)
+        tau = _jaw_entry(here, r, off, bounds.jaws[p], horizon, g)
         if now + tau < t_cu:
             t_cu, cu = now + tau, n_rails + p
     if sched.t_tr[i] < np.inf:
@@ -253,7 +275,7 @@ def drop(row, po, bounds):
 def cushion_bounce(row, radius, reach, params, bounds, c):
     """An airborne ball (row at the contact) touching cushion c (a rail's or a facing's nose
     edge by row, else a jaw tip): restitution e_c along the 3D normal from the edge (or the
-    tip's axis) to the centre, no friction, spin kept."""
+    tip's sphere) to the centre, no friction, spin kept."""
     n_rails = bounds.rails.shape[0]
     if c < n_rails:
         rail = bounds.rails[c]
@@ -262,7 +284,7 @@ def cushion_bounce(row, radius, reach, params, bounds, c):
         nx, ny, nz = s * rail[4], s * rail[5], dz
     else:
         jaw = bounds.jaws[c - n_rails]
-        nx, ny, nz = row[X] - jaw[0], row[Y] - jaw[1], 0.0
+        nx, ny, nz = row[X] - jaw[0], row[Y] - jaw[1], row[Z] - edge_offset(radius, reach, bounds.height)
     norm = math.sqrt(nx * nx + ny * ny + nz * nz)
     nx, ny, nz = nx / norm, ny / norm, nz / norm
     vn = row[VX] * nx + row[VY] * ny + row[VZ] * nz
