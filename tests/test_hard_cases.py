@@ -488,6 +488,76 @@ def test_backspin_ball_pressed_into_a_neighbour_from_rest():
     assert result.events[0].kind == "ball_ball_settle" and result.events[0].time < 1e-4
 
 
+# --- airborne balls -----------------------------------------------------------------------------
+
+def _flying(xy, v, vz, z=0.0, others=()):
+    """Ball 0 at xy flying at v and vz (rolling spin: the slate takes no friction), others resting."""
+    pts = [list(xy)] + [list(p) for p in others]
+    n = len(pts)
+    return Balls(pts, v=[list(v)] + [[0.0, 0.0]] * (n - 1), w=[[-v[1] / R, v[0] / R, 0.0]] + [[0.0] * 3] * (n - 1),
+                 z=[z] + [0.0] * (n - 1), vz=[vz] + [0.0] * (n - 1))
+
+
+def test_jump_shot_onto_a_frozen_rack():
+    """An elevated cue drives the cue ball into the slate: it hops into a frozen rack and
+    lands among the balls; every invariant holds (3D contacts, the slate holding balls up)."""
+    balls = strike(rack(EIGHT, seed=None), force=(4.0 * M / 0.005, 0.0), elevation=math.radians(35.0))
+    assert balls.airborne[0]
+    result = sound(balls, EIGHT, STANDARD, max_events=3000)
+    assert result.stats["ball_table"] >= 1 and result.stats["airborne_predictions"] > 0
+
+
+def test_ball_falling_exactly_beside_another_lands_touching_it():
+    """Dropped straight down 2R from a resting ball's centre: the centres stay 2R apart
+    horizontally, so the 3D distance only falls to 2R at z = 0: a tangent touch at most (a
+    round-off contact may push them apart by nanometres), neither ball moves."""
+    balls = _flying((0.8 + 2 * R, 0.5), (0.0, 0.0), 0.0, z=0.05, others=[(0.8, 0.5)])
+    result = sound(balls, EIGHT, STANDARD, 20)
+    assert first(result, "ball_table").time == pytest.approx(math.sqrt(2 * 0.05 / STANDARD.g), rel=1e-12)
+    assert result.final.xy == pytest.approx(balls.xy, abs=1e-9)
+
+
+def test_ball_skimming_along_a_rails_nose_at_the_nose_height():
+    """Flying parallel to a rail with its centre R from the nose edge line at the edge's height
+    at the top of its flight: a tangent touch of the edge, then it falls away from it."""
+    off = EIGHT.cushion_height - R
+    vz = math.sqrt(2 * STANDARD.g * off)
+    sound(_flying((0.4, EIGHT.width - R), (1.0, 0.0), vz), EIGHT, STANDARD, 60)
+
+
+@pytest.mark.parametrize("jaw", [0, 4, 8])
+def test_ball_dropped_onto_a_jaw_tip(jaw):
+    """Dropped onto a jaw tip from 5 cm: it bounces off the tip's sphere, or stays on the rail
+    (off the table), never inside the cushion."""
+    jx, jy, _ = EIGHT.jaws[jaw]
+    x, y = min(max(jx, R), EIGHT.length - R), min(max(jy, R), EIGHT.width - R)
+    result = sound(_flying((x, y), (0.0, 0.0), 0.0, z=0.05), EIGHT, STANDARD, 200)
+    assert {"ball_cushion", "ball_off_table", "ball_pocket"} & set(kinds(result))
+
+
+def test_bouncing_just_above_the_stop_height_bounces_once():
+    """A rebound e_t vz whose height is just below BOUNCE_STOP_HEIGHT ends the bouncing at the
+    first landing: one ball_table event."""
+    from pool_env.physics.tolerances import BOUNCE_STOP_HEIGHT
+
+    vz = 0.999 * math.sqrt(2 * STANDARD.g * BOUNCE_STOP_HEIGHT) / STANDARD.e_t
+    result = sound(_flying((0.5, 0.5), (0.3, 0.0), vz), EIGHT, STANDARD, 20)
+    assert kinds(result).count("ball_table") == 1
+
+
+def test_mirror_jump_shots_stay_mirror_symmetric():
+    """A jump along the mid-line of an open table at a frozen symmetric rack: mirror images
+    stay mirrored (the airborne contacts are resolved like the cloth's, in any order)."""
+    xy, pairs = symmetric_rack(OPEN.width, OPEN.length)
+    rest = len(xy) - 1
+    balls = Balls(xy, v=[[3.0, 0.0]] + [[0.0, 0.0]] * rest, w=[[0.0, 3.0 / R, 0.0]] + [[0.0] * 3] * rest,
+                  z=[0.0] * len(xy), vz=[0.6] + [0.0] * rest)
+    result = sound(balls, OPEN, STANDARD, 3000)
+    hit = first(result, "ball_ball").time
+    assert_mirror_symmetric(result.sample([hit + 1e-3])[0][0],
+                            pairs, OPEN.width, 1e-9)
+
+
 # --- regressions: scenes the sweeps found failing ----------------------------------------------
 
 REGRESSIONS = json.loads((Path(__file__).parent / "data" / "regressions.json").read_text())

@@ -45,6 +45,7 @@ from .kinds import (
     BALL_POCKET,
     BALL_TABLE,
     C_AIR,
+    NO_EVENT,
     POCKETED,
     T0,
     VX,
@@ -60,7 +61,7 @@ from .kinds import (
 from .motion import P_E_B, P_E_C, P_E_T, P_G, P_MU_T, copy_row, slip, state_at, trajectory
 from .placement import on_playing_area
 from .roots import first_entry
-from .tolerances import BOUNCE_STOP_HEIGHT, CONTACT_TOLERANCE, MIN_APPROACH, MIN_DEPTH
+from .tolerances import BOUNCE_STOP_HEIGHT, CONTACT_TOLERANCE, GENTLE_TIME, MIN_APPROACH, MIN_DEPTH
 
 
 @kernel
@@ -165,13 +166,13 @@ def _rail_entry(here, r, off, rail, horizon, g):
     x, y, vx, vy, z, vz = here
     s0 = rail_gap(rail, x, y, 0.0)
     s1 = rail[4] * vx + rail[5] * vy
-    if s0 < 0.0 or s0 + min(s1, 0.0) * horizon > r:  # behind it, or never within R of its line
+    if s0 + min(s1, 0.0) * horizon > r:  # never within R of its line
         return np.inf, False
     lo, hi = _alongside_span(rail, here, horizon)
-    if lo > hi:
+    sa = s0 + s1 * lo
+    if lo > hi or sa < 0.0:  # never alongside, or behind it when alongside (a facing's line runs on)
         return np.inf, False
     # Touching the edge from lo on: s^2 + (z - off)^2 - R^2, s = sa + s1 tau, z - off = d0 + d1 tau + d2 tau^2.
-    sa = s0 + s1 * lo
     d0, d1, d2 = z + (vz - 0.5 * g * lo) * lo - off, vz - g * lo, -0.5 * g
     dist = math.hypot(sa, d0)
     tau = np.inf
@@ -272,21 +273,27 @@ def drop(row, po, bounds):
 
 
 @helper
-def cushion_bounce(row, radius, reach, params, bounds, c):
-    """An airborne ball (row at the contact) touching cushion c (a rail's or a facing's nose
-    edge by row, else a jaw tip): restitution e_c along the 3D normal from the edge (or the
-    tip's sphere) to the centre, no friction, spin kept."""
+def _cushion_normal(row, radius, reach, bounds, c):
+    """The unit 3D normal from cushion c (a rail's or a facing's nose edge by row, else a jaw
+    tip's sphere) to the centre of a ball touching it (row at the contact)."""
     n_rails = bounds.rails.shape[0]
+    off = edge_offset(radius, reach, bounds.height)
     if c < n_rails:
         rail = bounds.rails[c]
         s = rail_gap(rail, row[X], row[Y], 0.0)
-        dz = row[Z] - edge_offset(radius, reach, bounds.height)
-        nx, ny, nz = s * rail[4], s * rail[5], dz
+        nx, ny, nz = s * rail[4], s * rail[5], row[Z] - off
     else:
         jaw = bounds.jaws[c - n_rails]
-        nx, ny, nz = row[X] - jaw[0], row[Y] - jaw[1], row[Z] - edge_offset(radius, reach, bounds.height)
+        nx, ny, nz = row[X] - jaw[0], row[Y] - jaw[1], row[Z] - off
     norm = math.sqrt(nx * nx + ny * ny + nz * nz)
-    nx, ny, nz = nx / norm, ny / norm, nz / norm
+    return nx / norm, ny / norm, nz / norm
+
+
+@helper
+def cushion_bounce(row, radius, reach, params, bounds, c):
+    """An airborne ball (row at the contact) touching cushion c: restitution e_c along the 3D
+    normal from the edge (or the tip's sphere) to the centre, no friction, spin kept."""
+    nx, ny, nz = _cushion_normal(row, radius, reach, bounds, c)
     vn = row[VX] * nx + row[VY] * ny + row[VZ] * nz
     if vn >= 0.0:
         return
@@ -294,6 +301,27 @@ def cushion_bounce(row, radius, reach, params, bounds, c):
     row[VX] -= k * nx
     row[VY] -= k * ny
     row[VZ] -= k * nz
+
+
+@helper
+def perch(scene, bounds, work, now, i, c):
+    """Whether airborne ball i, meeting cushion c at `now` from above, stays on the rail: its
+    rebound along the normal n would rise less than BOUNCE_STOP_HEIGHT against gravity's part
+    g n_z (WPA: a ball that comes to rest other than on the bed is off the table; the rail's
+    top is not modelled, and balls bouncing ever lower on a nose would never end). If so it
+    is stopped there and marked off the table (the caller records "ball_off_table", j = c)."""
+    S, st, R, params = scene.S, scene.st, scene.R, scene.params
+    state_at(S[i], st[i], now, R[i], params, work.row)
+    nx, ny, nz = _cushion_normal(work.row, R[i], scene.Rc[i], bounds, c)
+    vn = params[P_E_C] * (work.row[VX] * nx + work.row[VY] * ny + work.row[VZ] * nz)
+    if nz <= 0.0 or vn * vn >= 2.0 * params[P_G] * nz * BOUNCE_STOP_HEIGHT:
+        return False
+    copy_row(S[i], work.row)
+    drop(S[i], np.int64(0), bounds)
+    st[i] = POCKETED
+    work.touched[0] = i
+    work.rec_a[0], work.rec_b[0] = i, c
+    return True
 
 
 @helper
@@ -337,4 +365,24 @@ def resolve_pair(scene, work, now, bi, bj):
         jn = -(1.0 + params[P_E_B]) * vn / inv
         _kick(a, st[bi], -jn, M[bi], n, n[2] > 0.0)
         _kick(b, st[bj], jn, M[bj], n, n[2] < 0.0)
+    if _perched(st[bi], st[bj], n[2], -vn * params[P_E_B], params[P_G]):
+        return NO_EVENT, np.int64(0), np.int64(0), False
     return BALL_BALL, np.int64(1), np.int64(2), False
+
+
+@helper
+def _perched(st_i, st_j, nz, rebound, g):
+    """Whether a ball in the air has come to rest on top of a ball on the cloth: it sits on
+    the upper side (its normal's vertical part nz, from the lower ball's centre, > 0) and
+    gravity's part g nz would bring its rebound along the normal back within GENTLE_TIME
+    (bounces shrinking towards rest; a rebound that is small only because the lower ball
+    was knocked back into it at once is not this). On a convex ball it would roll off, a
+    constrained motion the engine does not model (engine.run stops with PERCHED: simulate
+    raises NotModelledError)."""
+    if st_i == AIRBORNE and st_j != AIRBORNE:
+        up = -nz  # bi above bj when the normal from bi to bj points down
+    elif st_j == AIRBORNE and st_i != AIRBORNE:
+        up = nz
+    else:
+        return False
+    return up > 0.0 and 2.0 * rebound < g * up * GENTLE_TIME

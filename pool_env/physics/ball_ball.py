@@ -175,10 +175,17 @@ def resolve(model, bi, bj, ri, rj, mi, mj, params):
 
 
 @allocating_helper
-def resolve_group(model, S, R, M, params, pairs, n_c, e, normal_only):
+def resolve_group(model, S, R, M, params, pairs, n_c, e, normal_only, n_walls):
     """Resolve the contacts c = (pairs.ca[c], pairs.cb[c]), c < n_c, all at once (rows of S
     at the contact time); pairs.impulse[c] gets each contact's normal impulse. True if the
-    cloth took part (a gentle contact left a rolling ball rolling).
+    cloth or a cushion took part (a gentle contact left a rolling ball rolling, or a cushion
+    pushed back).
+
+    The first n_walls cushions in pairs.walls (inward normals, touched by ball
+    pairs.wall_ball[w]) join the solve as contacts with an immovable partner: no ball may
+    move into one. A cluster wedged against a rail needs them: solved without the rail, the
+    balls pushed into it bounce off it in their own events and are pushed back in again, at
+    the same instant, without end.
 
     Normal impulses follow Poisson's hypothesis for simultaneous impacts: the compression
     impulses P_c >= 0 are the least change of the velocities (in the kinetic-energy metric)
@@ -218,8 +225,8 @@ def resolve_group(model, S, R, M, params, pairs, n_c, e, normal_only):
     # so that the velocities found still leave no contact approaching). Found by solving
     # once with every ball sliding, then again with the gentle ones rolling.
     response = np.ones(n)
-    p = np.zeros(n_c)
-    _poisson(S, M, pairs, n_c, nx, ny, deg, response, p)
+    p = np.zeros(n_c + n_walls)
+    _poisson(S, M, pairs, n_c, nx, ny, deg, response, p, n_walls)
     gentle = False
     for k in range(n):
         if rolled[k] and is_gentle(S[k], R[k], params):
@@ -228,9 +235,8 @@ def resolve_group(model, S, R, M, params, pairs, n_c, e, normal_only):
     if gentle:
         for k in range(n):
             S[k, VX], S[k, VY] = v0x[k], v0y[k]
-        for c in range(n_c):
-            p[c] = 0.0
-        _poisson(S, M, pairs, n_c, nx, ny, deg, response, p)
+        p[:] = 0.0
+        _poisson(S, M, pairs, n_c, nx, ny, deg, response, p, n_walls)
     restitution = 1.0 if (model == SEED and not normal_only) else e
     for k in range(n):
         if deg[k] > 0:
@@ -245,6 +251,8 @@ def resolve_group(model, S, R, M, params, pairs, n_c, e, normal_only):
     elif model == FRICTIONAL and not normal_only:
         _friction_group(S, R, M, pairs, n_c, nx, ny, deg)
     cloth = gentle
+    for w in range(n_walls):
+        cloth = cloth or p[n_c + w] > 0.0
     for k in range(n):
         if rolled[k]:
             cloth = reroll(S[k], R[k], params) or cloth
@@ -252,10 +260,11 @@ def resolve_group(model, S, R, M, params, pairs, n_c, e, normal_only):
 
 
 @helper
-def _poisson(S, M, pairs, n_c, nx, ny, deg, response, p):
-    """Projected Gauss-Seidel for the compression impulses p >= 0 (see resolve_group); ball
-    k's velocity answers an impulse J with response[k] J / M[k]."""
-    ca, cb = pairs.ca, pairs.cb
+def _poisson(S, M, pairs, n_c, nx, ny, deg, response, p, n_walls):
+    """Projected Gauss-Seidel for the compression impulses p >= 0 (see resolve_group), the
+    n_walls cushion contacts' in p[n_c:]; ball k's velocity answers an impulse J with
+    response[k] J / M[k]."""
+    ca, cb, walls = pairs.ca, pairs.cb, pairs.walls
     scale = 0.0
     for k in range(S.shape[0]):
         if deg[k] > 0:
@@ -275,6 +284,17 @@ def _poisson(S, M, pairs, n_c, nx, ny, deg, response, p):
                 S[b, VX] += dp * nx[c] * kb
                 S[b, VY] += dp * ny[c] * kb
                 change = max(change, abs(dp) * (ka + kb))
+        for w in range(n_walls):
+            k = pairs.wall_ball[w]
+            kk = response[k] / M[k]
+            u = S[k, VX] * walls[w, 0] + S[k, VY] * walls[w, 1]
+            new = max(0.0, p[n_c + w] - u / kk)
+            dp = new - p[n_c + w]
+            if dp != 0.0:
+                p[n_c + w] = new
+                S[k, VX] += dp * walls[w, 0] * kk
+                S[k, VY] += dp * walls[w, 1] * kk
+                change = max(change, abs(dp) * kk)
         if change <= GROUP_TOL * scale:
             return
 

@@ -246,15 +246,17 @@ def _solve_group(scene, bounds, sched, work, now, n_c, mode):
         return True
     # A cluster solve uses e_b; one whose balls were in a cluster solve within LOOP_WINDOW
     # is perfectly inelastic, so a cascade ends (per ball, not per instant: independent
-    # clusters at one instant, say mirror images, alike).
-    e = params[P_E_B]
+    # clusters at one instant, say mirror images, alike), and takes in the cushions its balls
+    # touch, as the chase may run through one (ball_ball.resolve_group says how).
+    again = False
     if mode == CLUSTER:
         for c in range(n_c):
-            if max(sched.cl_t[ca[c]], sched.cl_t[cb[c]]) >= now - LOOP_WINDOW:
-                e = 0.0
+            again = again or max(sched.cl_t[ca[c]], sched.cl_t[cb[c]]) >= now - LOOP_WINDOW
         for c in range(n_c):
             sched.cl_t[ca[c]] = sched.cl_t[cb[c]] = now
-    return ball_ball.resolve_group(scene.bb_model, G, R, M, params, work, n_c, e, mode == CLUSTER)
+    e = 0.0 if again else params[P_E_B]
+    n_walls = _walls(scene, bounds, work, n_c) if again else 0
+    return ball_ball.resolve_group(scene.bb_model, G, R, M, params, work, n_c, e, mode == CLUSTER, n_walls)
 
 
 @helper

@@ -31,12 +31,14 @@ from .kinds import (
     AIRBORNE,
     BALL_BALL,
     BALL_CUSHION,
+    BALL_OFF_TABLE,
     BALL_POCKET,
     BUFFER_FULL,
     DONE,
     EVENT_CAP,
     MISPLACED,
     NO_EVENT,
+    PERCHED,
     POCKETED,
     ROW_WIDTH,
     T0,
@@ -153,6 +155,11 @@ def _resolve(scene, bounds, sched, work, log, now, event):
     _, kind, bi, bj = event
     if kind == BALL_BALL:
         kind, n_rec, n_touched, grouped = contacts.resolve_ball_ball(scene, bounds, sched, work, now, bi, bj, kind)
+        if kind == NO_EVENT:  # a ball perched on another (airborne._perched): the event kept, as past the cap
+            e = log.size[EVENTS]
+            log.t[e], log.kind[e], log.i[e], log.j[e] = event[0], BALL_BALL, bi, bj
+            log.size[CODE] = PERCHED
+            return NO_EVENT, 0, 0
         if grouped:
             if not _room(log, (event[0], kind, bi, bj), n_rec, n_touched):
                 return NO_EVENT, 0, 0
@@ -161,6 +168,8 @@ def _resolve(scene, bounds, sched, work, log, now, event):
         contacts.remember_meetings(sched, work, n_rec, now)
         return kind, n_rec, n_touched
     if kind == BALL_CUSHION:
+        if st[bi] == AIRBORNE and airborne.perch(scene, bounds, work, now, bi, bj):
+            return BALL_OFF_TABLE, 1, 1
         return _resolve_cushions(scene, bounds, sched, work, log, now, event)
     work.touched[0] = bi
     work.rec_a[0], work.rec_b[0] = bi, bj

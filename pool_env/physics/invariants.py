@@ -26,6 +26,8 @@ t the exact states just before t and just after it are sampled (`Result.sample` 
   settle.py), to MOMENTUM_RTOL plus what the cloth's friction can change over the one-ulp
   gap between the samples before and at the instant;
 - `event_cap` / `error`: the simulation raised (see `run_checked`);
+- `not_modelled`: the simulation stopped at a state the engine does not model (a ball come to
+  rest on top of another: NotModelledError), a refusal rather than a wrong state;
 - `nondeterministic`: a re-run gave different events or a different final state.
 """
 
@@ -39,7 +41,7 @@ from .airborne import edge_offset
 from .config import cushion_reach
 from .kinds import AIRBORNE, BALL_BALL, BALL_BALL_KINDS, BALL_CUSHION, POCKETED, VX, VY, VZ, WX, WZ, X, Y, Z
 from .objects import kinetic_energy
-from .result import SimulationError
+from .result import NotModelledError, SimulationError
 from .simulate import simulate
 
 OVERLAP_TOL = 1e-9  # m
@@ -47,7 +49,8 @@ RAIL_TOL = 1e-9  # m
 ENERGY_RTOL = 1e-12  # of the initial kinetic energy
 MOMENTUM_RTOL = 1e-12  # of the sum of |m v| before and after the instant
 
-KINDS = ("non_finite", "overlap", "off_table", "energy", "momentum", "event_cap", "error", "nondeterministic")
+KINDS = ("non_finite", "overlap", "off_table", "energy", "momentum", "event_cap", "error", "nondeterministic",
+         "not_modelled")
 MOMENTUM_MODELS = ("elastic", "frictional")
 
 
@@ -213,6 +216,8 @@ def run_checked(balls, table, physics, rerun=False, **kwargs):
     second run must give the same result (`nondeterministic` otherwise)."""
     try:
         result = simulate(balls, table, physics, **kwargs)
+    except NotModelledError as exc:
+        return None, [Violation("not_modelled", float("nan"), str(exc))]
     except SimulationError as exc:
         return None, [Violation("event_cap", float("nan"), str(exc))]
     except Exception as exc:  # noqa: BLE001 - a crash is a finding: reported, not swallowed

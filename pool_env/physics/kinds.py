@@ -52,5 +52,7 @@ C_BB, C_BB_REJ, C_CU, C_CU_REJ, C_PO, C_PO_REJ, C_TR, C_REST, C_AIR = range(len(
 # How a compiled loop ended: finished; hit the caller's event cap; ran out of output buffer
 # (the caller retries with larger buffers: the simulation is deterministic); (fixed-step
 # only) hit its cap on the number of frames; (engine.simulate_scene only) a ball is not where
-# it may be, and nothing ran (simulate.check_on_table names the problem).
-DONE, EVENT_CAP, BUFFER_FULL, STEP_CAP, MISPLACED = 0, 1, 2, 3, 4
+# it may be, and nothing ran (simulate.check_on_table names the problem); (airborne balls) a
+# ball came to rest on top of another, which the engine does not model (the pending event is
+# kept one past the last, as for EVENT_CAP).
+DONE, EVENT_CAP, BUFFER_FULL, STEP_CAP, MISPLACED, PERCHED = 0, 1, 2, 3, 4, 5

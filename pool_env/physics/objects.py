@@ -215,18 +215,9 @@ def _check_overlaps(xy, radii, pocketed, z=None):
     on = np.flatnonzero(~pocketed)
     if on.size < 2:
         return
-    if z is not None and np.any(z != 0.0):
-        # Balls in the air may pass over others: overlaps are measured in 3D.
-        p3 = np.column_stack((xy[on], radii[on] + z[on]))
-        d = np.sqrt(np.sum((p3[:, None, :] - p3[None, :, :]) ** 2, axis=-1))
-        overlap = radii[on][:, None] + radii[on][None, :] - d
-        np.fill_diagonal(overlap, -np.inf)
-        a, b = np.unravel_index(np.argmax(overlap), overlap.shape)
-        if overlap[a, b] > CONTACT_TOLERANCE:
-            i, j = sorted((on[a], on[b]))
-            raise ValueError(f"balls {i} and {j} overlap by {overlap[a, b] * 1000:.3g} mm")
-        return
     p = xy[on]
+    if z is not None and np.any(z != 0.0):  # balls in the air may pass over others: centres in 3D
+        p = np.column_stack((p, radii[on] + z[on]))
     d = np.sqrt(np.sum((p[:, None, :] - p[None, :, :]) ** 2, axis=-1))
     overlap = radii[on][:, None] + radii[on][None, :] - d
     np.fill_diagonal(overlap, -np.inf)

@@ -15,6 +15,11 @@ class SimulationError(RuntimeError):
     """A simulation hit a limit (the event cap) before every ball came to rest."""
 
 
+class NotModelledError(SimulationError):
+    """A simulation reached a state the engine does not model (a ball come to rest on top of
+    another), so it cannot go on."""
+
+
 class Event(NamedTuple):
     """One event: `kind` is a name from `EVENT_KINDS`; i is the ball, j the other ball, the
     cushion id (rails first, then jaw points) or the pocket id, and -1 for transitions."""

@@ -12,10 +12,10 @@ import numpy as np
 from . import engine, fixed, seed_loop
 from .bundles import EVENTS, Log, bounds_of, bounds_tuple, default_event_cap, log_arrays, reach_of
 from .config import NOSE_HEIGHT_MODELS, Physics
-from .kinds import BUFFER_FULL, COUNTERS, EVENT_CAP, MISPLACED, ROW_WIDTH
+from .kinds import BUFFER_FULL, COUNTERS, EVENT_CAP, MISPLACED, PERCHED, ROW_WIDTH
 from .objects import Balls, Table
 from .placement import first_misplaced
-from .result import Result, SimulationError, cap_message
+from .result import NotModelledError, Result, SimulationError, cap_message
 
 __all__ = ["simulate", "check_on_table", "SimulationError"]
 
@@ -127,6 +127,11 @@ def _run_events(balls, table, physics, max_events):
     if code == EVENT_CAP:
         log = Log._make(log)
         raise SimulationError(cap_message(cap, log, int(log.size[EVENTS])))
+    if code == PERCHED:
+        log = Log._make(log)
+        e = int(log.size[EVENTS])
+        raise NotModelledError(f"at t = {log.t[e]:.6g} s ball {int(log.i[e])} came to rest on top of ball "
+                              f"{int(log.j[e])} (one of them in the air): a ball resting on another is not modelled")
     # The Scene and the Log as plain tuples: the Result makes them namedtuples if it needs them.
     scene = (S, st, balls.radii, reach, balls.masses, args[0], args[1], args[2], spin)
     return Result(balls, physics, table, scene, log, time.perf_counter() - wall, None)
