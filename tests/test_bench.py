@@ -1,12 +1,14 @@
 """The benchmarks' helpers: the shared kinetic energy, the speed bench's A/B machinery, the accuracy bench's output."""
 
+import json
+import math
 import os
 import pathlib
 
 import numpy as np
 import pytest
 
-from pool_env.bench import accuracy, speed
+from pool_env.bench import accuracy, pooltool_3d, speed
 from pool_env.physics import Balls, Physics, simulate
 from pool_env.physics.kinds import VX, VY, WX, WZ
 from pool_env.physics.objects import kinetic_energy
@@ -147,3 +149,47 @@ def test_fastfiz_ratio_is_theirs_over_ours_against_its_target(capsys):
     speed.print_fastfiz({"ours": {"two_ball": 20e-6}, "fastfiz": peer})
     out = capsys.readouterr().out
     assert "FastFiz / ours = 1.50" in out and "target >= 1.2: met" in out
+
+
+def test_pooltool3d_bench_runs_without_pooltool_and_names_what_it_skipped(tmp_path, capsys):
+    assert pooltool_3d.main(["--no-pooltool", "--strikes", "2", "--out", str(tmp_path)]) == 0
+    out = json.loads((tmp_path / "pooltool_3d.json").read_text())
+    assert out["notes"]["pooltool"] == "skipped (--no-pooltool)"
+    assert len(out["rows"]) == 2 and all(r["pooltool"] is None for r in out["rows"])
+    ran = out["notes"]["ours"].startswith("ran")
+    assert ran or out["notes"]["ours"].startswith("skipped: ")
+    assert all((r["ours"] is not None) == ran for r in out["rows"])
+    assert "skipped" in capsys.readouterr().out
+
+
+def test_pooltool3d_closed_forms_follow_the_bounce_laws():
+    """A centre hit at speed v, elevation t: the slate returns v_z = e v sin t; the stop-slip
+    impulse (2/7) v cos t is below the sliding one mu (1 + e) v sin t at 45 degrees, so the ball
+    leaves rolling at 5/7 v cos t; each flight lasts 2 v_z / g, and the bottom rises
+    h_k = e^(2k) (e v sin t)^2 / (2g) until h_k < 5 mm."""
+    p = pooltool_3d
+    v, t, e, g = 4.0, math.radians(45.0), p.E_T, p.G
+    path, settle = p.flights(*p.struck(v, t, 0.0, 0.0))
+    vz, vh = e * v * math.sin(t), 5.0 / 7.0 * v * math.cos(t)
+    heights = [e ** (2 * k) * vz * vz / (2 * g) for k in range(10)]
+    n = next(k for k, h in enumerate(heights) if h < p.BOUNCE_STOP)
+    assert len(path) == n
+    assert path[0]["duration"] == pytest.approx(2 * vz / g, rel=1e-12)
+    assert [f["peak"] for f in path] == pytest.approx(heights[:n], rel=1e-12)
+    assert path[0]["landing"] == pytest.approx([vh * 2 * vz / g, 0.0], abs=1e-12)
+    assert settle["t"] == pytest.approx(sum(2 * vz * e ** k / g for k in range(n)), rel=1e-12)
+
+
+def test_pooltool3d_blocker_is_cleared_exactly_when_the_apex_over_it_is_two_radii_up():
+    """A flight whose apex is over the blocker, centre H above the blocker's, passes it at the
+    distance D(s)^2 = vx^2 s^2 + (H - g s^2 / 2)^2 (s the time from the apex), whose least value
+    is H^2 at the apex when vx^2 >= g H: the ball clears iff H >= 2R."""
+    p, r, g = pooltool_3d, pooltool_3d.BALL_RADIUS, pooltool_3d.G
+    vx, d = 3.0, 0.5
+    for scale, verdict in ((1.0 + 1e-6, "jumped"), (1.0 - 1e-6, "hit")):
+        vz = math.sqrt(2.0 * g * 2.0 * r * scale)
+        apex = vz / g
+        flight = {"t0": 0.0, "start": [d - vx * apex, 0.0], "vh": [vx, 0.0], "vz": vz, "duration": 2.0 * apex,
+                  "landing": [d + vx * apex, 0.0]}
+        assert vx * vx >= g * 2.0 * r * scale
+        assert p.clearance([flight], {"t": 2.0 * apex, "xy": flight["landing"]}, d)["verdict"] == verdict

@@ -13,7 +13,11 @@ BENCHES = {
     "vector": "shots/s of the native vector env beside SB3's and Gymnasium's, and of simulate_batch",
     "pockets": "our pocket model beside pooltool 0.6: pot/no-pot on a grid of straight and cut shots",
     "game": "Game.evaluate against restore + play, the run vector env's shots/s, 9-ball steps/s",
+    "pooltool3d": "jump shots (flights, bounces, landings, a blocker) beside pooltool main's 3D and closed forms",
 }
+
+# A bench whose module is named otherwise than the bench.
+MODULES = {"pooltool3d": "pooltool_3d"}
 
 
 def main(argv=None):
@@ -34,7 +38,7 @@ def main(argv=None):
             raise ValueError(problem)
         print(f"{PROG}: {problem}", file=sys.stderr)
         return 2
-    module = importlib.import_module(f"pool_env.bench.{argv[0]}")
+    module = importlib.import_module(f"pool_env.bench.{MODULES.get(argv[0], argv[0])}")
     try:
         return module.main(argv[1:])
     except (ValueError, OSError) as exc:
