@@ -11,11 +11,11 @@ import numpy as np
 
 from .config import cushion_reach
 from .jit import allocating, allocating_helper, helper
-from .kinds import BUFFER_FULL, DONE, EVENT_CAP, POCKETED
+from .kinds import BUFFER_FULL, DONE, EVENT_CAP, POCKETED, ROW_WIDTH, VZ, Z
 
 Scene = namedtuple("Scene", ["S", "st", "R", "Rc", "M", "params", "bb_model", "cu_model", "spin"])
-Scene.__doc__ = """The balls and the physics: S (N, 8) state rows [x, y, vx, vy, wx, wy, wz, t0] and st (N,)
-motion states, both updated in place; R, M (N,) radii and masses; Rc (N,) each ball's cushion
+Scene.__doc__ = """The balls and the physics: S (N, ROW_WIDTH) state rows [x, y, vx, vy, wx, wy, wz, t0, z,
+vz] and st (N,) motion states, both updated in place; R, M (N,) radii and masses; Rc (N,) each ball's cushion
 reach (how far its centre is from a rail's nose line when it touches: config.cushion_reach);
 params the coefficients (motion.P_*); bb_model, cu_model the collision-model ids; spin: z-spin
 tracked."""
@@ -30,8 +30,8 @@ its jaw tips and its facings up to the opening (the broad phase; pocket_shape.bu
 the cushion nose height, length and width of the playing area (m)."""
 
 Log = namedtuple("Log", ["t", "kind", "i", "j", "hist", "hist_ball", "counters", "size"])
-Log.__doc__ = """What a run writes: events (t, kind, i, j: (E,) each), state segments (hist (H, 9): a state
-row and its state code, hist_ball (H,) whose row), the method's counters, and size = [events
+Log.__doc__ = """What a run writes: events (t, kind, i, j: (E,) each), state segments (hist (H, ROW_WIDTH + 1): a
+state row and its state code, hist_ball (H,) whose row), the method's counters, and size = [events
 written, history rows written, event cap, exit code]."""
 EVENTS, ROWS, CAP, CODE = range(4)
 
@@ -46,10 +46,10 @@ Work = namedtuple("Work", ["ca", "cb", "impulse", "member", "queue", "G", "walls
                            "rec_a", "rec_b", "row", "pair_rows", "done"])
 Work.__doc__ = """Scratch space: the pairs of a contact group (ca, cb (N^2,), impulse (N^2,) their normal
 impulses), its balls (member (N,) flags, queue (N,) ids) and their rows at the contact (G
-(N, 8)); the cushions touched by a pack or a ball (walls (8, 2) inward normals, wall_ball
+(N, ROW_WIDTH)); the cushions touched by a pack or a ball (walls (8, 2) inward normals, wall_ball
 (8,) the ball touching each, cids (3,) cushion ids); the balls an event touched (touched
-(N,)) and the pairs it records (rec_a, rec_b (N^2,)); state rows (row (8,), pair_rows
-(2, 8)); and done (N,), the balls already re-predicted."""
+(N,)) and the pairs it records (rec_a, rec_b (N^2,)); state rows (row (ROW_WIDTH,),
+pair_rows (2, ROW_WIDTH)); and done (N,), the balls already re-predicted."""
 
 
 @allocating_helper
@@ -72,16 +72,17 @@ def new_schedule(n):
 def new_work(n):
     """Scratch space for N balls: one allocation per element type, cut into the fields."""
     ints = np.empty(4 * n * n + 2 * n + 11, dtype=np.int64)
-    floats = np.empty(n * n + 8 * n + 16 + 8 + 16)
+    w = ROW_WIDTH
+    floats = np.empty(n * n + w * n + 16 + w + 2 * w)
     flags = np.zeros(2 * n, dtype=np.bool_)
     nn = n * n
     ca, cb, rec_a, rec_b = ints[:nn], ints[nn:2 * nn], ints[2 * nn:3 * nn], ints[3 * nn:4 * nn]
     queue, touched = ints[4 * nn:4 * nn + n], ints[4 * nn + n:4 * nn + 2 * n]
     wall_ball, cids = ints[4 * nn + 2 * n:4 * nn + 2 * n + 8], ints[4 * nn + 2 * n + 8:]
-    impulse, G = floats[:nn], floats[nn:nn + 8 * n].reshape((n, 8))
-    walls = floats[nn + 8 * n:nn + 8 * n + 16].reshape((8, 2))
-    row = floats[nn + 8 * n + 16:nn + 8 * n + 24]
-    pair_rows = floats[nn + 8 * n + 24:].reshape((2, 8))
+    impulse, G = floats[:nn], floats[nn:nn + w * n].reshape((n, w))
+    walls = floats[nn + w * n:nn + w * n + 16].reshape((8, 2))
+    row = floats[nn + w * n + 16:nn + w * n + 16 + w]
+    pair_rows = floats[nn + w * n + 16 + w:].reshape((2, w))
     return Work(ca, cb, impulse, flags[:n], queue, G, walls, wall_ball, cids, touched, rec_a, rec_b, row, pair_rows,
                 flags[n:])
 
@@ -102,7 +103,7 @@ def log_arrays(n_events, n_rows, cap, n_counters):
     size = _EMPTY_SIZE.copy()
     size[CAP] = cap
     return (np.empty(n_events + 1), np.empty(n_events + 1, dtype=np.int64), np.empty(n_events + 1, dtype=np.int64),
-            np.empty(n_events + 1, dtype=np.int64), np.empty((n_rows, 9)), np.empty(n_rows, dtype=np.int64),
+            np.empty(n_events + 1, dtype=np.int64), np.empty((n_rows, ROW_WIDTH + 1)), np.empty(n_rows, dtype=np.int64),
             np.zeros(n_counters, dtype=np.int64), size)
 
 
@@ -113,9 +114,9 @@ def record_row(log, S, st, i):
     if h >= log.hist.shape[0]:
         log.size[CODE] = BUFFER_FULL
         return
-    for c in range(8):
+    for c in range(ROW_WIDTH):
         log.hist[h, c] = S[i, c]
-    log.hist[h, 8] = st[i]
+    log.hist[h, ROW_WIDTH] = st[i]
     log.hist_ball[h] = i
     log.size[ROWS] = h + 1
 
@@ -141,22 +142,24 @@ def default_event_cap(n_balls: int) -> int:
 
 
 @allocating
-def _pack(xy, v, w, pocketed):
-    """The state rows [x, y, vx, vy, wx, wy, wz, t0 = 0], state codes (pocketed, or 0 until
-    the run classifies them), and whether any ball has z-spin."""
+def _pack(xy, v, w, air, pocketed):
+    """The state rows [x, y, vx, vy, wx, wy, wz, t0 = 0, z, vz], state codes (pocketed, or 0
+    until the run classifies them), and whether any ball has z-spin."""
     n = xy.shape[0]
-    S = np.empty((n, 8))
+    S = np.empty((n, ROW_WIDTH))
     st = np.empty(n, dtype=np.int64)
-    return S, st, pack_into(xy, v, w, pocketed, S, st)
+    return S, st, pack_into(xy, v, w, air, pocketed, S, st)
 
 
 @helper
-def pack_into(xy, v, w, pocketed, S, st):
-    """Fill S (N, 8) and st (N,) as `_pack` returns them; whether any ball has z-spin."""
+def pack_into(xy, v, w, air, pocketed, S, st):
+    """Fill S (N, ROW_WIDTH) and st (N,) as `_pack` returns them (air (N, 2): each ball's z
+    and vz, Balls.air); whether any ball has z-spin."""
     any_z_spin = False
     for i in range(xy.shape[0]):
         S[i, 0], S[i, 1], S[i, 2], S[i, 3] = xy[i, 0], xy[i, 1], v[i, 0], v[i, 1]
         S[i, 4], S[i, 5], S[i, 6], S[i, 7] = w[i, 0], w[i, 1], w[i, 2], 0.0
+        S[i, Z], S[i, VZ] = air[i, 0], air[i, 1]
         any_z_spin = any_z_spin or w[i, 2] != 0.0
         st[i] = POCKETED if pocketed[i] else 0
     return any_z_spin
@@ -173,7 +176,7 @@ def prepare(balls, table, physics, max_events):
 
 def scene_of(balls, physics, table):
     """The balls and the physics as a Scene at t = 0 (fresh S and st arrays)."""
-    S, st, any_z_spin = _pack(balls.xy, balls.v, balls.w, balls.pocketed)
+    S, st, any_z_spin = _pack(balls.xy, balls.v, balls.w, balls.air, balls.pocketed)
     spin = bool(physics.spin and (any_z_spin or physics.can_create_spin()))
     bb_model, cu_model = physics.model_ids()
     reach = reach_of(balls, table, physics.cushion)

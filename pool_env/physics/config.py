@@ -36,6 +36,8 @@ class Physics:
     | `e_b` | ball-ball coefficient of restitution | 1 |
     | `e_c` | ball-cushion coefficient of restitution | 1 |
     | `f_c` | ball-cushion friction (han2005, mathavan2010) | 1 |
+    | `e_t` | ball-table (slate) coefficient of restitution: a landing ball rebounds at e_t v_z | 1 |
+    | `mu_t` | ball-table friction during a bounce (TP A-14's model: airborne.table_impulse) | 1 |
     | `g` | gravitational acceleration | m/s^2 |
     | `spin` | track z-spin (English) and the spinning state; off means z-spin is dropped | bool |
     """
@@ -50,6 +52,11 @@ class Physics:
     f_c: float = 0.2
     g: float = 9.81
     spin: bool = True
+    # The slate: e_t = 0.5 and a friction equal to the cloth's sliding friction are pooltool's
+    # defaults (pooltool.objects.ball.params.BallParams.e_t, and its FrictionalInelasticTable
+    # model, which takes u_s for the ball-table friction), after Alciatore's TP A-14 model.
+    e_t: float = 0.5
+    mu_t: float = 0.2
 
     def __post_init__(self):
         if self.ball_ball not in BALL_BALL_MODELS:
@@ -62,14 +69,17 @@ class Physics:
             value = getattr(self, name)
             if not (math.isfinite(value) and value > 0):
                 raise ValueError(f"Physics.{name} must be a finite number > 0, got {value!r}")
-        for name in ("e_b", "e_c"):
+        for name in ("e_b", "e_c", "e_t"):
             value = getattr(self, name)
             if not (math.isfinite(value) and 0 <= value <= 1):
                 raise ValueError(f"Physics.{name} must be in [0, 1], got {value!r}")
-        if not (math.isfinite(self.f_c) and self.f_c >= 0):
-            raise ValueError(f"Physics.f_c must be a finite number >= 0, got {self.f_c!r}")
+        for name in ("f_c", "mu_t"):
+            value = getattr(self, name)
+            if not (math.isfinite(value) and value >= 0):
+                raise ValueError(f"Physics.{name} must be a finite number >= 0, got {value!r}")
         # The engine's view of the coefficients, built once (see motion.P_*).
-        params = np.array([self.mu_s, self.mu_r, self.mu_sp, self.g, self.e_b, self.e_c, self.f_c])
+        params = np.array([self.mu_s, self.mu_r, self.mu_sp, self.g, self.e_b, self.e_c, self.f_c, self.e_t,
+                           self.mu_t])
         object.__setattr__(self, "_params", params)
         # The model ids the compiled code dispatches on (each name's position in its tuple).
         ids = (BALL_BALL_MODELS.index(self.ball_ball), CUSHION_MODELS.index(self.cushion))

@@ -18,10 +18,10 @@ import math
 
 import numpy as np
 
-from . import ball_ball, cushion, settle
+from . import airborne, ball_ball, cushion, settle
 from .geometry import cushion_gap, cushion_normal
 from .jit import allocating_helper, helper
-from .kinds import BALL_BALL_SETTLE, POCKETED, VX, VY, X, Y
+from .kinds import AIRBORNE, BALL_BALL_SETTLE, POCKETED, VX, VY, X, Y
 from .motion import P_E_B, copy_row, state_at, trajectory
 from .tolerances import GROUP_WINDOW, LOOP_WINDOW, MIN_APPROACH, TOUCH_GAP
 
@@ -90,7 +90,9 @@ def _grow(scene, sched, work, now, tail, n_c, pressed):
         a = queue[head]
         head += 1
         for k in range(st.shape[0]):
-            if member[k] or st[k] == POCKETED or (not pressed and sched.bb_t[k] < now - LOOP_WINDOW):
+            if member[k] or st[k] == POCKETED or st[k] == AIRBORNE:  # in the air: airborne.py's
+                continue
+            if not pressed and sched.bb_t[k] < now - LOOP_WINDOW:
                 continue
             if not _touching(scene, now, a, k):
                 continue
@@ -281,8 +283,11 @@ def _keep(work, n_c, mode):
 def resolve_ball_ball(scene, bounds, sched, work, now, bi, bj, kind):
     """Resolve the ball-ball event (bi, bj) at `now` with the contacts simultaneous with it.
     Returns (event kind, pairs recorded, balls touched) and whether the group's rows wait in
-    work.G (copied to the scene once the log has room: see engine.run)."""
+    work.G (copied to the scene once the log has room: see engine.run). A contact in the air
+    (either ball airborne) is airborne.resolve_pair's, alone."""
     S, st, R, M, params = scene.S, scene.st, scene.R, scene.M, scene.params
+    if st[bi] == AIRBORNE or st[bj] == AIRBORNE:
+        return airborne.resolve_pair(scene, work, now, bi, bj)
     n_c, mode = gather(scene, bounds, sched, work, now, bi, bj)
     if mode != LONE:
         if _solve_group(scene, bounds, sched, work, now, n_c, mode):

@@ -15,7 +15,7 @@ import numpy as np
 from .config import CUSHION_MODELS
 from .geometry import alongside, distance_entry, rail_gap, roll
 from .jit import allocating, helper, kernel
-from .kinds import SLIDING, VX, VY, WX, WY, WZ
+from .kinds import ROW_WIDTH, SLIDING, VX, VY, WX, WY, WZ
 from .mathavan import mathavan2010
 from .motion import P_E_C, P_F_C, copy_row, reroll, state_of, trajectory
 from .roots import first_entry
@@ -174,9 +174,10 @@ def resolve_group(model, b, normals, n_c, radius, params, height):
     kinetic energy is convex in the velocities, the average has no more energy than the
     orders, none of which gains any.
     """
-    start = b.copy()
-    acc = np.zeros(8)
-    trial = np.empty(8)
+    start = np.zeros(ROW_WIDTH)
+    copy_row(start, b)
+    acc = np.zeros(ROW_WIDTH)
+    trial = np.zeros(ROW_WIDTH)
     n_orders = 2 if n_c == 2 else 6
     for o in range(n_orders):
         copy_row(trial, start)
@@ -184,5 +185,5 @@ def resolve_group(model, b, normals, n_c, radius, params, height):
             c = _ORDERS2[o][m] if n_c == 2 else _ORDERS3[o][m]
             resolve(model, trial, normals[c, 0], normals[c, 1], radius, params, height)
         acc += trial
-    for k in range(8):
+    for k in range(b.shape[0]):  # a row of ROW_WIDTH, or its first columns (a test's row)
         b[k] = acc[k] / n_orders

@@ -11,7 +11,7 @@ objects.py and result.py, and simulate.py connects the two.
 
 import numpy as np
 
-from . import contacts, pocket, transition
+from . import airborne, contacts, pocket, transition
 from .bundles import (
     CAP,
     CODE,
@@ -28,6 +28,7 @@ from .bundles import (
 )
 from .jit import allocating, entry, helper
 from .kinds import (
+    AIRBORNE,
     BALL_BALL,
     BALL_CUSHION,
     BALL_POCKET,
@@ -37,6 +38,7 @@ from .kinds import (
     MISPLACED,
     NO_EVENT,
     POCKETED,
+    ROW_WIDTH,
     T0,
     TRANSITION,
     WZ,
@@ -57,19 +59,19 @@ def simulate_scene(balls, physics, bounds, log):
     Scene, run. Everything comes in as plain tuples, which numba takes from Python in a
     fraction of the time namedtuples cost (a 2-ball shot's wrapper was mostly that):
 
-    balls: (xy, v, w, pocketed, R, M, Rc, S, st), the Balls' arrays, each ball's cushion
-    reach, and the Scene's rows and states to fill (N, 8) and (N,); physics:
+    balls: (xy, v, w, air, pocketed, R, M, Rc, S, st), the Balls' arrays, each ball's cushion
+    reach, and the Scene's rows and states to fill (N, ROW_WIDTH) and (N,); physics:
     Physics.engine_args(); bounds: bundles.bounds_tuple(table); log: a Log as a tuple.
     Returns (exit code, spin tracked): MISPLACED (nothing ran) if first_misplaced finds a
     ball that may not be where it is, else engine.run's code.
     """
-    xy, v, w, pocketed, R, M, Rc, S, st = balls
+    xy, v, w, air, pocketed, R, M, Rc, S, st = balls
     params, bb_model, cu_model, spin, makes_spin, nose_model = physics
     table = Bounds(*bounds)
     nose = table.height if nose_model else 0.0
     if first_misplaced(xy, R, Rc, 0.0, pocketed, table, nose)[0] != 0:
         return MISPLACED, False
-    any_z_spin = pack_into(xy, v, w, pocketed, S, st)
+    any_z_spin = pack_into(xy, v, w, air, pocketed, S, st)
     tracked = spin and (any_z_spin or makes_spin)
     return run(Scene(S, st, R, Rc, M, params, bb_model, cu_model, tracked), table, Log(*log)), tracked
 
@@ -165,8 +167,14 @@ def _resolve(scene, bounds, sched, work, log, now, event):
     state_at(S[bi], st[bi], now, R[bi], scene.params, work.row)
     copy_row(S[bi], work.row)
     if kind == BALL_POCKET:
-        pocket.capture(S[bi])
+        if st[bi] == AIRBORNE:  # landing over an opening, or leaving the table
+            kind, j = airborne.drop(S[bi], bj, bounds)
+            work.rec_b[0] = j
+        else:
+            pocket.capture(S[bi])
         st[bi] = POCKETED
+    elif st[bi] == AIRBORNE:
+        kind = airborne.land(S[bi], R[bi], scene.params)
     else:
         kind = transition.resolve(S[bi], st[bi], R[bi])
     return kind, 1, 1
@@ -188,10 +196,15 @@ def _resolve_cushions(scene, bounds, sched, work, log, now, event):
             continue
         state_at(S[k], st[k], now, R[k], params, work.row)
         copy_row(S[k], work.row)
-        n_k = contacts.cushion_contacts(S[k], R[k], scene.Rc[k], params, bounds, bj if m == 0 else sched.cu_id[k], work)
+        c = bj if m == 0 else sched.cu_id[k]
+        n_k = 1 if st[k] == AIRBORNE else contacts.cushion_contacts(S[k], R[k], scene.Rc[k], params, bounds, c, work)
         if not _room(log, event, n_rec + n_k, n_touched + 1):
             return NO_EVENT, 0, 0
-        contacts.resolve_cushions(scene, bounds, work, k, n_k)
+        if st[k] == AIRBORNE:
+            work.cids[0] = c
+            airborne.cushion_bounce(S[k], R[k], scene.Rc[k], params, bounds, c)
+        else:
+            contacts.resolve_cushions(scene, bounds, work, k, n_k)
         for q in range(n_k):
             work.rec_a[n_rec], work.rec_b[n_rec] = k, work.cids[q]
             n_rec += 1
@@ -219,7 +232,8 @@ def _commit(scene, log, work, n_touched, now):
 def sample(hist, hist_ball, n, times, R, params, out_rows, out_state):
     """Exact states of all balls at ascending `times` from the segment history.
 
-    out_rows (T, n, 8) gets [x, y, vx, vy, wx, wy, wz, t], out_state (T, n) the state code.
+    out_rows (T, n, ROW_WIDTH) gets [x, y, vx, vy, wx, wy, wz, t, z, vz], out_state (T, n)
+    the state code.
     """
     current = np.full(n, -1)
     h = 0
@@ -230,7 +244,7 @@ def sample(hist, hist_ball, n, times, R, params, out_rows, out_state):
             h += 1
         for i in range(n):
             row = hist[current[i]]
-            state = int(row[8])
+            state = int(row[ROW_WIDTH])
             state_at(row, state, max(t, row[T0]), R[i], params, out_rows[ti, i])
             out_state[ti, i] = state
 

@@ -73,6 +73,7 @@ from .kinds import (
     DONE,
     EVENT_CAP,
     POCKETED,
+    ROW_WIDTH,
     STEP_CAP,
     T0,
     VX,
@@ -112,7 +113,7 @@ def _rebase(scene, frame, i, t):
     """Make ball i's state row start at time t (closed form), ready to be changed there."""
     S = scene.S
     state_at(S[i], scene.st[i], t, scene.R[i], scene.params, frame.row)
-    for c in range(8):
+    for c in range(ROW_WIDTH):
         S[i, c] = frame.row[c]
 
 
@@ -500,7 +501,7 @@ def run(scene, bounds, stepping, log, depth):
     engine's format, so engine.sample replays them), the deepest overlaps to `depth`.
     Returns the exit code."""
     n = scene.S.shape[0]
-    frame = Frame(np.full(n, np.inf), np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(8), depth)
+    frame = Frame(np.full(n, np.inf), np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(ROW_WIDTH), depth)
     for i in range(n):
         _new_segment(scene, frame, log, i, 0.0)
     _positions(scene, frame, 0.0)

@@ -6,12 +6,16 @@ t the exact states just before t and just after it are sampled (`Result.sample` 
 `nextafter(t, -inf)` and at t; just before t = 0 is the input itself), and:
 
 - `non_finite`: every position, velocity and spin is finite;
-- `overlap`: no two balls on the table overlap by more than OVERLAP_TOL (1 nm);
-- `off_table`: no ball on the table is inside a rail, a facing or a jaw tip by more than RAIL_TOL,
-  or has its centre outside the table's rectangle and every pocket's throat (a ball leaves only
-  into a pocket);
-- `energy`: the kinetic energy (translation plus rotation) never increases from one sample
-  to the next. The seed models are the documented exception: they set a ball rolling at
+- `overlap`: no two balls on the table overlap by more than OVERLAP_TOL (1 nm), their
+  centres measured in 3D (at heights R + z: an airborne ball may pass over another);
+- `off_table`: no ball on the cloth is inside a rail, a facing or a jaw tip by more than
+  RAIL_TOL, or has its centre outside the table's rectangle and every pocket's throat (a ball
+  leaves only into a pocket, or through the air: a "ball_off_table" event); no airborne ball
+  is nearer than R - RAIL_TOL to a rail's or facing's nose edge (airborne.py's cushion) with
+  its centre in front of it;
+- `energy`: the mechanical energy (translation, with the vertical velocity, plus rotation,
+  plus the potential m g z of a ball's height above its resting height) never increases from
+  one sample to the next. The seed models are the documented exception: they set a ball rolling at
   once after a collision (as the seed report does), which recasts translational energy as
   rotational energy and can add some, so an instant with an event of a seed model
   (ball-ball events when `ball_ball="seed"`, cushion events when `cushion="seed"`) is not
@@ -31,8 +35,9 @@ from typing import NamedTuple
 
 import numpy as np
 
+from .airborne import edge_offset
 from .config import cushion_reach
-from .kinds import BALL_BALL, BALL_BALL_KINDS, BALL_CUSHION, POCKETED, VX, VY, WX, WZ, X, Y
+from .kinds import AIRBORNE, BALL_BALL, BALL_BALL_KINDS, BALL_CUSHION, POCKETED, VX, VY, VZ, WX, WZ, X, Y, Z
 from .objects import kinetic_energy
 from .result import SimulationError
 from .simulate import simulate
@@ -69,7 +74,8 @@ def samples(result, balls=None):
         starts = [0, 1] if instants.size and instants[0] == 0.0 else [0]
         for s in starts:
             rows[s, :, X:Y + 1], rows[s, :, VX:VY + 1], rows[s, :, WX:WZ + 1] = balls.xy, balls.v, balls.w
-            states[s] = np.where(balls.pocketed, POCKETED, 0)
+            rows[s, :, Z], rows[s, :, VZ] = balls.z, balls.vz
+            states[s] = np.where(balls.pocketed, POCKETED, np.where(balls.airborne, AIRBORNE, 0))
     return instants, kinds, times, rows, states
 
 
@@ -83,35 +89,58 @@ def check(result, balls=None, first_only=False) -> list[Violation]:
         if not (first_only and any(v.kind == kind for v in out)):
             out.append(Violation(kind, float(t), detail))
 
-    physics, table = result.physics, result.table
     radii = np.asarray(result.final.radii, dtype=np.float64)
     masses = np.asarray(result.final.masses, dtype=np.float64)
     instants, kinds, times, rows, states = samples(result, balls)
-
     bad = ~np.isfinite(rows)
     if bad.any():
         s = int(np.argwhere(bad)[0, 0])
         add("non_finite", times[s], f"non-finite state at t = {times[s]!r}")
         rows = np.where(bad, 0.0, rows)
-    on = states != POCKETED
-    x, y = rows[..., X], rows[..., Y]
+    sampled = (times, rows, states, radii, masses)
+    _overlaps(sampled, add)
+    _off_table(result, sampled, add)
+    _energy(result, sampled, kinds, add)
+    if result.physics.ball_ball in MOMENTUM_MODELS:
+        _momentum(result, sampled, (instants, kinds), add)
+    return out
 
+
+def _overlaps(sampled, add):
+    """`overlap`: balls on the table deeper into each other than OVERLAP_TOL (centres in 3D)."""
+    times, rows, states, radii, _ = sampled
     n = rows.shape[1]
-    if n > 1:
-        iu, ju = np.triu_indices(n, 1)
-        d = np.hypot(x[:, iu] - x[:, ju], y[:, iu] - y[:, ju])
-        depth = np.where(on[:, iu] & on[:, ju], radii[iu] + radii[ju] - d, -np.inf)
-        s, p = np.unravel_index(np.argmax(depth), depth.shape)
-        if depth[s, p] > OVERLAP_TOL:
-            add("overlap", times[s], f"balls {iu[p]} and {ju[p]} overlap by {depth[s, p]:.3g} m at t = {times[s]!r}")
+    if n < 2:
+        return
+    on = states != POCKETED
+    x, y, z = rows[..., X], rows[..., Y], radii + rows[..., Z]
+    iu, ju = np.triu_indices(n, 1)
+    d = np.sqrt((x[:, iu] - x[:, ju]) ** 2 + (y[:, iu] - y[:, ju]) ** 2 + (z[:, iu] - z[:, ju]) ** 2)
+    depth = np.where(on[:, iu] & on[:, ju], radii[iu] + radii[ju] - d, -np.inf)
+    s, p = np.unravel_index(np.argmax(depth), depth.shape)
+    if depth[s, p] > OVERLAP_TOL:
+        add("overlap", times[s], f"balls {iu[p]} and {ju[p]} overlap by {depth[s, p]:.3g} m at t = {times[s]!r}")
 
+
+def _off_table(result, sampled, add):
+    """`off_table`: balls on the cloth inside a cushion or off the playing area; airborne balls
+    inside a nose edge (see the module docstring)."""
+    table, physics = result.table, result.physics
+    times, rows, states, radii, _ = sampled
+    air = states == AIRBORNE
+    on = (states != POCKETED) & ~air
+    x, y, z = rows[..., X], rows[..., Y], rows[..., Z]
     reach = np.asarray(cushion_reach(radii, table.cushion_height, physics.cushion), dtype=np.float64)
+    off = np.array([edge_offset(float(r), float(rc), float(table.cushion_height)) for r, rc in zip(radii, reach)])
     for c, (x1, y1, x2, y2, nx, ny) in enumerate(np.asarray(table.rails)):
-        gap = nx * (x - x1) + ny * (y - y1) - reach
+        s = nx * (x - x1) + ny * (y - y1)
+        gap = s - reach
         along = ((x - x1) * (x2 - x1) + (y - y1) * (y2 - y1)) / ((x2 - x1) ** 2 + (y2 - y1) ** 2)
+        alongside = (along >= 0.0) & (along <= 1.0)
         # A facing's line runs on across the table: only a centre in front of it (gap above
         # -reach) can be inside it.
-        inside = on & (along >= 0.0) & (along <= 1.0) & (gap < -RAIL_TOL) & (gap >= -reach)
+        inside = on & alongside & (gap < -RAIL_TOL) & (gap >= -reach)
+        inside |= air & alongside & (s >= 0.0) & (np.hypot(s, z - off) < radii - RAIL_TOL)
         if inside.any():
             s, i = np.argwhere(inside)[0]
             add("off_table", times[s], f"ball {i} is {-gap[s, i]:.3g} m inside rail {c} at t = {times[s]!r}")
@@ -127,8 +156,20 @@ def check(result, balls=None, first_only=False) -> list[Violation]:
         s, i = np.argwhere(outside)[0]
         add("off_table", times[s], f"ball {i} left the table at ({x[s, i]:.6g}, {y[s, i]:.6g}) at t = {times[s]!r}")
 
-    energy = kinetic_energy(rows[..., VX:VY + 1], rows[..., WX:WZ + 1], radii, masses)
-    total = np.sum(np.where(on, energy, 0.0), axis=-1)
+
+def mechanical_energy(rows, radii, masses, g) -> np.ndarray:
+    """Each ball's energy (J) in state rows (..., N, ROW_WIDTH): kinetic (translation with vz,
+    and rotation) plus the potential m g z of its height above where it rests."""
+    kinetic = kinetic_energy(rows[..., VX:VY + 1], rows[..., WX:WZ + 1], radii, masses)
+    return kinetic + masses * (0.5 * rows[..., VZ] ** 2 + g * rows[..., Z])
+
+
+def _energy(result, sampled, kinds, add):
+    """`energy`: the total mechanical energy of the balls on the table rising anywhere."""
+    physics = result.physics
+    times, rows, states, radii, masses = sampled
+    on = states != POCKETED
+    total = np.sum(np.where(on, mechanical_energy(rows, radii, masses, physics.g), 0.0), axis=-1)
     rise = np.diff(total)
     for k, ks in enumerate(kinds):  # rise[2k + 1] is across instant k
         seeded_bb = physics.ball_ball == "seed" and any(kind in ks for kind in BALL_BALL_KINDS)
@@ -137,22 +178,27 @@ def check(result, balls=None, first_only=False) -> list[Violation]:
     tol = ENERGY_RTOL * max(total[0], 1e-300) + 1e-300
     if (rise > tol).any():
         s = int(np.argmax(rise > tol))
-        add("energy", times[s + 1], f"kinetic energy rose by {rise[s]:.3g} J at t = {times[s + 1]!r}")
+        add("energy", times[s + 1], f"mechanical energy rose by {rise[s]:.3g} J at t = {times[s + 1]!r}")
 
-    if physics.ball_ball in MOMENTUM_MODELS:
-        p = masses[:, None] * rows[..., VX:VY + 1] * on[..., None]
-        for k, ks in enumerate(kinds):
-            if ks == {BALL_BALL}:
-                change = np.hypot(*(p[2 * k + 2].sum(axis=0) - p[2 * k + 1].sum(axis=0)))
-                scale = np.abs(p[2 * k + 1]).sum() + np.abs(p[2 * k + 2]).sum()
-                # The cloth's friction acts across the sample gap too (the instant minus the
-                # float before it): at most mu_s g per ball, which for balls crawling at mm/s
-                # is as large as the round-off the relative tolerance allows.
-                gap = float(times[2 * k + 2] - times[2 * k + 1])
-                friction = physics.mu_s * physics.g * gap * float(np.sum(masses * on[2 * k + 1]))
-                if change > MOMENTUM_RTOL * scale + friction + 1e-300:
-                    add("momentum", instants[k], f"momentum changed by {change:.3g} kg m/s at t = {instants[k]!r}")
-    return out
+
+def _momentum(result, sampled, events, add):
+    """`momentum`: the balls' horizontal momentum changed across an instant of collisions only."""
+    physics = result.physics
+    times, rows, states, _, masses = sampled
+    instants, kinds = events
+    on = states != POCKETED
+    p = masses[:, None] * rows[..., VX:VY + 1] * on[..., None]
+    for k, ks in enumerate(kinds):
+        if ks == {BALL_BALL}:
+            change = np.hypot(*(p[2 * k + 2].sum(axis=0) - p[2 * k + 1].sum(axis=0)))
+            scale = np.abs(p[2 * k + 1]).sum() + np.abs(p[2 * k + 2]).sum()
+            # The cloth's friction acts across the sample gap too (the instant minus the
+            # float before it): at most mu_s g per ball, which for balls crawling at mm/s
+            # is as large as the round-off the relative tolerance allows.
+            gap = float(times[2 * k + 2] - times[2 * k + 1])
+            friction = physics.mu_s * physics.g * gap * float(np.sum(masses * on[2 * k + 1]))
+            if change > MOMENTUM_RTOL * scale + friction + 1e-300:
+                add("momentum", instants[k], f"momentum changed by {change:.3g} kg m/s at t = {instants[k]!r}")
 
 
 def same_result(a, b) -> bool:

@@ -1,8 +1,16 @@
 """Closed-form ball motion between events: positions, velocities, spins and transition times.
 
-A ball's state is one row `[x, y, vx, vy, wx, wy, wz, t0]` (SI units) valid from time `t0`,
-plus a motion-state code. Between events every quantity is a polynomial of degree <= 2 in
-time, so the engine never integrates anything numerically.
+A ball's state is one row `[x, y, vx, vy, wx, wy, wz, t0, z, vz]` (SI units, kinds.ROW_WIDTH
+columns) valid from time `t0`, plus a motion-state code. Between events every quantity is a
+polynomial of degree <= 2 in time, so the engine never integrates anything numerically.
+
+z is the height of the ball's centre above where it rests on the cloth (its centre is at
+R + z; 0 on the cloth) and vz its vertical velocity: the two columns sit in the row itself
+(not beside it) so that every copy, history row and sample carries them, and they are exact
+zeros for a ball on the cloth, so the cloth's states never read them. Only an AIRBORNE ball
+has them non-zero: it flies ballistically (xy linear, z quadratic under g, spin constant:
+nothing touches it) until it lands (z = 0, the transition `transition_time` gives) and
+bounces (airborne.py).
 
 Sign conventions: z points up out of the cloth. The contact point with the cloth is at
 -R z, so its velocity (the slip) is u = v + w x (-R z) = (vx - R wy, vy + R wx).
@@ -15,11 +23,11 @@ import numpy as np
 
 from .geometry import roll
 from .jit import helper
-from .kinds import ROLLING, SLIDING, SPINNING, STATIONARY, T0, VX, VY, WX, WY, WZ, X, Y
+from .kinds import AIRBORNE, ROLLING, SLIDING, SPINNING, STATIONARY, T0, VX, VY, VZ, WX, WY, WZ, X, Y, Z
 from .tolerances import EPS_V, EPS_W, GENTLE_TIME, REACH_SLACK
 
 # Indices into the coefficient array built by Physics.as_array().
-P_MU_S, P_MU_R, P_MU_SP, P_G, P_E_B, P_E_C, P_F_C = range(7)
+P_MU_S, P_MU_R, P_MU_SP, P_G, P_E_B, P_E_C, P_F_C, P_E_T, P_MU_T = range(9)
 
 
 @helper
@@ -69,6 +77,8 @@ def trajectory(row, state, t, radius, params):
         speed = math.hypot(vx, vy)
         a = params[P_MU_R] * params[P_G]
         ax, ay = -a * vx / speed, -a * vy / speed
+    elif state == AIRBORNE:
+        return x + vx * tau, y + vy * tau, vx, vy, 0.0, 0.0
     else:
         return x, y, 0.0, 0.0, 0.0, 0.0
     return (x + vx * tau + 0.5 * ax * tau * tau, y + vy * tau + 0.5 * ay * tau * tau,
@@ -110,8 +120,14 @@ def state_at(row, state, t, radius, params, out):
     else:
         out[WX] = row[WX]
         out[WY] = row[WY]
-    out[WZ] = z_spin_at(row[WZ], tau, radius, params)
     out[T0] = t
+    if state == AIRBORNE:
+        out[WZ] = row[WZ]  # nothing touches a ball in flight
+        out[Z] = row[Z] + (row[VZ] - 0.5 * params[P_G] * tau) * tau
+        out[VZ] = row[VZ] - params[P_G] * tau
+        return
+    out[WZ] = z_spin_at(row[WZ], tau, radius, params)
+    out[Z] = out[VZ] = 0.0
 
 
 @helper
@@ -126,12 +142,30 @@ def transition_time(row, state, radius, params):
         return row[T0] + math.hypot(row[VX], row[VY]) / (params[P_MU_R] * params[P_G])
     if state == SPINNING:
         return row[T0] + abs(row[WZ]) / spin_decel(radius, params)
+    if state == AIRBORNE:
+        return row[T0] + landing_time(row[Z], row[VZ], params[P_G])
     return np.inf
 
 
 @helper
+def landing_time(z, vz, g):
+    """When (s from now) a ball at height z >= 0 rising at vz comes down to z = 0: the
+    positive root of z + vz t - g t^2 / 2, in its cancellation-free form (2 vz / g exactly
+    from the cloth)."""
+    if z == 0.0:
+        return max(2.0 * vz / g, 0.0)
+    root = math.sqrt(vz * vz + 2.0 * g * z)
+    if vz >= 0.0:
+        return (vz + root) / g
+    return 2.0 * z / (root - vz)
+
+
+@helper
 def classify(row, radius):
-    """Motion state implied by a row's velocities; snaps round-off to exact zeros/rolling."""
+    """Motion state implied by a row's velocities; snaps round-off to exact zeros/rolling.
+    A ball above the cloth, or leaving or entering it (vz != 0), is airborne."""
+    if row[Z] > 0.0 or row[VZ] != 0.0:
+        return AIRBORNE
     ux, uy = slip(row[VX], row[VY], row[WX], row[WY], radius)
     if math.hypot(ux, uy) > EPS_V:
         return SLIDING
@@ -191,6 +225,8 @@ def reroll(row, radius, params):
 @helper
 def max_travel(row, state, t, horizon, radius, params):
     """Upper bound on how far the ball's centre moves in [t, t + horizon]."""
+    if state == AIRBORNE:
+        return math.hypot(row[VX], row[VY]) * horizon + REACH_SLACK
     if state != SLIDING and state != ROLLING:
         return 0.0
     x, y, vx, vy, ax, ay = trajectory(row, state, t, radius, params)

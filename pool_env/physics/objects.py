@@ -63,11 +63,15 @@ class Balls:
     | `w` | (N, 3) | angular velocities (rad/s); z up, a ball rolling along +x has w_y = v/R |
     | `radius`, `mass` | float or (N,) | radius (m) and mass (kg) |
     | `pocketed` | (N,) bool | off the table |
+    | `z`, `vz` | (N,) | centre's height above its rest on the cloth (m, >= 0), vertical velocity (m/s) |
+
+    z and vz (the `air` array (N, 2), read-only) are zeros for a ball on the cloth; a ball with
+    either non-zero is airborne (its centre at height R + z).
     """
 
-    __slots__ = ("xy", "v", "w", "radius", "mass", "pocketed", "_radii", "_masses")
+    __slots__ = ("xy", "v", "w", "radius", "mass", "pocketed", "air", "_radii", "_masses")
 
-    def __init__(self, xy, v=None, w=None, radius=BALL_RADIUS, mass=BALL_MASS, pocketed=None):
+    def __init__(self, xy, v=None, w=None, radius=BALL_RADIUS, mass=BALL_MASS, pocketed=None, z=None, vz=None):
         xy = np.array(xy, dtype=np.float64)
         if xy.ndim != 2 or xy.shape[1] != 2 or xy.shape[0] == 0:
             raise ValueError(f"xy must have shape (N, 2) with N >= 1, got {xy.shape}")
@@ -82,28 +86,46 @@ class Balls:
         pocketed = np.array(pocketed, dtype=bool)
         if pocketed.shape != (n,):
             raise ValueError(f"pocketed must have shape ({n},), got {pocketed.shape}")
-        _check_overlaps(xy, radii, pocketed)
-        self._set(xy, v, w, pocketed, radii, masses)
+        air = _air(z, vz, n)
+        _check_overlaps(xy, radii, pocketed, air[:, 0])
+        self._set(xy, v, w, pocketed, radii, masses, air)
 
-    def _set(self, xy, v, w, pocketed, radii, masses):
+    def _set(self, xy, v, w, pocketed, radii, masses, air=None):
         self.xy, self.v, self.w = _readonly(xy), _readonly(v), _readonly(w)
         self.pocketed = _readonly(pocketed)
         self._radii, self._masses = radii, masses
+        self.air = _on_cloth(xy.shape[0]) if air is None else _readonly(air)
 
     @classmethod
-    def _trusted(cls, xy, v, w, pocketed, like):
-        """Balls from arrays the engine produced (already valid): no checks, no copies."""
+    def _trusted(cls, xy, v, w, pocketed, like, air=None):
+        """Balls from arrays the engine produced (already valid): no checks, no copies. `air`
+        (N, 2) holds each ball's z and vz (None: every ball on the cloth)."""
         out = cls.__new__(cls)
         out.radius, out.mass = like.radius, like.mass
-        out._set(xy, v, w, pocketed, like._radii, like._masses)
+        out._set(xy, v, w, pocketed, like._radii, like._masses, air)
         return out
+
+    @property
+    def z(self) -> np.ndarray:
+        """Height of each centre above where it rests on the cloth (m), shape (N,)."""
+        return self.air[:, 0]
+
+    @property
+    def vz(self) -> np.ndarray:
+        """Vertical velocity of each ball (m/s), shape (N,)."""
+        return self.air[:, 1]
+
+    @property
+    def airborne(self) -> np.ndarray:
+        """Which balls are in the air (above the cloth, or leaving it), shape (N,) bool."""
+        return (self.air[:, 0] > 0.0) | (self.air[:, 1] != 0.0)
 
     def __reduce__(self):
         # copy.copy, copy.deepcopy and pickle all rebuild through _rebuild_balls, which marks
         # the arrays read-only again (a plain copy of a read-only array is writable, and numba
         # would then compile the whole engine a second time for writable arrays).
         return _rebuild_balls, (self.xy, self.v, self.w, self.pocketed, self.radius, self.mass,
-                                self._radii, self._masses)
+                                self._radii, self._masses, self.air)
 
     def __len__(self):
         return self.xy.shape[0]
@@ -138,7 +160,7 @@ class Balls:
             raise ValueError(f"balls {i} and {j} overlap by {-gap.min() * 1000:.3g} mm")
         xy_new, pocketed = self.xy.copy(), self.pocketed.copy()
         xy_new[k], pocketed[k] = (x, y), False
-        return Balls._trusted(xy_new, self.v, self.w, pocketed, self)
+        return Balls._trusted(xy_new, self.v, self.w, pocketed, self, self.air)
 
     def energy(self) -> float:
         """Kinetic energy (translation and rotation) of the balls on the table (J)."""
@@ -154,18 +176,55 @@ def kinetic_energy(v, w, radii, masses) -> np.ndarray:
     return 0.5 * masses * np.sum(v**2, axis=-1) + 0.2 * masses * radii**2 * np.sum(w**2, axis=-1)
 
 
-def _rebuild_balls(xy, v, w, pocketed, radius, mass, radii, masses):
+def _rebuild_balls(xy, v, w, pocketed, radius, mass, radii, masses, air=None):
     """Balls from the state `Balls.__reduce__` saved, with the flags `Balls.__init__` gives."""
     out = Balls.__new__(Balls)
     out.radius = _readonly(radius) if isinstance(radius, np.ndarray) else radius
     out.mass = _readonly(mass) if isinstance(mass, np.ndarray) else mass
-    out._set(xy, v, w, pocketed, radii, masses)
+    out._set(xy, v, w, pocketed, radii, masses, None if air is None else np.array(air))
     return out
 
 
-def _check_overlaps(xy, radii, pocketed):
+@functools.lru_cache(maxsize=64)
+def _on_cloth(n):
+    """The air array of n balls on the cloth (zeros), one read-only array per n: shared by
+    every such Balls, and always the array type the compiled engine was compiled for."""
+    return _readonly(np.zeros((n, 2)))
+
+
+def _air(z, vz, n):
+    """Balls' (z, vz) as an (N, 2) array (None for both: on the cloth), checked."""
+    if z is None and vz is None:
+        return _on_cloth(n)
+    air = np.zeros((n, 2))
+    for col, (value, name) in enumerate(((z, "height z"), (vz, "vertical velocity vz"))):
+        if value is None:
+            continue
+        arr = np.asarray(value, dtype=np.float64)
+        if arr.shape != (n,):
+            raise ValueError(f"{name} must have shape ({n},), got {arr.shape}")
+        bad = np.flatnonzero(~np.isfinite(arr) | ((arr < 0.0) if col == 0 else False))
+        if bad.size:
+            raise ValueError(f"ball {bad[0]} has {name} {float(arr[bad[0]])!r}; it must be finite"
+                             + (" and >= 0 (m above the cloth)" if col == 0 else ""))
+        air[:, col] = arr
+    return air
+
+
+def _check_overlaps(xy, radii, pocketed, z=None):
     on = np.flatnonzero(~pocketed)
     if on.size < 2:
+        return
+    if z is not None and np.any(z != 0.0):
+        # Balls in the air may pass over others: overlaps are measured in 3D.
+        p3 = np.column_stack((xy[on], radii[on] + z[on]))
+        d = np.sqrt(np.sum((p3[:, None, :] - p3[None, :, :]) ** 2, axis=-1))
+        overlap = radii[on][:, None] + radii[on][None, :] - d
+        np.fill_diagonal(overlap, -np.inf)
+        a, b = np.unravel_index(np.argmax(overlap), overlap.shape)
+        if overlap[a, b] > CONTACT_TOLERANCE:
+            i, j = sorted((on[a], on[b]))
+            raise ValueError(f"balls {i} and {j} overlap by {overlap[a, b] * 1000:.3g} mm")
         return
     p = xy[on]
     d = np.sqrt(np.sum((p[:, None, :] - p[None, :, :]) ** 2, axis=-1))

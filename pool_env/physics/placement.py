@@ -26,7 +26,7 @@ def first_misplaced(xy, radii, reach, slack, pocketed, bounds, nose):
         for k in range(bounds.pockets.shape[0]):
             if math.hypot(x - bounds.pockets[k, 0], y - bounds.pockets[k, 1]) < bounds.pockets[k, 2] + slack:
                 return 2, i, k
-        if not _on_playing_area(x, y, bounds):
+        if not on_playing_area(x, y, bounds):
             return 1, i, -1
         for c in range(rails.shape[0] + jaws.shape[0]):
             if cushion_gap(rails, jaws, c, x, y, reach[i]) < -tol:
@@ -37,7 +37,7 @@ def first_misplaced(xy, radii, reach, slack, pocketed, bounds, nose):
 
 
 @helper
-def _on_playing_area(x, y, bounds):
+def on_playing_area(x, y, bounds):
     """Whether a centre is on the rails' rectangle or in a pocket's throat: within the
     pocket's reach circle and in front of both its facings."""
     tol = CONTACT_TOLERANCE

@@ -9,10 +9,10 @@ import math
 
 import numpy as np
 
-from . import cushion, pocket
+from . import airborne, cushion, pocket
 from .geometry import distance_entry, rail_gap
 from .jit import helper
-from .kinds import C_BB, C_BB_REJ, C_CU, C_CU_REJ, C_PO, C_PO_REJ, C_REST, C_TR, POCKETED
+from .kinds import AIRBORNE, C_BB, C_BB_REJ, C_CU, C_CU_REJ, C_PO, C_PO_REJ, C_REST, C_TR, POCKETED
 from .motion import max_travel, moving, trajectory, transition_time
 from .tolerances import PARALLEL_SINE, REACH_SLACK
 
@@ -50,7 +50,10 @@ def out_of_reach(d, dv, da, horizon, reach):
 def pair_time(S, st, R, params, t_tr, i, k, now, counters):
     """Absolute time of the next contact of balls i and k (inf if none before either's next
     transition); S, st, R, params from the Scene, t_tr the Schedule's transition times.
-    (Plain arrays, not the bundles: this runs N times an event.)"""
+    (Plain arrays, not the bundles: this runs N times an event.) A pair with an airborne
+    ball is airborne.pair_time's."""
+    if st[i] == AIRBORNE or st[k] == AIRBORNE:
+        return airborne.pair_time(S, st, R, params, t_tr, i, k, now, counters)
     if not (moving(st[i]) or moving(st[k])) or st[i] == POCKETED or st[k] == POCKETED:
         counters[C_REST] += 1
         return np.inf
@@ -70,8 +73,12 @@ def pair_time(S, st, R, params, t_tr, i, k, now, counters):
 def boundary_times(scene, bounds, sched, i, now, counters):
     """Ball i's next cushion contact (into sched.t_cu, cu_id: rails and facings by row, jaw
     tips numbered after them) and next drop into a pocket (sched.t_po, po_id). A pocket's
-    facings and jaw tips are looked at only if the ball can come within its reach circle."""
+    facings and jaw tips are looked at only if the ball can come within its reach circle.
+    An airborne ball's are airborne.boundary_times'."""
     S, st, params = scene.S, scene.st, scene.params
+    if st[i] == AIRBORNE:
+        airborne.boundary_times(scene, bounds, sched, i, now, counters)
+        return
     t_cu, cu = np.inf, -1
     t_po, po = np.inf, -1
     if moving(st[i]):

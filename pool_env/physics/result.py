@@ -8,7 +8,7 @@ import numpy as np
 
 from .bundles import EVENTS, ROWS, Log, Scene
 from .engine import sample
-from .kinds import COUNTERS, EVENT_KINDS, POCKETED
+from .kinds import COUNTERS, EVENT_KINDS, POCKETED, ROW_WIDTH, VZ, Z
 
 
 class SimulationError(RuntimeError):
@@ -72,7 +72,7 @@ class Result:
             scene = self._run[0]
             S, st = scene.S, scene.st
             self._final = self._balls._trusted(S[:, 0:2].copy(), S[:, 2:4].copy(), S[:, 4:7].copy(), st == POCKETED,
-                                               self._balls)
+                                               self._balls, _air(S))
         return self._final
 
     @property
@@ -104,13 +104,14 @@ class Result:
         return float(times[-1]) if times.size else 0.0
 
     def sample(self, times):
-        """Exact states at the given times: (rows (T, N, 8) with columns x, y, vx, vy, wx, wy,
-        wz, t; states (T, N) motion-state codes, see STATE_NAMES)."""
+        """Exact states at the given times: (rows (T, N, ROW_WIDTH) with columns x, y, vx, vy,
+        wx, wy, wz, t, z, vz (kinds.X ... kinds.VZ; z the centre's height above where it rests
+        on the cloth, 0 there); states (T, N) motion-state codes, see STATE_NAMES)."""
         times = np.asarray(times, dtype=np.float64)
         order = np.argsort(times, kind="stable")
         scene, log = self._run
         n_rows, n = int(log.size[ROWS]), len(self._balls)
-        rows = np.empty((times.size, n, 8))
+        rows = np.empty((times.size, n, ROW_WIDTH))
         states = np.empty((times.size, n), dtype=np.int64)
         sample(log.hist[:n_rows], log.hist_ball[:n_rows], n, np.ascontiguousarray(times[order]),
                self._balls.radii, scene.params, rows, states)
@@ -126,10 +127,22 @@ class Result:
         rows, states = self.sample(np.array([t]))
         row = rows[0]
         return self._balls._trusted(row[:, 0:2].copy(), row[:, 2:4].copy(), row[:, 4:7].copy(),
-                                    states[0] == POCKETED, self._balls)
+                                    states[0] == POCKETED, self._balls, _air(row))
+
+    def heights(self, times) -> np.ndarray:
+        """Each ball's centre height above the cloth (m) at the given times, shape (T, N): R on
+        the cloth, R + z in the air (what a renderer draws a ball's lift and shadow from)."""
+        rows, _ = self.sample(times)
+        return self._balls.radii + rows[..., Z]
 
     def __repr__(self):
         return f"Result({len(self.event_arrays[0])} events, duration={self.duration:.3f} s)"
+
+
+def _air(rows):
+    """The (z, vz) columns of state rows as Balls.air, or None when every ball is on the cloth."""
+    air = rows[:, Z:VZ + 1]
+    return air.copy() if air.any() else None
 
 
 def engine_counters(log):

@@ -12,7 +12,7 @@ import numpy as np
 from . import engine, fixed, seed_loop
 from .bundles import EVENTS, Log, bounds_of, bounds_tuple, default_event_cap, log_arrays, reach_of
 from .config import NOSE_HEIGHT_MODELS, Physics
-from .kinds import BUFFER_FULL, COUNTERS, EVENT_CAP, MISPLACED
+from .kinds import BUFFER_FULL, COUNTERS, EVENT_CAP, MISPLACED, ROW_WIDTH
 from .objects import Balls, Table
 from .placement import first_misplaced
 from .result import Result, SimulationError, cap_message
@@ -91,6 +91,9 @@ def simulate(balls: Balls, table: Table, physics: Physics | None = None, method:
     if method == "events":
         return _run_events(balls, table, physics, max_events)  # its compiled call checks the scene
     check_on_table(balls, table, physics)
+    if balls.airborne.any():
+        raise ValueError(f"ball {int(np.flatnonzero(balls.airborne)[0])} is airborne: method {method!r} models balls "
+                         "on the cloth only; use method='events'")
     if method == "fixed":
         return fixed.simulate_fixed(balls, table, physics, max_events, **options)
     return seed_loop.simulate_seed(balls, table, physics, max_events, **options)
@@ -112,10 +115,10 @@ def _run_events(balls, table, physics, max_events):
     # simulation being deterministic.
     size = min(cap, 256 + 16 * n)
     while True:
-        S, st = np.empty((n, 8)), np.empty(n, dtype=np.int64)
+        S, st = np.empty((n, ROW_WIDTH)), np.empty(n, dtype=np.int64)
         log = log_arrays(size, n + 2 * size + 2, cap, len(COUNTERS))
-        code, spin = engine.simulate_scene((balls.xy, balls.v, balls.w, balls.pocketed, balls.radii, balls.masses,
-                                            reach, S, st), args, bounds_tuple(table), log)
+        code, spin = engine.simulate_scene((balls.xy, balls.v, balls.w, balls.air, balls.pocketed, balls.radii,
+                                            balls.masses, reach, S, st), args, bounds_tuple(table), log)
         if code != BUFFER_FULL:
             break
         size = min(cap, 4 * size)

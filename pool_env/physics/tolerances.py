@@ -22,6 +22,10 @@ EPS_W = 1e-10
 # (s) is gentle: the slide is taken at once (motion.reroll); its path then differs from the
 # straight one by under a nanometre.
 GENTLE_TIME = 1e-5
+# A ball meeting the slate bounces only if the bounce would lift it this high (m): lower
+# rebounds end the bouncing and the ball slides on (pooltool's FrictionalInelasticTable
+# min_bounce_height, 5 mm). It also bounds the number of bounces: heights fall by e_t^2 a bounce.
+BOUNCE_STOP_HEIGHT = 5e-3
 # Slack (m) added to a ball's travel bound and to the broad phase's clearance, so a bound
 # computed with round-off never rejects a contact that happens.
 REACH_SLACK = 1e-12

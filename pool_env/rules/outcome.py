@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from ..physics.kinds import BALL_BALL_KINDS, BALL_CUSHION, BALL_POCKET, EVENT_KINDS
+from ..physics.kinds import BALL_BALL_KINDS, BALL_CUSHION, BALL_OFF_TABLE, BALL_POCKET, EVENT_KINDS
 
 CUE = 0  # the cue ball's number
 
@@ -21,7 +21,7 @@ class ShotOutcome:
     | `cue_pocketed` | the cue ball dropped (a scratch) |
     | `rail_after_contact` | some ball (cue or object) touched a cushion after the first cue-object contact |
     | `object_balls_to_rail` | object balls that touched a cushion at any time in the shot (the break's four) |
-    | `off_table` | balls that left the table without dropping (the engine only pockets, so normally empty) |
+    | `off_table` | balls that left the table without dropping ("ball_off_table" events: through the air), in order |
 
     A cushion is any cushion body the engine has: the rail noses, the pockets' facings and
     their jaw tips (all "ball_cushion" events); a ball that touches a facing or a jaw tip in a
@@ -95,7 +95,8 @@ def outcome_from_result(result) -> ShotOutcome:
     Ball index = ball number (the racks in `pool_env.rules.racks` put ball k at index k).
     Contacts are the "ball_ball" kinds (a pressed "ball_ball_settle" contact included); a
     cushion contact is a "ball_cushion" event (rails, facings and jaw tips alike); a drop is a
-    "ball_pocket" event (j the pocket index). Motion transitions are ignored."""
+    "ball_pocket" event (j the pocket index); a ball leaving the table through the air is a
+    "ball_off_table" event. Motion transitions and bounces on the slate are ignored."""
     arrays = getattr(result, "event_arrays", None)
     if arrays is not None:  # a physics Result: its arrays as lists, without an Event object per event
         kinds, i_s, j_s = (a.tolist() for a in arrays[1:])
@@ -103,7 +104,7 @@ def outcome_from_result(result) -> ShotOutcome:
         kinds = [EVENT_KINDS.index(event.kind) for event in result.events]
         i_s, j_s = [int(event.i) for event in result.events], [int(event.j) for event in result.events]
     first, contact_seen, rail_after = None, False, False
-    to_rail, dropped, pockets = set(), [], []
+    to_rail, dropped, pockets, gone = set(), [], [], []
     for kind, i, j in zip(kinds, i_s, j_s):
         if kind in BALL_BALL_KINDS:
             if not contact_seen and CUE in (i, j):
@@ -115,5 +116,8 @@ def outcome_from_result(result) -> ShotOutcome:
         elif kind == BALL_POCKET:
             dropped.append(i)
             pockets.append(j)
+        elif kind == BALL_OFF_TABLE:
+            gone.append(i)
     pocketed = tuple(b for b in dropped if b != CUE)
-    return ShotOutcome(first, pocketed, dict(zip(dropped, pockets)), CUE in dropped, rail_after, frozenset(to_rail))
+    return ShotOutcome(first, pocketed, dict(zip(dropped, pockets)), CUE in dropped, rail_after, frozenset(to_rail),
+                       tuple(gone))
