@@ -10,6 +10,7 @@ import gymnasium as gym
 import numpy as np
 
 from .. import __version__
+from ..physics import Physics
 
 FORMAT = "pool_env.saved_game"
 VERSION = 2  # 2: the numeric infos (codes, the pocketed mask)
@@ -187,7 +188,10 @@ def replay(record: dict, env=None, on_step=None, until=None):
     Returns the env, at the end of the replayed steps."""
     env = make_env(record) if env is None else env
     base = env.unwrapped
-    if describe_table(base.table) != record["table"] or dataclasses.asdict(base.physics) != record["physics"]:
+    # A coefficient the file does not name takes its default (one added since it was saved,
+    # e.g. the slate's e_t and mu_t, which level shots never use).
+    if describe_table(base.table) != record["table"] or \
+            dataclasses.asdict(base.physics) != {**dataclasses.asdict(Physics()), **record["physics"]}:
         raise ReplayMismatch("the env's table or physics differ from the saved game's")
     env.reset(seed=record["seed"])
     steps = record["actions"] if until is None else record["actions"][:until]
