@@ -39,7 +39,8 @@ def test_an_elevated_layout_reads_back_what_it_writes(name):
     assert back.pocket == shot.pocket
 
 
-@pytest.mark.parametrize("entry, degrees", [(-1.0, 0.0), (-0.3, 0.0), (0.0, 0.0), (0.5, 42.5), (1.0, 85.0), (3.0, 85.0)])
+@pytest.mark.parametrize("entry, degrees",
+                         [(-1.0, 0.0), (-0.3, 0.0), (0.0, 0.0), (0.5, 42.5), (1.0, 85.0), (3.0, 85.0)])
 def test_the_elevation_entry_is_level_at_or_below_zero_and_linear_above(entry, degrees):
     shot = decode_action(LAYOUTS["nine_ball" + ELEVATED], [0.5, 0.0, 0.0, 0.0, 0.0, 0.0, entry], AREA)
     assert math.degrees(shot.elevation) == pytest.approx(degrees, abs=1e-9)
