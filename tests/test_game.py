@@ -201,6 +201,8 @@ def test_encode_of_decode_gives_the_action_back(name):
             a[2:4] *= min(1.0, 0.99 / max(float(np.hypot(a[2], a[3])), 1e-9))  # inside the miscue limit
         if layout_.called_pocket:
             a[6] = -1.0 + (2 * int(rng.integers(6)) + 1) / 6  # a bin's centre
+        if layout_.elevation:
+            a[-1] = max(a[-1], 0.0)  # every entry <= 0 is the level cue, written back as 0
         assert np.allclose(encode_action(layout_, decode_action(layout_, a, area), area), a, atol=2e-6)
 
 

@@ -8,7 +8,7 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import logger, spaces
 
-from ..game import N_BALLS, Game, StruckShot, break_observation, simulate_struck
+from ..game import ELEVATED, N_BALLS, Game, StruckShot, break_observation, simulate_struck
 from ..physics import Balls, Table
 from ..render.playback import ShotPlayback
 from ..render.window import HumanWindow
@@ -128,6 +128,7 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
     | --- | --- | --- |
     | 0, 1 | cue force (fx, fy) | force = `MAX_FORCE` * a[0:2] N, `MAX_FORCE` = 12 m/s * m / 0.005 s = 408 N |
     | 2, 3 | tip offset (side, top), only with `spin=True` | offset = 0.5 * a[2:4] ball radii |
+    | last | cue elevation, only with `elevation=True` | 85 deg * a for a > 0; a <= 0 is a level cue |
 
     Entries are clipped to [-1, 1]. A force part longer than 1 is scaled to length 1, so
     |a[0:2]| = 1 is the strongest shot: the cue ball leaves at 12 m/s (a strong break) after
@@ -138,6 +139,10 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
     ball away from the side of the hit (`strike`'s default cue end mass). Any array, list or
     tuple of the action space's shape, (2,) or (4,) with `spin=True`, is an action; another
     shape (e.g. a batch of one, (1, 2)) or a non-finite entry raises `ValueError`.
+    `elevation=True` adds one last entry, the cue's angle above the table (`Shot.elevation`):
+    the cue drives the ball into the slate, so an off-centre hit swerves or masses and a steep
+    one jumps (`pool_env.physics.strike`); the force's direction stays the aim seen from above
+    and its length the push along the cue.
 
     ## Observation Space
 
@@ -232,6 +237,7 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
     | `physics` | `Physics.standard()` | the physics; `Physics.seed()` is the report's model |
     | `max_shots` | 1 | shots per episode |
     | `spin` | False | add the tip offset (side, top) to the action |
+    | `elevation` | False | add the cue's elevation to the action (last entry): swerve, masse, jump shots |
     | `randomize_cue` | False | random cue-ball start in the kitchen |
     | `shaping` | False | add the shaping terms to the reward |
     | `render_size` | (640, 360) | (width, height) of rendered frames in pixels |
@@ -311,14 +317,15 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
     metadata = {"render_modes": ["human", "rgb_array", "rgb_array_list"], "render_fps": 30}
 
     def __init__(self, render_mode=None, table=None, physics=None, max_shots=1, spin=False, randomize_cue=False,
-                 shaping=False, render_size=(640, 360), scratch_penalty=1.0, info_mode="numeric"):
+                 shaping=False, render_size=(640, 360), scratch_penalty=1.0, info_mode="numeric", elevation=False):
         self.info_mode = check_info_mode(info_mode)
         self.max_shots = check_env_options(render_mode, self.metadata["render_modes"], max_shots)
         self.render_mode = render_mode
-        self.spin = bool(spin)
+        self.spin, self.elevation = bool(spin), bool(elevation)
         # The game: the break alone, or a run of shots until a scratch or the last ball.
-        self.game = Game("break" if self.max_shots == 1 else "run", table, physics,
-                         layout="cue_spin" if self.spin else "cue", randomize_cue=randomize_cue)
+        layout = ("cue_spin" if self.spin else "cue") + (ELEVATED if self.elevation else "")
+        self.game = Game("break" if self.max_shots == 1 else "run", table, physics, layout=layout,
+                         randomize_cue=randomize_cue)
         self.table, self.physics = self.game.table, self.game.physics
         self.randomize_cue = bool(randomize_cue)
         self.shaping = bool(shaping)
@@ -329,7 +336,7 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
         if self.render_size[0] < 8 or self.render_size[1] < 8:
             raise ValueError(f"render_size must be at least 8 x 8 pixels, got {render_size!r}")
 
-        self.action_space = spaces.Box(-1.0, 1.0, (4 if self.spin else 2,), np.float32)
+        self.action_space = spaces.Box(-1.0, 1.0, (self.game.layout.size,), np.float32)
         self.observation_space = spaces.Box(-1.0, 1.0, (3 * N_BALLS + 1,), np.float32)
 
         self._started = False

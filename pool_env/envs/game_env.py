@@ -9,7 +9,7 @@ import numpy as np
 from gymnasium import logger, spaces
 
 from .. import rules
-from ..game import GAME_BALLS, Game, Shot, game_observation, game_observation_size
+from ..game import ELEVATED, GAME_BALLS, Game, Shot, game_observation, game_observation_size
 from ..physics import Balls
 from ..players import make_player
 from ..render.overlay import overlay
@@ -101,7 +101,8 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
       `pool_env.players.GameGhostBallAgent`, `"random"`, `"search"`, a saved model's path), an agent with
       `act(observation)`, a callable `observation -> action`, or None: practice (below) |
     | `noise` | None | None, `"olympiad"` (`NOISE_PRESETS`) or a dict of standard deviations (`angle` rad,
-      `speed` m/s, `side`, `top` in R) on every executed shot, both players'; deterministic given the seed |
+      `speed` m/s, `side`, `top` in R, `elevation` rad: elevated shots only) on every executed shot, both
+      players'; deterministic given the seed |
     | `agent_breaks` | True | the agent breaks every game (False: the opponent does, inside `reset`) |
     | `shaping` | False | add +0.1 per ball the agent pockets legally and -0.1 per agent foul |
     | `max_shots` | 100 | truncate after this many agent shots (a game of misses would never end) |
@@ -113,6 +114,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
     | `hotseat` | False | with `opponent=None`: two people at one table, each step the shot of whoever is to
       shoot, the episode going on when the turn passes until the game ends (`python -m pool_env.play
       --two-players`); observations from player 0's side |
+    | `elevation` | False | add the cue's elevation to the action (its last entry, below): jump and masse shots |
 
     ## Action Space
 
@@ -127,6 +129,10 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
       a ball or outside the area moves to the nearest free one (`place_cue_ball`) |
     | 6 | 8-ball: the pocket called for the 8: [-1, 1] cut into six equal bins, pocket k (`Table.pockets`
       order) in bin k; ignored unless the agent shoots at the 8 |
+    | last | with `elevation=True` (7 entries in 9-ball, 8 in 8-ball): the cue's elevation, 85 deg * a for
+      a > 0, a level cue for a <= 0 (`PoolBreakEnv`'s); a jump over a blocking ball is legal (the WPA's jump
+      shot: made by elevating the cue), a ball driven off the table a foul (WPA 6.5, 6.1 for the cue
+      ball). The built-in opponents cue level |
 
     ## Observation Space
 
@@ -200,14 +206,16 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
 
     def __init__(self, game="nine_ball", opponent="ghost_ball", render_mode=None, table=None, physics=None,
                  noise=None, agent_breaks=True, shaping=False, max_shots=100, rule_options=None,
-                 render_size=(640, 360), overlay=True, hotseat=False, info_mode="numeric"):
+                 render_size=(640, 360), overlay=True, hotseat=False, info_mode="numeric", elevation=False):
         self.info_mode = check_info_mode(info_mode)
         if game not in GAME_BALLS:
             raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
         self.render_mode = render_mode
         self.max_shots = check_env_options(render_mode, self.metadata["render_modes"], max_shots)
         self.rule_options = dict(rule_options or {})
-        self.game = Game(game, table, physics, noise, **self.rule_options)
+        self.elevation = bool(elevation)
+        self.game = Game(game, table, physics, noise, layout=game + ELEVATED if self.elevation else None,
+                         **self.rule_options)
         self.table, self.physics, self.noise = self.game.table, self.game.physics, self.game.noise
         self.agent_breaks, self.shaping, self.hotseat = bool(agent_breaks), bool(shaping), bool(hotseat)
         self.n_balls = self.game.n_balls
@@ -373,6 +381,8 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
                 action = yield OpponentDecision(self._opponent_player, observation)  # the driver decides (at once)
             else:
                 action = self._opponent(observation)
+            if self.elevation and np.shape(action) == (game.layout.size - 1,):
+                action = np.append(action, np.float32(0.0))  # the built-in players cue level
             try:
                 struck = game.strike(action)
             except ValueError as exc:

@@ -1,6 +1,6 @@
 """pool_env.game: the game as an object (`Game`), its shots, records, snapshots, action and observation layouts."""
 
-from .actions import LAYOUTS, ActionLayout, cue_force, decode_action, encode_action
+from .actions import ELEVATED, LAYOUTS, ActionLayout, cue_force, decode_action, elevation_entry, encode_action
 from .core import Game, GameSnapshot, ShotRecord, StruckShot, play_batch, simulate_struck, simulate_struck_batch
 from .modes import MODES, RULES_MODES, Mode, mode_of
 from .observation import (
@@ -19,7 +19,8 @@ from .shot import CONTACT_TIME, MAX_FORCE, MAX_SPEED, MAX_TIP_OFFSET, NOISE_PRES
 
 __all__ = [
     "Game", "Shot", "ShotRecord", "GameSnapshot", "StruckShot", "play_batch", "simulate_struck",
-    "simulate_struck_batch", "MODES", "RULES_MODES", "Mode", "mode_of", "LAYOUTS", "ActionLayout", "cue_force",
+    "simulate_struck_batch", "MODES", "RULES_MODES", "Mode", "mode_of", "LAYOUTS", "ELEVATED", "ActionLayout",
+    "cue_force", "elevation_entry",
     "decode_action", "encode_action", "N_BALLS", "GameView", "GAME_BALLS", "break_observation", "break_observations",
     "decode_observation", "game_observation", "decode_game_observation", "game_observation_size",
     "place_cue_ball", "placement_area", "CONTACT_TIME", "MAX_FORCE", "MAX_SPEED", "MAX_TIP_OFFSET",

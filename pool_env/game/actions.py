@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .shot import MAX_FORCE, MAX_SPEED, MAX_TIP_OFFSET, Shot
+from .shot import MAX_ELEVATION, MAX_FORCE, MAX_SPEED, MAX_TIP_OFFSET, Shot
 
 MIN_MAGNITUDE = 0.02  # weaker cue-force entries are raised to this (0.24 m/s)
 
@@ -15,21 +15,33 @@ MIN_MAGNITUDE = 0.02  # weaker cue-force entries are raised to this (0.24 m/s)
 @dataclass(frozen=True)
 class ActionLayout:
     """An action vector's layout: `size` entries in [-1, 1]; `spin` has the tip entries (2-3);
-    `placement` the ball-in-hand entries (4-5); `called_pocket` the pocket entry (6)."""
+    `placement` the ball-in-hand entries (4-5); `called_pocket` the pocket entry (6);
+    `elevation` the cue-elevation entry, the last one (a layout's "+elevation" variant)."""
 
     name: str
     size: int
     spin: bool
     placement: bool = False
     called_pocket: bool = False
+    elevation: bool = False
 
 
-LAYOUTS = {
+_LEVEL = {
     "cue": ActionLayout("cue", 2, spin=False),
     "cue_spin": ActionLayout("cue_spin", 4, spin=True),
     "nine_ball": ActionLayout("nine_ball", 6, spin=True, placement=True),
     "eight_ball": ActionLayout("eight_ball", 7, spin=True, placement=True, called_pocket=True),
 }
+ELEVATED = "+elevation"  # the suffix of a layout's variant with the cue-elevation entry last
+LAYOUTS = {**_LEVEL, **{name + ELEVATED: replace(layout, name=name + ELEVATED, size=layout.size + 1, elevation=True)
+                        for name, layout in _LEVEL.items()}}
+
+
+def elevation_entry(entry: float) -> float:
+    """The cue's elevation (rad) of an elevation entry: entries <= 0 are a level cue (so the
+    zero action, and half of a centred policy's draws, play level), (0, 1] maps linearly
+    onto (0, MAX_ELEVATION] (85 deg)."""
+    return MAX_ELEVATION * min(max(entry, 0.0), 1.0)
 
 
 def cue_force(action, spin: bool):
@@ -70,8 +82,9 @@ def decode_action(layout: ActionLayout, action, area=None, n_pockets: int = 6) -
     """The `Shot` an action of `layout` means. `area` (x_lo, x_hi, y_lo, y_hi) is where the
     cue ball may be placed (ball in hand; None: it plays from where it lies, and entries 4-5
     are ignored): entries 4-5 map linearly onto it. Entry 6 cuts [-1, 1] into `n_pockets`
-    equal bins, pocket k in bin k. ValueError for a wrong shape or a non-finite entry."""
-    if not layout.placement:
+    equal bins, pocket k in bin k. An elevated layout's last entry is the cue's elevation
+    (`elevation_entry`). ValueError for a wrong shape or a non-finite entry."""
+    if not (layout.placement or layout.elevation):
         force, tip = cue_force(action, layout.spin)
         return Shot(tuple(force.tolist()), tuple(tip.tolist()))
     a = np.asarray(action, dtype=np.float64)
@@ -81,19 +94,22 @@ def decode_action(layout: ActionLayout, action, area=None, n_pockets: int = 6) -
     if not all(math.isfinite(v) for v in values):
         raise ValueError(f"action must be finite, got {values}")
     a = [min(max(v, -1.0), 1.0) for v in values]  # np.clip(a, -1, 1)
-    force, tip = cue_force(a[0:4], spin=True)
+    spin = layout.spin or layout.placement
+    force, tip = cue_force(a[0:4] if spin else a[0:2], spin=spin)
+    elevation = elevation_entry(a[-1]) if layout.elevation else 0.0
     place = None
-    if area is not None:
+    if layout.placement and area is not None:
         x_lo, x_hi, y_lo, y_hi = area
         place = (x_lo + 0.5 * (a[4] + 1.0) * (x_hi - x_lo), y_lo + 0.5 * (a[5] + 1.0) * (y_hi - y_lo))
     pocket = min(int((a[6] + 1.0) * 0.5 * n_pockets), n_pockets - 1) if layout.called_pocket else None
-    return Shot(tuple(force.tolist()), tuple(tip.tolist()), place, pocket)
+    return Shot(tuple(force.tolist()), tuple(tip.tolist()), place, pocket, elevation)
 
 
 def encode_action(layout: ActionLayout, shot: Shot, area=None, n_pockets: int = 6) -> np.ndarray:
     """The action of `layout` (float32, in [-1, 1]) that `decode_action` reads back as `shot`
     (to float32 rounding): the force as a fraction of MAX_FORCE, the tip of MAX_TIP_OFFSET, the
-    spot's place in `area` (0, 0 when `area` or the spot is None), the middle of the pocket's bin."""
+    spot's place in `area` (0, 0 when `area` or the spot is None), the middle of the pocket's bin,
+    the elevation as a fraction of MAX_ELEVATION."""
     if not isinstance(shot, Shot):
         raise TypeError(f"shot must be a pool_env.game.Shot, got {type(shot).__name__}")
     force = shot.direction * min(shot.speed / MAX_SPEED, 1.0)
@@ -110,4 +126,6 @@ def encode_action(layout: ActionLayout, shot: Shot, area=None, n_pockets: int = 
     if layout.called_pocket:
         n = max(int(n_pockets), 1)
         entries.append(-1.0 + (2.0 * (shot.pocket if shot.pocket is not None else 0) + 1.0) / n)
+    if layout.elevation:
+        entries.append(shot.elevation / MAX_ELEVATION)
     return np.clip(np.array(entries, dtype=np.float32), -1.0, 1.0)

@@ -25,8 +25,8 @@ CUE_TRIES = 1000  # draws of a random cue spot before falling back to the head s
 class StruckShot:
     """A shot ready to simulate (`Game.strike`): who shoots, what he meant (`shot`, and the
     `action` it was read from, if any), his ball in hand, the called pocket, the balls at rest
-    with the cue ball placed (`placed`), the cue's force and tip as executed (noise included),
-    and `balls`, the struck balls to simulate, or the ValueError striking raised. Read-only by
+    with the cue ball placed (`placed`), the cue's force, tip and elevation as executed (noise
+    included), and `balls`, the struck balls to simulate, or the ValueError striking raised. Read-only by
     convention (not frozen: it is made for every shot, and a frozen dataclass is slow to make)."""
 
     shot: Shot
@@ -38,14 +38,15 @@ class StruckShot:
     tip: tuple
     balls: Balls | Exception
     action: tuple | None = None
+    elevation: float = 0.0
 
 
 @dataclass(eq=False, slots=True)
 class ShotRecord:
     """What one shot did (`Game.play`, `Game.evaluate`).
 
-    `shooter`, `shot`, `action`, `ball_in_hand`, `called_pocket`, `force` and `tip` (executed)
-    as in `StruckShot`; `balls_before` the balls at rest before the strike (the cue ball
+    `shooter`, `shot`, `action`, `ball_in_hand`, `called_pocket`, `force`, `tip` and
+    `elevation` (executed) as in `StruckShot`; `balls_before` the balls at rest before the strike (the cue ball
     placed) and `state_before` the rules' state then, `balls_after` at rest after it
     (spotted balls back on the table); `result` the
     physics `Result` (events, trajectories, stats); `ruling` the rules' `Ruling` and
@@ -69,6 +70,7 @@ class ShotRecord:
     over: bool
     error: str | None = None
     judged: rules.ShotOutcome | None = None
+    elevation: float = 0.0
 
     @property
     def outcome(self) -> rules.ShotOutcome | None:
@@ -381,14 +383,17 @@ class Game:
         called = shot.pocket if self._mode.rules == "eight_ball" else None
         if called is not None and called >= self.table.pockets.shape[0]:
             raise ValueError(f"Shot.pocket {called} names no pocket (the table has {self.table.pockets.shape[0]})")
-        force, tip = shot.force, shot.tip
+        force, tip, elevation = shot.force, shot.tip, shot.elevation
         if self.noise is not None:
-            force, tip = noisy_shot(force, tip, self.noise, self.rng if rng is None else rng)
+            force, tip, elevation = noisy_shot(force, tip, self.noise, self.rng if rng is None else rng, elevation)
         try:
-            struck = strike(placed, force, tip, CONTACT_TIME)
+            if elevation > 0.0:  # the slate's answer needs the physics (its e_t, mu_t)
+                struck = strike(placed, force, tip, CONTACT_TIME, elevation=elevation, physics=self.physics)
+            else:
+                struck = strike(placed, force, tip, CONTACT_TIME)
         except ValueError as exc:
             struck = exc
-        return StruckShot(shot, self.shooter, hand, called, placed, force, tip, struck, action)
+        return StruckShot(shot, self.shooter, hand, called, placed, force, tip, struck, action, elevation)
 
     def resolve(self, struck: StruckShot, result) -> ShotRecord:
         """`play`'s second half: apply the simulation's `Result` (or the SimulationError or
@@ -410,12 +415,12 @@ class Game:
             if not isinstance(result, SHOT_ERRORS):
                 raise result
             error = f"{type(result).__name__}: {result}"
-            return ShotRecord(*head, struck.placed, None, None, self._state, False, error)
+            return ShotRecord(*head, struck.placed, None, None, self._state, False, error, elevation=struck.elevation)
         final = result.final
         if not self.has_rules:
             cleared = self.table.pockets.shape[0] > 0 and bool(final.pocketed[1:].all())
             over = self._mode.one_shot or bool(final.pocketed[0]) or cleared
-            return ShotRecord(*head, final, result, None, None, over)
+            return ShotRecord(*head, final, result, None, None, over, elevation=struck.elevation)
         outcome = rules.outcome_from_result(result)
         key = (outcome, struck.called_pocket)
         judged = None if rulings is None else rulings.get(key)
@@ -425,7 +430,8 @@ class Game:
                 rulings[key] = judged
         state, ruling = judged
         balls = rules.spot_balls(final, self.table, ruling.balls_to_spot) if ruling.balls_to_spot else final
-        return ShotRecord(*head, balls, result, ruling, state, state.winner is not None, judged=outcome)
+        return ShotRecord(*head, balls, result, ruling, state, state.winner is not None, judged=outcome,
+                          elevation=struck.elevation)
 
     # --- branching ------------------------------------------------------------------------------
     @property

@@ -1,4 +1,4 @@
-"""`Shot`: one cue shot as a player means it (force, tip, ball-in-hand spot, called pocket); the noise on it."""
+"""`Shot`: one cue shot as a player means it (force, tip, elevation, ball-in-hand spot, called pocket); its noise."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..physics import BALL_MASS, BALL_RADIUS
-from ..physics.cue import MISCUE_LIMIT
+from ..physics.cue import MAX_ELEVATION, MISCUE_LIMIT
 
 CONTACT_TIME = 0.005  # s, the seed report's cue contact time: a force F gives the cue ball F dt / m
 MAX_SPEED = 12.0  # m/s, the cue ball's speed at full power: a strong break
@@ -16,14 +16,15 @@ MAX_FORCE = MAX_SPEED * BALL_MASS / CONTACT_TIME  # N (about 408 N)
 MAX_TIP_OFFSET = MISCUE_LIMIT  # in ball radii: the tip may go as far as the miscue limit, 0.5 R
 SPEED_SLACK = 1e-9  # relative: a force a rounding above MAX_FORCE is still full power
 # Noise on the executed shot: standard deviations of the aim angle (rad), the cue ball's speed
-# (m/s) and the tip offsets (in ball radii). "olympiad": FastFiz's GaussianNoise defaults, the
-# Computational Pool Olympiad's (phi 0.125 deg, v 0.075 m/s, a and b 0.5 mm; its cue
-# elevation noise, theta 0.1 deg, has no counterpart: the cue is level here).
+# (m/s), the tip offsets (in ball radii) and the cue's elevation (rad). "olympiad": FastFiz's
+# GaussianNoise defaults, the Computational Pool Olympiad's (phi 0.125 deg, v 0.075 m/s, a and
+# b 0.5 mm, theta 0.1 deg). The elevation noise acts on elevated shots only: a level cue stays
+# level (a player keeps the cue on the rail's plane; and level shots draw what they always drew).
 NOISE_PRESETS = {
     "olympiad": {"angle": math.radians(0.125), "speed": 0.075, "side": 0.5e-3 / BALL_RADIUS,
-                 "top": 0.5e-3 / BALL_RADIUS},
+                 "top": 0.5e-3 / BALL_RADIUS, "elevation": math.radians(0.1)},
 }
-NOISE_KEYS = ("angle", "speed", "side", "top")
+NOISE_KEYS = ("angle", "speed", "side", "top", "elevation")
 MIN_NOISY_SPEED = 0.01  # m/s: the noise never turns a shot round (a speed below zero)
 
 
@@ -52,15 +53,20 @@ class Shot:
       free spot nearest it in the area the rules allow); ignored otherwise. None: where it
       lies, or the area's middle if it was pocketed.
     - `pocket` (an index in `Table.pockets`, or None): the called pocket (8-ball, at the 8).
+    - `elevation` (rad, 0 to `MAX_ELEVATION`, 85 deg): the cue's angle above the table; 0 is a
+      level cue. An elevated cue drives the ball into the slate: it swerves, masses or jumps
+      (`pool_env.physics.strike`). `force` keeps its meaning: its direction is the aim seen
+      from above, its length the push along the cue.
 
     `Shot.aimed(direction, speed, ...)` builds one from a direction and a speed in m/s. A
-    non-finite entry, a zero or too strong force, a tip past the miscue limit or a negative
-    pocket raises ValueError."""
+    non-finite entry, a zero or too strong force, a tip past the miscue limit, an elevation
+    out of range or a negative pocket raises ValueError."""
 
     force: tuple[float, float]
     tip: tuple[float, float] = (0.0, 0.0)
     place: tuple[float, float] | None = None
     pocket: int | None = None
+    elevation: float = 0.0
 
     def __post_init__(self):
         force = _pair(self.force, "Shot.force")
@@ -71,8 +77,13 @@ class Shot:
         tip = _pair(self.tip, "Shot.tip")
         if math.hypot(*tip) > MAX_TIP_OFFSET * (1.0 + SPEED_SLACK):
             raise ValueError(f"Shot.tip {tip} is past the miscue limit ({MAX_TIP_OFFSET} R from the centre)")
+        elevation = float(self.elevation)
+        if not (math.isfinite(elevation) and 0.0 <= elevation <= MAX_ELEVATION):
+            raise ValueError(f"Shot.elevation must be in [0, MAX_ELEVATION = {MAX_ELEVATION:.4f}] rad (0 to 85 deg), "
+                             f"got {self.elevation!r}")
         object.__setattr__(self, "force", force)
         object.__setattr__(self, "tip", tip)
+        object.__setattr__(self, "elevation", elevation)
         if self.place is not None:
             object.__setattr__(self, "place", _pair(self.place, "Shot.place"))
         if self.pocket is not None:
@@ -81,14 +92,15 @@ class Shot:
             object.__setattr__(self, "pocket", int(self.pocket))
 
     @classmethod
-    def aimed(cls, direction, speed: float, tip=(0.0, 0.0), place=None, pocket=None) -> Shot:
-        """The cue ball sent along `direction` (any length) at `speed` m/s."""
+    def aimed(cls, direction, speed: float, tip=(0.0, 0.0), place=None, pocket=None, elevation=0.0) -> Shot:
+        """The cue ball sent along `direction` (any length) at `speed` m/s (the push along the
+        cue: an elevated cue's ball leaves slower along the table, driven into the slate)."""
         dx, dy = _pair(direction, "direction")
         length = math.hypot(dx, dy)
         if length == 0.0:
             raise ValueError("direction must not be zero")
         scale = float(speed) * BALL_MASS / CONTACT_TIME / length
-        return cls((dx * scale, dy * scale), tip, place, pocket)
+        return cls((dx * scale, dy * scale), tip, place, pocket, elevation)
 
     @property
     def speed(self) -> float:
@@ -117,12 +129,13 @@ def noise_of(noise) -> dict | None:
     return out
 
 
-def noisy_shot(force, offset, noise, rng):
-    """The shot (force (2,) N, tip offset (2,) R) with Gaussian noise on its aim angle, its
-    speed and its tip offset (clamped back to the miscue limit and a positive speed): four
-    normal draws from `rng`, none without noise."""
+def noisy_shot(force, offset, noise, rng, elevation=0.0):
+    """The shot (force (2,) N, tip offset (2,) R, elevation rad) with Gaussian noise on its aim
+    angle, its speed and its tip offset (clamped back to the miscue limit and a positive speed),
+    and on an elevated shot's elevation (clamped to [0, MAX_ELEVATION]): four normal draws from
+    `rng`, a fifth if elevated, none without noise."""
     if noise is None:
-        return force, offset
+        return force, offset, elevation
     speed = math.hypot(*force) * CONTACT_TIME / BALL_MASS
     angle = math.atan2(force[1], force[0]) + rng.normal(0.0, noise["angle"])
     speed = max(speed + rng.normal(0.0, noise["speed"]), MIN_NOISY_SPEED)
@@ -130,5 +143,7 @@ def noisy_shot(force, offset, noise, rng):
     length = math.hypot(side, top)
     if length > MAX_TIP_OFFSET:
         side, top = side * MAX_TIP_OFFSET / length, top * MAX_TIP_OFFSET / length
+    if elevation > 0.0:
+        elevation = min(max(elevation + rng.normal(0.0, noise["elevation"]), 0.0), MAX_ELEVATION)
     magnitude = speed * BALL_MASS / CONTACT_TIME
-    return np.array((magnitude * math.cos(angle), magnitude * math.sin(angle))), np.array((side, top))
+    return np.array((magnitude * math.cos(angle), magnitude * math.sin(angle))), np.array((side, top)), elevation

@@ -11,7 +11,7 @@ from pettingzoo.utils import wrappers
 from ..envs.break_env import can_render, check_env_options, check_reset_options
 from ..envs.game_env import SHAPING_BALL, SHAPING_FOUL, PoolGameEnv, captioned, shot_caption
 from ..envs.infos import check_info_mode, no_shot_info, record_info, rich_info, winner_code
-from ..game import GAME_BALLS, Game, game_observation, game_observation_size
+from ..game import ELEVATED, GAME_BALLS, Game, game_observation, game_observation_size
 from ..render.overlay import overlay
 from ..render.playback import ShotPlayback
 from ..rules import codes
@@ -87,13 +87,16 @@ class PoolGameAEC(AECEnv):
                 "render_fps": PoolGameEnv.metadata["render_fps"]}
 
     def __init__(self, game="nine_ball", render_mode=None, noise=None, shaping=False, max_shots=200,
-                 rule_options=None, table=None, physics=None, render_size=(640, 360), info_mode="numeric"):
+                 rule_options=None, table=None, physics=None, render_size=(640, 360), info_mode="numeric",
+                 elevation=False):
         super().__init__()
         self.info_mode = check_info_mode(info_mode)
         if game not in GAME_BALLS:
             raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
         self.max_shots = check_env_options(render_mode, self.metadata["render_modes"], max_shots)
-        self.game = Game(game, table, physics, noise, **dict(rule_options or {}))
+        self.elevation = bool(elevation)
+        self.game = Game(game, table, physics, noise, layout=game + ELEVATED if self.elevation else None,
+                         **dict(rule_options or {}))
         self.table, self.physics = self.game.table, self.game.physics
         self.render_mode, self.shaping = render_mode, bool(shaping)
         self.render_size = (int(render_size[0]), int(render_size[1]))

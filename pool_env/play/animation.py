@@ -144,8 +144,9 @@ class StepAnimation:
             return None
         s, j, k = where
         if self._drawn[0] != k:
-            _, _, (_, xy, pocketed, orientation) = self.shots[s]
-            self._drawn = (k, self.renderer.draw(xy[j], pocketed[j], orientation[j]))
+            _, _, (_, xy, pocketed, orientation, heights) = self.shots[s]
+            self._drawn = (k, self.renderer.draw(xy[j], pocketed[j], orientation[j],
+                                                 None if heights is None else heights[j]))
         self.shown = max(self.shown, k)
         return self._drawn[1]
 

@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from ..physics import BALL_RADIUS
-from ..physics.kinds import POCKETED
+from ..physics.kinds import POCKETED, Z
 from .table import TableRenderer, integrate_orientation
 
 ORIENTATION_SUBSTEPS = 4  # orientation integration steps per rendered frame
@@ -33,9 +33,10 @@ def frame_times(duration, fps) -> np.ndarray:
 
 
 def sample_shot(result, start, fps):
-    """(times (F,), xy (F, n, 2), pocketed (F, n), orientation (F, n, 3, 3)) of a shot (a
-    `Result`) sampled at `fps` from its exact trajectory, the balls starting in orientations
-    `start` (n, 3, 3): frames at t = 0, 1/fps, ... and at the shot's end."""
+    """(times (F,), xy (F, n, 2), pocketed (F, n), orientation (F, n, 3, 3), heights (F, n) or
+    None) of a shot (a `Result`) sampled at `fps` from its exact trajectory, the balls starting
+    in orientations `start` (n, 3, 3): frames at t = 0, 1/fps, ... and at the shot's end.
+    `heights` (m above where each ball rests on the cloth) is None if no ball left the cloth."""
     times = frame_times(result.duration, fps)
     # Angular velocity at the midpoints of ORIENTATION_SUBSTEPS substeps per frame interval:
     # the midpoint rule is exact while w changes linearly about a fixed axis (sliding, rolling).
@@ -58,7 +59,8 @@ def sample_shot(result, start, fps):
             current = steps[s] @ current
         orientation[f] = current
     orientation[-1] = integrate_orientation(orientation[-1], np.zeros((n, 3)), 0.0)  # re-orthonormalise
-    return times, xy, pocketed, orientation
+    heights = rows[:frames, :, Z]
+    return times, xy, pocketed, orientation, (heights if heights.any() else None)
 
 
 class ShotPlayback:
@@ -141,8 +143,9 @@ class ShotPlayback:
             raise ValueError(f"fps must be finite and > 0, got {fps!r}")
         if self._shot is None:
             return [self._draw(self._balls.xy, self._balls.pocketed, self._orientation_now())]
-        _, xy, pocketed, orientation = self._track(fps)
-        return [self._draw(xy[k], pocketed[k], orientation[k]) for k in range(len(xy))]
+        _, xy, pocketed, orientation, heights = self._track(fps)
+        return [self._draw(xy[k], pocketed[k], orientation[k], None if heights is None else heights[k])
+                for k in range(len(xy))]
 
     def close(self):
         self._renderer = None
@@ -179,5 +182,5 @@ class ShotPlayback:
             self._orientation = sample_shot(result, self._orientation, self.fps)[3][-1]
         return self._orientation
 
-    def _draw(self, xy, pocketed, orientation):
-        return self.renderer.draw(xy, pocketed, orientation)
+    def _draw(self, xy, pocketed, orientation, heights=None):
+        return self.renderer.draw(xy, pocketed, orientation, heights)

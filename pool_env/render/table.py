@@ -31,6 +31,12 @@ TEXT_RGB = (18, 18, 18)
 MARKER_CORE_RGB = (15, 15, 15)  # body +z marker
 ANTIPODE_CORE_RGB = (225, 20, 20)  # body -z marker
 MARKER_HALO_RGB = (250, 250, 250)
+SHADOW_RGB = (8, 30, 16)  # an airborne ball's shadow on the cloth
+SHADOW_ALPHA = 0.55
+# The light's slant: a ball h metres above where it rests casts its shadow this many times h
+# away, down and to the right on the image (the light high up to the upper left): the gap
+# between a ball and its shadow shows how high it flies.
+SHADOW_SLANT = 0.8
 
 # Colours of balls 1..8; balls 9..15 reuse 1..7 as stripes.
 BALL_COLORS = {
@@ -314,11 +320,13 @@ class TableRenderer:
         xy: np.ndarray,
         pocketed: np.ndarray,
         orientation: np.ndarray | None = None,
+        heights: np.ndarray | None = None,
     ) -> np.ndarray:
         """Render one frame: uint8 (H, W, 3). Pocketed or non-finite balls are not drawn.
 
         xy (N,2) metres, pocketed (N,) bool, orientation (N,3,3) body->world rotations or
-        None (no spin markers).
+        None (no spin markers), heights (N,) metres above where each ball rests on the cloth
+        or None (all on it): an airborne ball casts a shadow SHADOW_SLANT x its height away.
         """
         xy = np.asarray(xy, dtype=np.float64).reshape(-1, 2)
         pocketed = np.asarray(pocketed, dtype=bool).reshape(-1)
@@ -328,6 +336,8 @@ class TableRenderer:
         frame = self._background.copy()
         if n == 0:
             return frame
+        if heights is not None:
+            self._draw_shadows(frame, xy, pocketed, np.asarray(heights, dtype=np.float64).reshape(-1))
         h_px, w_px = frame.shape[:2]
         half, side, r_px = self._half, 2 * self._half + 1, self._r_px
 
@@ -386,6 +396,21 @@ class TableRenderer:
             blended += 0.5
             reg[...] = blended  # float -> uint8 truncation after +0.5 == rounding
         return frame
+
+
+    def _draw_shadows(self, frame, xy, pocketed, heights):
+        """Paint the shadows of the airborne balls (height > 0) onto `frame` in place."""
+        flying = np.flatnonzero(~pocketed & (heights > 0.0) & np.isfinite(xy).all(axis=1))
+        if flying.size == 0:
+            return
+        canvas = frame.astype(np.float64)
+        centre = self.world_to_pixel(xy[flying])
+        shift = SHADOW_SLANT * heights[flying] * self.scale
+        for (cx, cy), d in zip(centre.tolist(), shift.tolist()):
+            alpha_img = np.zeros(canvas.shape[:2] + (1,))
+            _paint_disc(alpha_img, cx + d, cy + d, self._r_px, (1.0,))
+            _paint(canvas, alpha_img[..., 0] * SHADOW_ALPHA, SHADOW_RGB)
+        frame[...] = np.rint(canvas).astype(np.uint8)
 
 
 def identity_orientation(n: int) -> np.ndarray:
