@@ -358,16 +358,7 @@ class SearchAgent(Agent):
         position, in one batch (with `seconds`, in chunks until the time is up; a candidate
         left unsimulated gets -inf)."""
         s = self.noise_samples
-        self.sim.reset(balls=balls_of(d, self.radius), state=state)
-        area, pockets = self.sim.placement_area(), self.table.pockets.shape[0]  # as sim.decode reads them
-        shots = [decode_action(self.sim.layout, self.action(cand, d.ball_in_hand, area), area, pockets)
-                 for cand in candidates]
-        chunk = len(shots) if self.seconds is None else SIMULATION_CHUNK
-        records = []
-        for at in range(0, len(shots), chunk):
-            if records and time.perf_counter() - start > self.seconds:
-                break
-            records += self.sim.evaluate(shots[at:at + chunk], draws=s, seed=self.rng, threads=self.threads)
+        records = self.simulate(d, state, candidates, start)
         done = len(records) // s
         judged = [self.judge(state, records[k], candidates[k // s]) for k in range(len(records))]
         plain = np.full(len(candidates), -np.inf)
@@ -378,6 +369,23 @@ class SearchAgent(Agent):
         self.look_ahead(values, np.argsort(-plain)[: max(4, LOOKAHEAD_WORK // (s * max(1, len(d.legal))))][:done],
                         judged, start)
         return values, done
+
+    def simulate(self, d: GameView, state, candidates, start) -> list:
+        """The `ShotRecord`s of the candidates' actions (as the env reads them) from the decoded
+        position, `noise_samples` draws each, candidate major: `Game.evaluate` in one batch (with
+        `seconds`, `SIMULATION_CHUNK` candidates at a time while the time lasts)."""
+        self.sim.reset(balls=balls_of(d, self.radius), state=state)
+        area, pockets = self.sim.placement_area(), self.table.pockets.shape[0]  # as sim.decode reads them
+        shots = [decode_action(self.sim.layout, self.action(cand, d.ball_in_hand, area), area, pockets)
+                 for cand in candidates]
+        chunk = len(shots) if self.seconds is None else SIMULATION_CHUNK
+        records = []
+        for at in range(0, len(shots), chunk):
+            if records and time.perf_counter() - start > self.seconds:
+                break
+            records += self.sim.evaluate(shots[at:at + chunk], draws=self.noise_samples, seed=self.rng,
+                                         threads=self.threads)
+        return records
 
     def look_ahead(self, values, chosen, judged, start) -> None:
         """values[c] for each chosen candidate: its mean `deep_value`, the qualities of all their
