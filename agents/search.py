@@ -366,9 +366,13 @@ class SearchAgent(Agent):
         if not self.lookahead:
             return plain, done
         values = plain - 10.0  # only the candidates that get the lookahead can be chosen
-        self.look_ahead(values, np.argsort(-plain)[: max(4, LOOKAHEAD_WORK // (s * max(1, len(d.legal))))][:done],
-                        judged, start)
+        self.look_ahead(values, self.looked_at(plain, done, d.legal), judged, start)
         return values, done
+
+    def looked_at(self, plain, done: int, legal) -> np.ndarray:
+        """The candidates the lookahead scores: the best by their plain value, as many as
+        LOOKAHEAD_WORK outcomes x legal balls allow (at least 4), among the `done` simulated."""
+        return np.argsort(-plain)[: max(4, LOOKAHEAD_WORK // (self.noise_samples * max(1, len(legal))))][:done]
 
     def simulate(self, d: GameView, state, candidates, start) -> list:
         """The `ShotRecord`s of the candidates' actions (as the env reads them) from the decoded

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from pool_env import rules
-from pool_env.game import game_observation
+from pool_env.game import GAME_BALLS, game_observation
 from pool_env.players import game_of
 
 from .learned import WEIGHTS, ValueNet
@@ -66,33 +66,46 @@ class ValueSearchAgent(SearchAgent):
 
     name = "search+value"
 
-    def __init__(self, game: str | None = "nine_ball", net: ValueNet | None = None, blend: float = 0.0, **options):
-        if game != "nine_ball":
-            raise ValueError(f"search+value plays 9-ball only (its value net is fitted there), got {game!r}")
-        if not 0.0 <= float(blend) <= 1.0:
-            raise ValueError(f"blend must be in [0, 1], got {blend!r}")
-        super().__init__(game, **options)
-        if net is None:
+    def __init__(self, game: str | None = "nine_ball", net: ValueNet | None = None, blend: float = 0.0,
+                 every: bool = False, **options):
+        if game not in GAME_BALLS:
+            raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
+        if net is None:  # a game without a shipped net is refused as the learned player's is (the tournament skips it)
             path = value_weights_path(game)
             if not path.exists():
                 raise FileNotFoundError(f"no {game} value net is shipped ({path.name} is missing)")
             net = ValueNet.load(path)
-        self.net, self.blend = net, float(blend)
+        if game != "nine_ball":
+            raise ValueError(f"search+value plays 9-ball only (its features are 9-ball's), got {game!r}")
+        if not 0.0 <= float(blend) <= 1.0:
+            raise ValueError(f"blend must be in [0, 1], got {blend!r}")
+        super().__init__(game, **options)
+        self.net, self.blend, self.every = net, float(blend), bool(every)
 
     def evaluate(self, d, state, candidates, start) -> tuple[np.ndarray, int]:
-        """(each candidate's mean value over its noise draws, the candidates simulated); as
-        `SearchAgent.evaluate` (with `seconds`, chunks until the time is up, the rest -inf), the
-        outcomes scored by `outcome_values`."""
+        """(each candidate's value, the candidates simulated): simulated and judged as by
+        `SearchAgent.evaluate` (with `seconds`, chunks until the time is up); the candidates its
+        lookahead would score (`looked_at`; `every`: all simulated) get the mean of
+        `outcome_values` over their noise draws, blended with the search's lookahead value if
+        `blend`; the rest stay below any of them (their plain value - 10, as the search does)."""
         s = self.noise_samples
         records = self.simulate(d, state, candidates, start)
         done = len(records) // s
-        values = np.full(len(candidates), -np.inf)
-        values[:done] = self.outcome_values(state, records, candidates).reshape(done, s).mean(axis=1)
+        judged = [self.judge(state, records[k], candidates[k // s]) for k in range(len(records))]
+        plain = np.full(len(candidates), -np.inf)
+        plain[:done] = np.array([v for v, _ in judged]).reshape(done, s).mean(axis=1)
+        chosen = np.arange(done) if self.every else self.looked_at(plain, done, d.legal)
+        values = plain - 10.0
+        won = self.outcome_values([records[c * s + k] for c in chosen for k in range(s)])
+        values[chosen] = won.reshape(len(chosen), s).mean(axis=1)
+        if self.blend > 0.0:
+            deep = plain - 10.0
+            self.look_ahead(deep, chosen, judged, start)
+            values[chosen] = (1.0 - self.blend) * values[chosen] + self.blend * 0.5 * (deep[chosen] + 1.0)
         return values, done
 
-    def outcome_values(self, state, records, candidates) -> np.ndarray:
+    def outcome_values(self, records) -> np.ndarray:
         """(R,) the shooter's win probability after each simulated shot (the class docstring)."""
-        s = self.noise_samples
         values = np.zeros(len(records))
         open_rows, positions = [], []
         for k, record in enumerate(records):
@@ -108,10 +121,6 @@ class ValueSearchAgent(SearchAgent):
             v = win_probability(self.net, position_features(self, positions))
             mine = np.array([after.shooter == 0 for _, after in positions])
             values[open_rows] = np.where(mine, v, 1.0 - v)
-        if self.blend > 0.0:
-            plain = np.array([self.deep_value(*self.judge(state, r, candidates[k // s]))
-                              for k, r in enumerate(records)])
-            values = (1.0 - self.blend) * values + self.blend * 0.5 * (plain + 1.0)
         return values
 
 

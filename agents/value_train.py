@@ -20,7 +20,7 @@ from .value import ValueSearchAgent, position_features, win_probability
 
 GAME, NOISE = "nine_ball", "olympiad"
 DATA_SEED, EVAL_SEED = 0, 1_000_000  # game k of the data is seeded DATA_SEED + k, of the evaluation EVAL_SEED + k
-HIDDEN = (64, 64)
+HIDDEN = (32,)  # one tanh layer: more fit the games' noise (held-out log loss, docs/players.md)
 HELD_OUT = 0.1  # the share of the data games (the last ones) kept out of the fit to measure it
 
 
@@ -86,7 +86,7 @@ def split(data: dict, held_out: float = HELD_OUT) -> tuple[dict, dict]:
     return ({k: v[keep] for k, v in data.items()}, {k: v[~keep] for k, v in data.items()})
 
 
-def fit(data: dict, hidden=HIDDEN, epochs: int = 40, seed: int = 0, lr: float = 1e-3, batch: int = 256,
+def fit(data: dict, hidden=HIDDEN, epochs: int = 10, seed: int = 0, lr: float = 1e-3, batch: int = 256,
         weight_decay: float = 1e-4, log=print) -> ValueNet:
     """A win-probability net (`ValueNet` arrays: tanh MLP, its output a logit) fitted with torch:
     binary cross-entropy of the labels, Adam, minibatches of `batch` positions."""
@@ -139,12 +139,12 @@ def scores(net: ValueNet, data: dict) -> dict:
 
 
 def versus(games: int, seed: int = EVAL_SEED, noise=NOISE, budget: int = 600, net: ValueNet | None = None,
-           blend: float = 0.0) -> list:
+           options: dict | None = None) -> list:
     """search+value against search on games seeded seed + k, search+value breaking the even k
-    (seats and breaks alternate), both with `budget` simulations a decision: for each game 1
-    (search+value won), 0 or 0.5 (no winner)."""
+    (seats and breaks alternate), both with `budget` simulations a decision (`options`: more of
+    `ValueSearchAgent`'s, blend, every): for each game 1 (search+value won), 0 or 0.5 (no winner)."""
     sim = Game(GAME, noise=noise)
-    value = ValueSearchAgent(GAME, net=net, blend=blend, noise=noise, budget=budget)
+    value = ValueSearchAgent(GAME, net=net, noise=noise, budget=budget, **(options or {}))
     plain = SearchAgent(GAME, noise=noise, budget=budget)
     out = []
     for k in range(games):
@@ -157,16 +157,16 @@ def versus(games: int, seed: int = EVAL_SEED, noise=NOISE, budget: int = 600, ne
 
 
 def _versus_part(job) -> list:
-    games, seed, noise, budget, arrays, blend = job
-    return versus(games, seed, noise, budget, None if arrays is None else ValueNet(arrays), blend)
+    games, seed, noise, budget, arrays, options = job
+    return versus(games, seed, noise, budget, None if arrays is None else ValueNet(arrays), options)
 
 
 def match(games: int = 400, seed: int = EVAL_SEED, workers: int = 2, noise=NOISE, budget: int = 600,
-          net: ValueNet | None = None, blend: float = 0.0) -> dict:
+          net: ValueNet | None = None, options: dict | None = None) -> dict:
     """`versus` split over `workers` processes: wins, the win rate and its 95 % Wilson interval."""
     share = -(-games // workers)
     arrays = None if net is None else net.arrays
-    jobs = [(min(share, games - k * share), seed + k * share, noise, budget, arrays, blend)
+    jobs = [(min(share, games - k * share), seed + k * share, noise, budget, arrays, options)
             for k in range(workers) if games - k * share > 0]
     if len(jobs) == 1:
         results = _versus_part(jobs[0])
@@ -176,7 +176,7 @@ def match(games: int = 400, seed: int = EVAL_SEED, workers: int = 2, noise=NOISE
     wins = float(sum(results))
     lo, hi = wilson(wins, games)
     return {"games": games, "wins": wins, "win_rate": wins / games, "ci95": [lo, hi], "seeds": [seed, seed + games - 1],
-            "budget": budget, "blend": blend, "noise": noise}
+            "budget": budget, "options": options or {}, "noise": noise}
 
 
 def recipe(data_games: int, eval_games: int, out, workers: int = 2, budget: int = 600, data=None, log=print) -> dict:
@@ -221,7 +221,16 @@ def main(argv=None) -> dict:
     parser.add_argument("--budget", type=int, default=600, help="simulations a decision, both players")
     parser.add_argument("--data", default=None, help="a value-data.npz to fit on instead of playing")
     parser.add_argument("--out", default="runs/value")
+    parser.add_argument("--net", default=None, help="only play this value net against search (--eval-games games)")
+    parser.add_argument("--blend", type=float, default=0.0, help="with --net: the search's own value's weight")
+    parser.add_argument("--every", action="store_true", help="with --net: score every candidate, not the lookahead's")
+    parser.add_argument("--eval-seed", type=int, default=EVAL_SEED)
     args = parser.parse_args(argv)
+    if args.net is not None:
+        result = match(args.eval_games, args.eval_seed, args.workers, budget=args.budget, net=ValueNet.load(args.net),
+                       options={"blend": args.blend, "every": args.every})
+        print(json.dumps(result))
+        return result
     if args.games < 1 or args.eval_games < 0 or args.workers < 1:
         parser.exit(2, f"{parser.prog}: --games and --workers must be >= 1, --eval-games >= 0\n")
     data = None

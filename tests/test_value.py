@@ -132,6 +132,8 @@ def test_search_value_refuses_a_bad_blend_and_another_game_by_name():
         ValueSearchAgent(net=small_net(), blend=1.5)
     with pytest.raises(ValueError, match="9-ball only"):
         ValueSearchAgent("eight_ball", net=small_net())
+    with pytest.raises(FileNotFoundError, match="no eight_ball value net is shipped"):
+        ValueSearchAgent("eight_ball")
 
 
 def test_search_value_is_registered_by_name_in_the_one_player_registry():
