@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 import json
 import time
 from concurrent.futures import ProcessPoolExecutor
@@ -92,6 +93,7 @@ def fit(data: dict, hidden=HIDDEN, epochs: int = 10, seed: int = 0, lr: float = 
     binary cross-entropy of the labels, Adam, minibatches of `batch` positions."""
     import torch
 
+    torch.set_num_threads(1)  # the same sums in the same order on any machine: the same net from the same data
     torch.manual_seed(seed)
     x = np.asarray(data["features"], dtype=np.float32)
     y = np.asarray(data["label"], dtype=np.float32)
@@ -212,8 +214,6 @@ def recipe(data_games: int, eval_games: int, out, workers: int = 2, budget: int 
 
 
 def main(argv=None) -> dict:
-    import argparse
-
     parser = argparse.ArgumentParser(prog="python -m agents.value_train", description=__doc__)
     parser.add_argument("--games", type=int, default=800, help="search self-play games for the data")
     parser.add_argument("--eval-games", type=int, default=400, help="games of search+value against search (0: none)")
