@@ -357,17 +357,23 @@ class SearchAgent(Agent):
         `Game.evaluate` of the candidates' actions (as the env reads them) from the decoded
         position, in one batch (with `seconds`, in chunks until the time is up; a candidate
         left unsimulated gets -inf)."""
-        s = self.noise_samples
-        records = self.simulate(d, state, candidates, start)
-        done = len(records) // s
-        judged = [self.judge(state, records[k], candidates[k // s]) for k in range(len(records))]
-        plain = np.full(len(candidates), -np.inf)
-        plain[:done] = np.array([v for v, _ in judged]).reshape(done, s).mean(axis=1)
+        records, judged, plain = self.judged(d, state, candidates, start)
+        done = len(records) // self.noise_samples
         if not self.lookahead:
             return plain, done
         values = plain - 10.0  # only the candidates that get the lookahead can be chosen
         self.look_ahead(values, self.looked_at(plain, done, d.legal), judged, start)
         return values, done
+
+    def judged(self, d: GameView, state, candidates, start) -> tuple[list, list, np.ndarray]:
+        """(the `simulate` records, each judged (`judge`), each candidate's mean plain value
+        over its draws: -inf if left unsimulated)."""
+        s = self.noise_samples
+        records = self.simulate(d, state, candidates, start)
+        judged = [self.judge(state, records[k], candidates[k // s]) for k in range(len(records))]
+        plain = np.full(len(candidates), -np.inf)
+        plain[: len(records) // s] = np.array([v for v, _ in judged]).reshape(-1, s).mean(axis=1)
+        return records, judged, plain
 
     def looked_at(self, plain, done: int, legal) -> np.ndarray:
         """The candidates the lookahead scores: the best by their plain value, as many as

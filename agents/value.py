@@ -89,11 +89,8 @@ class ValueSearchAgent(SearchAgent):
         `outcome_values` over their noise draws, blended with the search's lookahead value if
         `blend`; the rest stay below any of them (their plain value - 10, as the search does)."""
         s = self.noise_samples
-        records = self.simulate(d, state, candidates, start)
+        records, judged, plain = self.judged(d, state, candidates, start)
         done = len(records) // s
-        judged = [self.judge(state, records[k], candidates[k // s]) for k in range(len(records))]
-        plain = np.full(len(candidates), -np.inf)
-        plain[:done] = np.array([v for v, _ in judged]).reshape(done, s).mean(axis=1)
         chosen = np.arange(done) if self.every else self.looked_at(plain, done, d.legal)
         values = plain - 10.0
         won = self.outcome_values([records[c * s + k] for c in chosen for k in range(s)])

@@ -14,7 +14,7 @@ import numpy as np
 from pool_env.game import Game
 
 from .learned import ValueNet
-from .learned_train import play_game
+from .learned_train import play_game, torch_mlp, value_net
 from .search import SearchAgent
 from .stats import wilson
 from .value import ValueSearchAgent, position_features, win_probability
@@ -95,17 +95,10 @@ def fit(data: dict, hidden=HIDDEN, epochs: int = 10, seed: int = 0, lr: float = 
 
     torch.set_num_threads(1)  # the same sums in the same order on any machine: the same net from the same data
     torch.manual_seed(seed)
-    x = np.asarray(data["features"], dtype=np.float32)
-    y = np.asarray(data["label"], dtype=np.float32)
-    mean, std = x.mean(axis=0), x.std(axis=0) + 1e-3
-    sizes = (x.shape[1], *hidden, 1)
-    layers = []
-    for i in range(len(sizes) - 1):
-        layers += [torch.nn.Linear(sizes[i], sizes[i + 1]), torch.nn.Tanh()]
-    model = torch.nn.Sequential(*layers[:-1])
+    xt, mean, std, model = torch_mlp(data["features"], hidden)
+    yt = torch.from_numpy(np.asarray(data["label"], dtype=np.float32))
     opt = torch.optim.AdamW(model.parameters(), lr=lr, weight_decay=weight_decay)
     loss_fn = torch.nn.BCEWithLogitsLoss()
-    xt, yt = torch.from_numpy((x - mean) / std), torch.from_numpy(y)
     gen = torch.Generator().manual_seed(seed)
     for epoch in range(epochs):
         total = 0.0
@@ -119,11 +112,7 @@ def fit(data: dict, hidden=HIDDEN, epochs: int = 10, seed: int = 0, lr: float = 
             total += float(loss.detach()) * len(idx)
         if log is not None and (epoch + 1) % 10 == 0:
             log(f"fit: epoch {epoch + 1}/{epochs}, log loss {total / len(xt):.4f}")
-    arrays = {"mean": mean, "std": std}
-    for n, m in enumerate(m for m in model if isinstance(m, torch.nn.Linear)):
-        arrays[f"w{n}"] = m.weight.detach().numpy().T.copy()
-        arrays[f"b{n}"] = m.bias.detach().numpy().copy()
-    return ValueNet(arrays)
+    return value_net(model, mean, std)
 
 
 def scores(net: ValueNet, data: dict) -> dict:
