@@ -82,7 +82,8 @@ def parallel_self_play(games: int, seed: int = DATA_SEED, workers: int = 2, nois
 def split(data: dict, held_out: float = HELD_OUT) -> tuple[dict, dict]:
     """(fit, held-out) parts of the data: the last `held_out` share of its games held out."""
     games = np.unique(data["game"])
-    cut = games[int(round(len(games) * (1.0 - held_out)))] if held_out > 0 and len(games) > 1 else np.inf
+    fitted = min(len(games) - 1, max(1, int(round(len(games) * (1.0 - held_out)))))  # at least one game each side
+    cut = games[fitted] if held_out > 0 and len(games) > 1 else np.inf
     keep = data["game"] < cut
     return ({k: v[keep] for k, v in data.items()}, {k: v[~keep] for k, v in data.items()})
 

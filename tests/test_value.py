@@ -156,3 +156,17 @@ def test_self_play_labels_each_position_by_whether_its_shooter_won_and_one_fit_r
     net = fit(data, hidden=(8,), epochs=1, log=None)
     result = scores(net, data)
     assert result["positions"] == len(data["label"]) and 0.0 <= result["brier"] <= 1.0
+
+
+def test_the_recipe_writes_its_net_and_result_on_a_tiny_run_and_refuses_no_games(tmp_path):
+    import json
+
+    from agents.value_train import main
+
+    result = main(["--games", "2", "--eval-games", "2", "--workers", "1", "--budget", "24", "--out", str(tmp_path)])
+    saved = json.loads((tmp_path / "value.json").read_text())
+    assert saved["games"] == 2 and 0 <= saved["wins"] <= 2 and saved["data_games"] == 2 == result["data_games"]
+    assert ValueNet.load(tmp_path / "value.npz").arrays["w0"].shape[0] == POSITION_FEATURES
+    with pytest.raises(SystemExit) as stop:
+        main(["--games", "0"])
+    assert stop.value.code == 2
