@@ -11,6 +11,7 @@ them alike:
 | `GameGhostBallAgent(game, table, physics)` | the game envs' rule-aware ghost-ball player (their default opponent) |
 | `SearchAgent.from_env(env, budget, seed)` | simulates candidate shots in a batch, plays the best by the rules |
 | `LearnedPlayer.from_env(env)` | scores the search's candidate shots with a shipped value net (9-ball) |
+| `ValueSearchAgent` (`"search+value"`) | the search, its outcomes scored by a shipped win-probability net (9-ball) |
 | `SB3Agent(model)` / `SB3Agent.load(path)` | a Stable-Baselines3 model; `load_model` reads the algorithm from the zip |
 
 ```python
@@ -30,9 +31,11 @@ from .evaluate import baselines, evaluate, format_table, heuristic_for, paired_d
 from .learned import LearnedPlayer
 from .sb3 import SB3Agent, algorithm_of, load_model
 from .search import SearchAgent
+from .value import ValueSearchAgent
 
 __all__ = [
     "Agent", "RandomAgent", "BreakAgent", "GhostBallAgent", "GameGhostBallAgent", "SearchAgent", "LearnedPlayer", "Pot",
+    "ValueSearchAgent",
     "SB3Agent",
     "load_model", "algorithm_of",
     "evaluate", "play_episode", "summarize", "paired_difference", "format_table", "baselines", "heuristic_for",

@@ -147,17 +147,10 @@ def fit(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, lr: floa
     import torch
 
     torch.manual_seed(seed)
-    x = np.asarray(data["features"], dtype=np.float32)
-    y = np.asarray(data["values"], dtype=np.float32)
-    mean, std = x.mean(axis=0), x.std(axis=0) + 1e-3
-    sizes = (x.shape[1], *hidden, 1)
-    layers = []
-    for i in range(len(sizes) - 1):
-        layers += [torch.nn.Linear(sizes[i], sizes[i + 1]), torch.nn.Tanh()]
-    model = torch.nn.Sequential(*layers[:-1])
+    xt, mean, std, model = torch_mlp(data["features"], hidden)
+    yt = torch.from_numpy(np.asarray(data["values"], dtype=np.float32))
     opt = torch.optim.Adam(model.parameters(), lr=lr)
     batches = decision_batches(np.asarray(data["decision"]), 64)
-    xt, yt = torch.from_numpy((x - mean) / std), torch.from_numpy(y)
     gen = torch.Generator().manual_seed(seed)
     for epoch in range(epochs):
         total = 0.0
@@ -171,9 +164,29 @@ def fit(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, lr: floa
             total += float(loss.detach())
         if log is not None and (epoch + 1) % 5 == 0:
             log(f"fit: epoch {epoch + 1}/{epochs}, loss {total / len(batches):.4f}")
+    return value_net(model, mean, std)
+
+
+def torch_mlp(features, hidden) -> tuple:
+    """(the feature rows standardised as a torch tensor, their mean, their std, a torch MLP of
+    tanh layers `hidden` with one linear output, freshly initialised from torch's generator)."""
+    import torch
+
+    x = np.asarray(features, dtype=np.float32)
+    mean, std = x.mean(axis=0), x.std(axis=0) + 1e-3
+    sizes = (x.shape[1], *hidden, 1)
+    layers = []
+    for i in range(len(sizes) - 1):
+        layers += [torch.nn.Linear(sizes[i], sizes[i + 1]), torch.nn.Tanh()]
+    return torch.from_numpy((x - mean) / std), mean, std, torch.nn.Sequential(*layers[:-1])
+
+
+def value_net(model, mean, std) -> ValueNet:
+    """The NumPy `ValueNet` of a `torch_mlp` model and its inputs' standardisation."""
+    import torch
+
     arrays = {"mean": mean, "std": std}
-    linear = [m for m in model if isinstance(m, torch.nn.Linear)]
-    for n, m in enumerate(linear):
+    for n, m in enumerate(m for m in model if isinstance(m, torch.nn.Linear)):
         arrays[f"w{n}"] = m.weight.detach().numpy().T.copy()
         arrays[f"b{n}"] = m.bias.detach().numpy().copy()
     return ValueNet(arrays)

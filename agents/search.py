@@ -357,7 +357,33 @@ class SearchAgent(Agent):
         `Game.evaluate` of the candidates' actions (as the env reads them) from the decoded
         position, in one batch (with `seconds`, in chunks until the time is up; a candidate
         left unsimulated gets -inf)."""
+        records, judged, plain = self.judged(d, state, candidates, start)
+        done = len(records) // self.noise_samples
+        if not self.lookahead:
+            return plain, done
+        values = plain - 10.0  # only the candidates that get the lookahead can be chosen
+        self.look_ahead(values, self.looked_at(plain, done, d.legal), judged, start)
+        return values, done
+
+    def judged(self, d: GameView, state, candidates, start) -> tuple[list, list, np.ndarray]:
+        """(the `simulate` records, each judged (`judge`), each candidate's mean plain value
+        over its draws: -inf if left unsimulated)."""
         s = self.noise_samples
+        records = self.simulate(d, state, candidates, start)
+        judged = [self.judge(state, records[k], candidates[k // s]) for k in range(len(records))]
+        plain = np.full(len(candidates), -np.inf)
+        plain[: len(records) // s] = np.array([v for v, _ in judged]).reshape(-1, s).mean(axis=1)
+        return records, judged, plain
+
+    def looked_at(self, plain, done: int, legal) -> np.ndarray:
+        """The candidates the lookahead scores: the best by their plain value, as many as
+        LOOKAHEAD_WORK outcomes x legal balls allow (at least 4), among the `done` simulated."""
+        return np.argsort(-plain)[: max(4, LOOKAHEAD_WORK // (self.noise_samples * max(1, len(legal))))][:done]
+
+    def simulate(self, d: GameView, state, candidates, start) -> list:
+        """The `ShotRecord`s of the candidates' actions (as the env reads them) from the decoded
+        position, `noise_samples` draws each, candidate major: `Game.evaluate` in one batch (with
+        `seconds`, `SIMULATION_CHUNK` candidates at a time while the time lasts)."""
         self.sim.reset(balls=balls_of(d, self.radius), state=state)
         area, pockets = self.sim.placement_area(), self.table.pockets.shape[0]  # as sim.decode reads them
         shots = [decode_action(self.sim.layout, self.action(cand, d.ball_in_hand, area), area, pockets)
@@ -367,17 +393,9 @@ class SearchAgent(Agent):
         for at in range(0, len(shots), chunk):
             if records and time.perf_counter() - start > self.seconds:
                 break
-            records += self.sim.evaluate(shots[at:at + chunk], draws=s, seed=self.rng, threads=self.threads)
-        done = len(records) // s
-        judged = [self.judge(state, records[k], candidates[k // s]) for k in range(len(records))]
-        plain = np.full(len(candidates), -np.inf)
-        plain[:done] = np.array([v for v, _ in judged]).reshape(done, s).mean(axis=1)
-        if not self.lookahead:
-            return plain, done
-        values = plain - 10.0  # only the candidates that get the lookahead can be chosen
-        self.look_ahead(values, np.argsort(-plain)[: max(4, LOOKAHEAD_WORK // (s * max(1, len(d.legal))))][:done],
-                        judged, start)
-        return values, done
+            records += self.sim.evaluate(shots[at:at + chunk], draws=self.noise_samples, seed=self.rng,
+                                         threads=self.threads)
+        return records
 
     def look_ahead(self, values, chosen, judged, start) -> None:
         """values[c] for each chosen candidate: its mean `deep_value`, the qualities of all their

@@ -27,7 +27,7 @@ ELO_METHOD = ("Bradley-Terry maximum likelihood on the Elo scale (P(i beats j) =
               "win each), with one virtual draw added between every two players that met so that a perfect record "
               "stays finite; ratings shifted to average 1500")
 NOISES = {"none": None, "olympiad": "olympiad"}
-BUILTIN = ("random", "ghost_ball", "search")
+BUILTIN = ("random", "ghost_ball", "search", "learned", "search+value")  # the registry's players, by name
 TIMING_KEYS = ("seconds", "seconds_per_decision", "wall_seconds")  # the only entries that differ between runs
 
 
@@ -346,8 +346,9 @@ def main(argv=None) -> dict:
     line on stderr and exit status 2; --debug or POOL_ENV_DEBUG=1: the traceback); returns the result."""
     parser = argparse.ArgumentParser(prog=PROG, description=__doc__)
     parser.add_argument("--game", default="nine_ball", choices=("nine_ball", "eight_ball"))
-    parser.add_argument("--players", default="random,ghost_ball,search",
-                        help="comma list: random, ghost_ball, search, or an SB3 model's path (runs/<name>/model.zip)")
+    parser.add_argument("--players", default="random,ghost_ball,search,learned,search+value",
+                        help="comma list: random, ghost_ball, search, learned, search+value (9-ball), or an SB3 "
+                        "model's path (runs/<name>/model.zip)")
     parser.add_argument("--games", type=int, default=20, help="games per pairing (breaks alternate)")
     parser.add_argument("--noise", default="both", choices=("none", "olympiad", "both"))
     parser.add_argument("--seed", type=int, default=0, help="game k of every pairing is played on seed + k")

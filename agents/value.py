@@ -1,0 +1,130 @@
+"""`search+value`: the search player with a learned win probability in place of its ghost-ball lookahead."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pool_env import rules
+from pool_env.game import GAME_BALLS, game_observation
+from pool_env.players import game_of
+
+from .learned import WEIGHTS, ValueNet
+from .search import IN_HAND_QUALITY, SearchAgent
+
+MAX_SHOTS = 100  # the observation's shot-counter scale (the game envs' max_shots); the counter is left out
+OBSERVATION_ROWS = 43  # a 9-ball observation without its shot counter: balls (30), legal (9), in hand (2), fouls (2)
+POSITION_FEATURES = OBSERVATION_ROWS + 2  # ... and the shooter's best ghost-ball quality, the object balls left
+
+
+def value_weights_path(game: str = "nine_ball"):
+    """The shipped value net of a game (9-ball only: `agents.value_train` fits it)."""
+    return WEIGHTS / f"{game}_value.npz"
+
+
+def sigmoid(z: np.ndarray) -> np.ndarray:
+    return 1.0 / (1.0 + np.exp(-np.clip(z, -60.0, 60.0)))
+
+
+def position_features(search: SearchAgent, positions) -> np.ndarray:
+    """(N, POSITION_FEATURES) float32 of positions (each (balls, rules state) with no winner yet),
+    seen by the player to shoot: the game observation of that player (`game_observation`, the
+    shot counter left out), the best ghost-ball quality of its next shot (`SearchAgent.qualities`,
+    one planner batch; IN_HAND_QUALITY with ball in hand) and the object balls left, over 9."""
+    out = np.zeros((len(positions), POSITION_FEATURES), dtype=np.float32)
+    if not len(positions):
+        return out
+    table = search.table
+    legals = [rules.legal_targets(state) for _, state in positions]
+    for i, (balls, state) in enumerate(positions):
+        out[i, :OBSERVATION_ROWS] = game_observation(balls, state, state.shooter, 0, MAX_SHOTS, table)[
+            :OBSERVATION_ROWS]
+        out[i, -1] = np.count_nonzero(~balls.pocketed[1:]) / 9.0
+    in_hand = np.array([state.ball_in_hand is not None for _, state in positions])
+    asked = np.flatnonzero(~in_hand)
+    out[in_hand, OBSERVATION_ROWS] = IN_HAND_QUALITY
+    if len(asked):
+        out[asked, OBSERVATION_ROWS] = search.qualities([positions[i][0].xy for i in asked],
+                                                        [~positions[i][0].pocketed for i in asked],
+                                                        [legals[i] for i in asked])
+    return out
+
+
+def win_probability(net: ValueNet, features: np.ndarray) -> np.ndarray:
+    """P(the player to shoot wins) of feature rows: the net's logit through a sigmoid."""
+    return sigmoid(net(features).astype(np.float64))
+
+
+class ValueSearchAgent(SearchAgent):
+    """`SearchAgent` whose simulated outcomes are scored by a value net: the candidates, their
+    simulations under the game's noise and the rules' judgement are the search's; each outcome
+    is then worth 1 (a win), 0 (a loss or a shot the simulator could not finish), V (the shooter
+    keeps the table) or 1 - V (the opponent to shoot, with ball in hand after a foul), V the
+    net's win probability of the player to shoot there (`position_features`), all outcomes of a
+    decision in one planner batch and one net evaluation. `blend` in [0, 1] mixes in the
+    search's own value (its lookahead, mapped from [-1, 1] to [0, 1]) with that weight (0: the
+    net alone). The candidate with the best mean over its noise draws is played."""
+
+    name = "search+value"
+
+    def __init__(self, game: str | None = "nine_ball", net: ValueNet | None = None, blend: float = 0.0,
+                 every: bool = False, **options):
+        if game not in GAME_BALLS:
+            raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
+        if net is None:  # a game without a shipped net is refused as the learned player's is (the tournament skips it)
+            path = value_weights_path(game)
+            if not path.exists():
+                raise FileNotFoundError(f"no {game} value net is shipped ({path.name} is missing)")
+            net = ValueNet.load(path)
+        if game != "nine_ball":
+            raise ValueError(f"search+value plays 9-ball only (its features are 9-ball's), got {game!r}")
+        if not 0.0 <= float(blend) <= 1.0:
+            raise ValueError(f"blend must be in [0, 1], got {blend!r}")
+        super().__init__(game, **options)
+        self.net, self.blend, self.every = net, float(blend), bool(every)
+
+    def evaluate(self, d, state, candidates, start) -> tuple[np.ndarray, int]:
+        """(each candidate's value, the candidates simulated): simulated and judged as by
+        `SearchAgent.evaluate` (with `seconds`, chunks until the time is up); the candidates its
+        lookahead would score (`looked_at`; `every`: all simulated) get the mean of
+        `outcome_values` over their noise draws, blended with the search's lookahead value if
+        `blend`; the rest stay below any of them (their plain value - 10, as the search does)."""
+        s = self.noise_samples
+        records, judged, plain = self.judged(d, state, candidates, start)
+        done = len(records) // s
+        chosen = np.arange(done) if self.every else self.looked_at(plain, done, d.legal)
+        values = plain - 10.0
+        won = self.outcome_values([records[c * s + k] for c in chosen for k in range(s)])
+        values[chosen] = won.reshape(len(chosen), s).mean(axis=1)
+        if self.blend > 0.0:
+            deep = plain - 10.0
+            self.look_ahead(deep, chosen, judged, start)
+            values[chosen] = (1.0 - self.blend) * values[chosen] + self.blend * 0.5 * (deep[chosen] + 1.0)
+        return values, done
+
+    def outcome_values(self, records) -> np.ndarray:
+        """(R,) the shooter's win probability after each simulated shot (the class docstring)."""
+        values = np.zeros(len(records))
+        open_rows, positions = [], []
+        for k, record in enumerate(records):
+            if record.error is not None:
+                continue
+            winner = record.ruling.winner
+            if winner is not None:
+                values[k] = 1.0 if winner == 0 else 0.0
+            else:
+                open_rows.append(k)
+                positions.append((record.balls_after, record.state_after))
+        if open_rows:
+            v = win_probability(self.net, position_features(self, positions))
+            mine = np.array([after.shooter == 0 for _, after in positions])
+            values[open_rows] = np.where(mine, v, 1.0 - v)
+        return values
+
+
+def value_player(env, seed=None, **options) -> ValueSearchAgent:
+    """The player registry's "search+value" (`pool_env.make_player("search+value", env)`)."""
+    game = game_of(env)
+    if not game.has_rules:
+        raise TypeError("search+value plays the 9-ball game (PoolNineBall-v0)")
+    return ValueSearchAgent(game.mode, table=game.table, physics=game.physics, noise=game.noise,
+                            rule_options=game.rule_options, seed=0 if seed is None else seed, **options)

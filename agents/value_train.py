@@ -1,0 +1,234 @@
+"""The `search+value` recipe: search self-play positions labelled by their winner, a win-probability net, a match."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import time
+from concurrent.futures import ProcessPoolExecutor
+from multiprocessing import get_context
+from pathlib import Path
+
+import numpy as np
+
+from pool_env.game import Game
+
+from .learned import ValueNet
+from .learned_train import play_game, torch_mlp, value_net
+from .search import SearchAgent
+from .stats import wilson
+from .value import ValueSearchAgent, position_features, win_probability
+
+GAME, NOISE = "nine_ball", "olympiad"
+DATA_SEED, EVAL_SEED = 0, 1_000_000  # game k of the data is seeded DATA_SEED + k, of the evaluation EVAL_SEED + k
+HIDDEN = (32,)  # one tanh layer: more fit the games' noise (held-out log loss, docs/players.md)
+HELD_OUT = 0.1  # the share of the data games (the last ones) kept out of the fit to measure it
+
+
+def agent_seed(game_seed: int, seat: int) -> int:
+    """A player's seed for the game on `game_seed` (seat 0: the breaker): its own, whatever process plays it."""
+    return int(np.random.SeedSequence([int(game_seed), seat]).generate_state(1)[0])
+
+
+def self_play(games: int, seed: int = DATA_SEED, noise=NOISE, budget: int = 600, log=None) -> dict:
+    """`SearchAgent` against itself on games seeded seed .. seed + games - 1 (breaks alternating):
+    every position before a shot, its `position_features`, labelled 1 if the player to shoot
+    there went on to win (games with no winner are left out). Arrays features (N, F), label (N,),
+    game (N,) (the game's seed)."""
+    sim = Game(GAME, noise=noise)
+    players = [SearchAgent(GAME, noise=noise, budget=budget) for _ in range(2)]
+    feats, labels, seeds = [], [], []
+    start = time.perf_counter()
+    for k in range(games):
+        for seat, player in enumerate(players):
+            player.reset(seed=agent_seed(seed + k, seat))
+        positions, shooters = [], []
+
+        def on_decision(obs, who, positions=positions, shooters=shooters):
+            positions.append((sim.balls, sim.state))
+            shooters.append(who)
+
+        winner = play_game(sim, players, seed + k, k % 2, on_decision)
+        if winner is not None and positions:
+            feats.append(position_features(players[0], positions))
+            labels.append((np.array(shooters) == winner).astype(np.float32))
+            seeds.append(np.full(len(positions), seed + k, dtype=np.int64))
+        if log is not None and (k + 1) % 10 == 0:
+            log(f"self-play: {k + 1}/{games} games, {sum(map(len, labels))} positions, "
+                f"{time.perf_counter() - start:.0f} s")
+    return {"features": np.concatenate(feats) if feats else np.zeros((0, 45), np.float32),
+            "label": np.concatenate(labels) if labels else np.zeros(0, np.float32),
+            "game": np.concatenate(seeds) if seeds else np.zeros(0, np.int64)}
+
+
+def _self_play_part(job) -> dict:
+    games, seed, noise, budget = job
+    return self_play(games, seed, noise, budget, log=print if seed == DATA_SEED else None)
+
+
+def parallel_self_play(games: int, seed: int = DATA_SEED, workers: int = 2, noise=NOISE, budget: int = 600) -> dict:
+    """`self_play` split over `workers` processes (part k: the games seeded from seed + k * share),
+    joined in seed order: the same data whatever process finishes first."""
+    share = -(-games // workers)
+    jobs = [(min(share, games - k * share), seed + k * share, noise, budget)
+            for k in range(workers) if games - k * share > 0]
+    if len(jobs) == 1:
+        return _self_play_part(jobs[0])
+    with ProcessPoolExecutor(len(jobs), mp_context=get_context("spawn")) as pool:
+        parts = list(pool.map(_self_play_part, jobs))
+    return {key: np.concatenate([p[key] for p in parts]) for key in parts[0]}
+
+
+def split(data: dict, held_out: float = HELD_OUT) -> tuple[dict, dict]:
+    """(fit, held-out) parts of the data: the last `held_out` share of its games held out."""
+    games = np.unique(data["game"])
+    fitted = min(len(games) - 1, max(1, int(round(len(games) * (1.0 - held_out)))))  # at least one game each side
+    cut = games[fitted] if held_out > 0 and len(games) > 1 else np.inf
+    keep = data["game"] < cut
+    return ({k: v[keep] for k, v in data.items()}, {k: v[~keep] for k, v in data.items()})
+
+
+def fit(data: dict, hidden=HIDDEN, epochs: int = 10, seed: int = 0, lr: float = 1e-3, batch: int = 256,
+        weight_decay: float = 1e-4, log=print) -> ValueNet:
+    """A win-probability net (`ValueNet` arrays: tanh MLP, its output a logit) fitted with torch:
+    binary cross-entropy of the labels, Adam, minibatches of `batch` positions."""
+    import torch
+
+    torch.set_num_threads(1)  # the same sums in the same order on any machine: the same net from the same data
+    torch.manual_seed(seed)
+    xt, mean, std, model = torch_mlp(data["features"], hidden)
+    yt = torch.from_numpy(np.asarray(data["label"], dtype=np.float32))
+    opt = torch.optim.AdamW(model.parameters(), lr=lr, weight_decay=weight_decay)
+    loss_fn = torch.nn.BCEWithLogitsLoss()
+    gen = torch.Generator().manual_seed(seed)
+    for epoch in range(epochs):
+        total = 0.0
+        order = torch.randperm(len(xt), generator=gen)
+        for at in range(0, len(xt), batch):
+            idx = order[at:at + batch]
+            loss = loss_fn(model(xt[idx])[:, 0], yt[idx])
+            opt.zero_grad()
+            loss.backward()
+            opt.step()
+            total += float(loss.detach()) * len(idx)
+        if log is not None and (epoch + 1) % 10 == 0:
+            log(f"fit: epoch {epoch + 1}/{epochs}, log loss {total / len(xt):.4f}")
+    return value_net(model, mean, std)
+
+
+def scores(net: ValueNet, data: dict) -> dict:
+    """Log loss and Brier score of the net's probabilities on labelled positions, beside those of
+    the labels' base rate (a constant guess)."""
+    p = np.clip(win_probability(net, data["features"]), 1e-6, 1 - 1e-6)
+    y = data["label"]
+    base = np.clip(np.full(len(y), y.mean() if len(y) else 0.5), 1e-6, 1 - 1e-6)
+
+    def log_loss(q):
+        return float(-np.mean(y * np.log(q) + (1 - y) * np.log(1 - q)))
+
+    return {"positions": len(y), "log_loss": log_loss(p), "brier": float(np.mean((p - y) ** 2)),
+            "base_log_loss": log_loss(base), "base_brier": float(np.mean((base - y) ** 2))}
+
+
+def versus(games: int, seed: int = EVAL_SEED, noise=NOISE, budget: int = 600, net: ValueNet | None = None,
+           options: dict | None = None) -> list:
+    """search+value against search on games seeded seed + k, search+value breaking the even k
+    (seats and breaks alternate), both with `budget` simulations a decision (`options`: more of
+    `ValueSearchAgent`'s, blend, every): for each game 1 (search+value won), 0 or 0.5 (no winner)."""
+    sim = Game(GAME, noise=noise)
+    value = ValueSearchAgent(GAME, net=net, noise=noise, budget=budget, **(options or {}))
+    plain = SearchAgent(GAME, noise=noise, budget=budget)
+    out = []
+    for k in range(games):
+        players = (value, plain) if (seed + k) % 2 == 0 else (plain, value)
+        for seat, player in enumerate(players):
+            player.reset(seed=agent_seed(seed + k, seat))
+        winner = play_game(sim, players, seed + k, 0)
+        out.append(0.5 if winner is None else float(players[winner] is value))
+    return out
+
+
+def _versus_part(job) -> list:
+    games, seed, noise, budget, arrays, options = job
+    return versus(games, seed, noise, budget, None if arrays is None else ValueNet(arrays), options)
+
+
+def match(games: int = 400, seed: int = EVAL_SEED, workers: int = 2, noise=NOISE, budget: int = 600,
+          net: ValueNet | None = None, options: dict | None = None) -> dict:
+    """`versus` split over `workers` processes: wins, the win rate and its 95 % Wilson interval."""
+    share = -(-games // workers)
+    arrays = None if net is None else net.arrays
+    jobs = [(min(share, games - k * share), seed + k * share, noise, budget, arrays, options)
+            for k in range(workers) if games - k * share > 0]
+    if len(jobs) == 1:
+        results = _versus_part(jobs[0])
+    else:
+        with ProcessPoolExecutor(len(jobs), mp_context=get_context("spawn")) as pool:
+            results = [r for part in pool.map(_versus_part, jobs) for r in part]
+    wins = float(sum(results))
+    lo, hi = wilson(wins, games)
+    return {"games": games, "wins": wins, "win_rate": wins / games, "ci95": [lo, hi], "seeds": [seed, seed + games - 1],
+            "budget": budget, "options": options or {}, "noise": noise}
+
+
+def recipe(data_games: int, eval_games: int, out, workers: int = 2, budget: int = 600, data=None, log=print) -> dict:
+    """The whole recipe: `data_games` search self-play games (olympiad noise, `workers` processes),
+    a net fitted on all but the held-out games (scored there), then fitted on every game and
+    played against search for `eval_games` games. Writes value.npz, value-data.npz and value.json
+    into `out`; returns the result."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    timing, t = {}, time.perf_counter()
+    if data is None:
+        data = parallel_self_play(data_games, workers=workers, budget=budget)
+        np.savez_compressed(out / "value-data.npz", **data)
+    timing["data"] = time.perf_counter() - t
+    log(f"data: {len(data['label'])} positions of {len(np.unique(data['game']))} games in {timing['data']:.0f} s")
+    t = time.perf_counter()
+    train, held = split(data)
+    held_scores = scores(fit(train, log=log), held) if len(held["label"]) else {}
+    log(f"held out: {held_scores}")
+    net = fit(data, log=log)
+    net.save(out / "value.npz")
+    timing["fit"] = time.perf_counter() - t
+    t = time.perf_counter()
+    result = match(eval_games, workers=workers, budget=budget, net=net) if eval_games else {}
+    timing["evaluation"] = time.perf_counter() - t
+    result = {**result, "data_games": int(len(np.unique(data["game"]))), "positions": int(len(data["label"])),
+              "held_out": held_scores, "seconds": timing, "workers": workers}
+    (out / "value.json").write_text(json.dumps(result, indent=2) + "\n")
+    if eval_games:
+        log(f"search+value against search: {result['wins']:g}/{result['games']} = {result['win_rate']:.1%} "
+            f"[{result['ci95'][0]:.1%}, {result['ci95'][1]:.1%}]")
+    return result
+
+
+def main(argv=None) -> dict:
+    parser = argparse.ArgumentParser(prog="python -m agents.value_train", description=__doc__)
+    parser.add_argument("--games", type=int, default=800, help="search self-play games for the data")
+    parser.add_argument("--eval-games", type=int, default=400, help="games of search+value against search (0: none)")
+    parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--budget", type=int, default=600, help="simulations a decision, both players")
+    parser.add_argument("--data", default=None, help="a value-data.npz to fit on instead of playing")
+    parser.add_argument("--out", default="runs/value")
+    parser.add_argument("--net", default=None, help="only play this value net against search (--eval-games games)")
+    parser.add_argument("--blend", type=float, default=0.0, help="with --net: the search's own value's weight")
+    parser.add_argument("--every", action="store_true", help="with --net: score every candidate, not the lookahead's")
+    parser.add_argument("--eval-seed", type=int, default=EVAL_SEED)
+    args = parser.parse_args(argv)
+    if args.net is not None:
+        result = match(args.eval_games, args.eval_seed, args.workers, budget=args.budget, net=ValueNet.load(args.net),
+                       options={"blend": args.blend, "every": args.every})
+        print(json.dumps(result))
+        return result
+    if args.games < 1 or args.eval_games < 0 or args.workers < 1:
+        parser.exit(2, f"{parser.prog}: --games and --workers must be >= 1, --eval-games >= 0\n")
+    data = None
+    if args.data is not None:
+        with np.load(args.data) as f:
+            data = dict(f)
+    return recipe(args.games, args.eval_games, args.out, args.workers, args.budget, data)
+
+
+if __name__ == "__main__":
+    main()
