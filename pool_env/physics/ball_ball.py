@@ -178,14 +178,10 @@ def resolve(model, bi, bj, ri, rj, mi, mj, params):
 def resolve_group(model, S, R, M, params, pairs, n_c, e, normal_only, n_walls):
     """Resolve the contacts c = (pairs.ca[c], pairs.cb[c]), c < n_c, all at once (rows of S
     at the contact time); pairs.impulse[c] gets each contact's normal impulse. True if the
-    cloth or a cushion took part (a gentle contact left a rolling ball rolling, or a cushion
-    pushed back).
-
-    The first n_walls cushions in pairs.walls (inward normals, touched by ball
-    pairs.wall_ball[w]) join the solve as contacts with an immovable partner: no ball may
-    move into one. A cluster wedged against a rail needs them: solved without the rail, the
-    balls pushed into it bounce off it in their own events and are pushed back in again, at
-    the same instant, without end.
+    cloth or a cushion took part (a gentle contact left a rolling ball rolling, a cushion
+    pushed back). The first n_walls cushions in pairs.walls (inward normals, touched by ball
+    pairs.wall_ball[w]) join as contacts with an immovable partner: a cluster wedged against
+    a rail solved without it bounces off it and is pushed back in at one instant, without end.
 
     Normal impulses follow Poisson's hypothesis for simultaneous impacts: the compression
     impulses P_c >= 0 are the least change of the velocities (in the kinetic-energy metric)
