@@ -386,11 +386,8 @@ class Game:
         force, tip, elevation = shot.force, shot.tip, shot.elevation
         if self.noise is not None:
             force, tip, elevation = noisy_shot(force, tip, self.noise, self.rng if rng is None else rng, elevation)
-        try:
-            if elevation > 0.0:  # the slate's answer needs the physics (its e_t, mu_t)
-                struck = strike(placed, force, tip, CONTACT_TIME, elevation=elevation, physics=self.physics)
-            else:
-                struck = strike(placed, force, tip, CONTACT_TIME)
+        try:  # the physics for an elevated cue: the slate's e_t and mu_t
+            struck = strike(placed, force, tip, CONTACT_TIME, elevation=elevation, physics=self.physics)
         except ValueError as exc:
             struck = exc
         return StruckShot(shot, self.shooter, hand, called, placed, force, tip, struck, action, elevation)

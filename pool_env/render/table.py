@@ -85,8 +85,9 @@ def _paint(img: np.ndarray, alpha: np.ndarray, rgb, r0: int = 0, c0: int = 0) ->
     reg += a * np.asarray(rgb, dtype=np.float64)
 
 
-def _paint_disc(img: np.ndarray, cx: float, cy: float, r: float, rgb) -> None:
-    """Anti-aliased filled circle (pixel units, centre in continuous coords) onto float image."""
+def _paint_disc(img: np.ndarray, cx: float, cy: float, r: float, rgb, opacity: float = 1.0) -> None:
+    """Anti-aliased filled circle (pixel units, centre in continuous coords) onto float image,
+    `opacity` the alpha of its inside."""
     hgt, wid = img.shape[:2]
     r0, r1 = max(0, int(cy - r) - 1), min(hgt, int(cy + r) + 2)
     c0, c1 = max(0, int(cx - r) - 1), min(wid, int(cx + r) + 2)
@@ -94,7 +95,7 @@ def _paint_disc(img: np.ndarray, cx: float, cy: float, r: float, rgb) -> None:
         return
     yy = np.arange(r0, r1)[:, None] + 0.5 - cy
     xx = np.arange(c0, c1)[None, :] + 0.5 - cx
-    alpha = np.clip(r - np.hypot(xx, yy) + 0.5, 0.0, 1.0)
+    alpha = np.clip(r - np.hypot(xx, yy) + 0.5, 0.0, 1.0) * opacity
     _paint(img, alpha, rgb, r0, c0)
 
 
@@ -397,7 +398,6 @@ class TableRenderer:
             reg[...] = blended  # float -> uint8 truncation after +0.5 == rounding
         return frame
 
-
     def _draw_shadows(self, frame, xy, pocketed, heights):
         """Paint the shadows of the airborne balls (height > 0) onto `frame` in place."""
         flying = np.flatnonzero(~pocketed & (heights > 0.0) & np.isfinite(xy).all(axis=1))
@@ -407,9 +407,7 @@ class TableRenderer:
         centre = self.world_to_pixel(xy[flying])
         shift = SHADOW_SLANT * heights[flying] * self.scale
         for (cx, cy), d in zip(centre.tolist(), shift.tolist()):
-            alpha_img = np.zeros(canvas.shape[:2] + (1,))
-            _paint_disc(alpha_img, cx + d, cy + d, self._r_px, (1.0,))
-            _paint(canvas, alpha_img[..., 0] * SHADOW_ALPHA, SHADOW_RGB)
+            _paint_disc(canvas, cx + d, cy + d, self._r_px, SHADOW_RGB, SHADOW_ALPHA)
         frame[...] = np.rint(canvas).astype(np.uint8)
 
 
