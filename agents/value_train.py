@@ -17,12 +17,13 @@ from .learned import ValueNet
 from .learned_train import play_game, torch_mlp, value_net
 from .search import SearchAgent
 from .stats import wilson
-from .value import ValueSearchAgent, position_features, win_probability
+from .value import POSITION_FEATURES, ValueSearchAgent, position_features, win_probability
 
 GAME, NOISE = "nine_ball", "olympiad"
 DATA_SEED, EVAL_SEED = 0, 1_000_000  # game k of the data is seeded DATA_SEED + k, of the evaluation EVAL_SEED + k
 HIDDEN = (32,)  # one tanh layer: more fit the games' noise (held-out log loss, docs/players.md)
 HELD_OUT = 0.1  # the share of the data games (the last ones) kept out of the fit to measure it
+OUTCOME_WEIGHT = 0.0  # the game's result in the fitted label, the rest the search's calibrated value (docs/players.md)
 
 
 def agent_seed(game_seed: int, seat: int) -> int:
@@ -33,32 +34,41 @@ def agent_seed(game_seed: int, seat: int) -> int:
 def self_play(games: int, seed: int = DATA_SEED, noise=NOISE, budget: int = 600, log=None) -> dict:
     """`SearchAgent` against itself on games seeded seed .. seed + games - 1 (breaks alternating):
     every position before a shot, its `position_features`, labelled 1 if the player to shoot
-    there went on to win (games with no winner are left out). Arrays features (N, F), label (N,),
-    game (N,) (the game's seed)."""
+    there went on to win (games with no winner are left out), and the search's own value of its
+    decision there (`last_stats["value"]`, in the search's units). Arrays features (N, F),
+    label (N,), search_value (N,), game (N,) (the game's seed)."""
     sim = Game(GAME, noise=noise)
     players = [SearchAgent(GAME, noise=noise, budget=budget) for _ in range(2)]
-    feats, labels, seeds = [], [], []
+    feats, labels, values, seeds = [], [], [], []
     start = time.perf_counter()
     for k in range(games):
         for seat, player in enumerate(players):
             player.reset(seed=agent_seed(seed + k, seat))
-        positions, shooters = [], []
+        positions, shooters, decided = [], [], []
 
-        def on_decision(obs, who, positions=positions, shooters=shooters):
+        def on_decision(obs, who, positions=positions, shooters=shooters, decided=decided):
+            if shooters:  # the previous decision is made: keep its value
+                decided.append(players[shooters[-1]].last_stats["value"])
             positions.append((sim.balls, sim.state))
             shooters.append(who)
 
         winner = play_game(sim, players, seed + k, k % 2, on_decision)
         if winner is not None and positions:
+            decided.append(players[shooters[-1]].last_stats["value"])
             feats.append(position_features(players[0], positions))
             labels.append((np.array(shooters) == winner).astype(np.float32))
+            values.append(np.array(decided, dtype=np.float32))
             seeds.append(np.full(len(positions), seed + k, dtype=np.int64))
         if log is not None and (k + 1) % 10 == 0:
             log(f"self-play: {k + 1}/{games} games, {sum(map(len, labels))} positions, "
                 f"{time.perf_counter() - start:.0f} s")
-    return {"features": np.concatenate(feats) if feats else np.zeros((0, 45), np.float32),
-            "label": np.concatenate(labels) if labels else np.zeros(0, np.float32),
-            "game": np.concatenate(seeds) if seeds else np.zeros(0, np.int64)}
+
+    def joined(parts, dtype):
+        return np.concatenate(parts) if parts else np.zeros(0, dtype)
+
+    return {"features": np.concatenate(feats) if feats else np.zeros((0, POSITION_FEATURES), np.float32),
+            "label": joined(labels, np.float32), "search_value": joined(values, np.float32),
+            "game": joined(seeds, np.int64)}
 
 
 def _self_play_part(job) -> dict:
@@ -86,6 +96,33 @@ def split(data: dict, held_out: float = HELD_OUT) -> tuple[dict, dict]:
     cut = games[fitted] if held_out > 0 and len(games) > 1 else np.inf
     keep = data["game"] < cut
     return ({k: v[keep] for k, v in data.items()}, {k: v[~keep] for k, v in data.items()})
+
+
+def calibration(data: dict, steps: int = 50) -> tuple[float, float]:
+    """(a, b) of the logistic map P(the shooter wins) = sigmoid(a + b v) from the search's own
+    decision value v to the labelled outcomes (maximum likelihood, Newton's method)."""
+    v = np.asarray(data["search_value"], dtype=np.float64)
+    y = np.asarray(data["label"], dtype=np.float64)
+    x = np.stack([np.ones_like(v), v], axis=1)
+    w = np.zeros(2)
+    for _ in range(steps):
+        p = 1.0 / (1.0 + np.exp(-x @ w))
+        hessian = (x * (p * (1.0 - p))[:, None]).T @ x + 1e-9 * np.eye(2)
+        w -= np.linalg.solve(hessian, x.T @ (p - y))
+    return float(w[0]), float(w[1])
+
+
+def targets(data: dict, outcome_weight: float = OUTCOME_WEIGHT, calibrated: tuple | None = None) -> dict:
+    """The data with its label replaced by the fitted target: `outcome_weight` x the game's result
+    + the rest x the search's decision value mapped to a win probability (`calibration`, fitted
+    on this data unless given). The search's value scores the position one decision deeper
+    than the net will, with far less variance than the result of a whole game under noise."""
+    if outcome_weight >= 1.0:
+        return data
+    a, b = calibration(data) if calibrated is None else calibrated
+    searched = 1.0 / (1.0 + np.exp(-(a + b * np.asarray(data["search_value"], dtype=np.float64))))
+    label = outcome_weight * np.asarray(data["label"], dtype=np.float64) + (1.0 - outcome_weight) * searched
+    return {**data, "label": label.astype(np.float32)}
 
 
 def fit(data: dict, hidden=HIDDEN, epochs: int = 10, seed: int = 0, lr: float = 1e-3, batch: int = 256,
@@ -171,11 +208,15 @@ def match(games: int = 400, seed: int = EVAL_SEED, workers: int = 2, noise=NOISE
             "budget": budget, "options": options or {}, "noise": noise}
 
 
-def recipe(data_games: int, eval_games: int, out, workers: int = 2, budget: int = 600, data=None, log=print) -> dict:
+def recipe(data_games: int, eval_games: int, out, workers: int = 2, budget: int = 600, data=None, log=print,
+           outcome_weight: float = OUTCOME_WEIGHT) -> dict:
     """The whole recipe: `data_games` search self-play games (olympiad noise, `workers` processes),
-    a net fitted on all but the held-out games (scored there), then fitted on every game and
-    played against search for `eval_games` games. Writes value.npz, value-data.npz and value.json
-    into `out`; returns the result."""
+    a net fitted (to `targets`) on all but the held-out games (scored there against their
+    outcomes), then fitted on every game and played against search for `eval_games` games.
+    Writes value.npz, value-data.npz and value.json into `out`; returns the result."""
+    if outcome_weight < 1.0 and data is not None and "search_value" not in data:
+        raise ValueError("this data has no search_value (made before the search's values were kept): "
+                         "fit it with --outcome-weight 1 or play new data")
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     timing, t = {}, time.perf_counter()
@@ -186,15 +227,16 @@ def recipe(data_games: int, eval_games: int, out, workers: int = 2, budget: int 
     log(f"data: {len(data['label'])} positions of {len(np.unique(data['game']))} games in {timing['data']:.0f} s")
     t = time.perf_counter()
     train, held = split(data)
-    held_scores = scores(fit(train, log=log), held) if len(held["label"]) else {}
+    held_scores = scores(fit(targets(train, outcome_weight), log=log), held) if len(held["label"]) else {}
     log(f"held out: {held_scores}")
-    net = fit(data, log=log)
+    net = fit(targets(data, outcome_weight), log=log)
     net.save(out / "value.npz")
     timing["fit"] = time.perf_counter() - t
     t = time.perf_counter()
     result = match(eval_games, workers=workers, budget=budget, net=net) if eval_games else {}
     timing["evaluation"] = time.perf_counter() - t
     result = {**result, "data_games": int(len(np.unique(data["game"]))), "positions": int(len(data["label"])),
+              "outcome_weight": outcome_weight,
               "held_out": held_scores, "seconds": timing, "workers": workers}
     (out / "value.json").write_text(json.dumps(result, indent=2) + "\n")
     if eval_games:
@@ -215,19 +257,23 @@ def main(argv=None) -> dict:
     parser.add_argument("--blend", type=float, default=0.0, help="with --net: the search's own value's weight")
     parser.add_argument("--every", action="store_true", help="with --net: score every candidate, not the lookahead's")
     parser.add_argument("--eval-seed", type=int, default=EVAL_SEED)
+    parser.add_argument("--outcome-weight", type=float, default=OUTCOME_WEIGHT,
+                        help="the game's result in the label (0: the search's calibrated value alone, 1: the result)")
     args = parser.parse_args(argv)
     if args.net is not None:
         result = match(args.eval_games, args.eval_seed, args.workers, budget=args.budget, net=ValueNet.load(args.net),
                        options={"blend": args.blend, "every": args.every})
         print(json.dumps(result))
         return result
-    if args.games < 1 or args.eval_games < 0 or args.workers < 1:
-        parser.exit(2, f"{parser.prog}: --games and --workers must be >= 1, --eval-games >= 0\n")
+    if args.games < 1 or args.eval_games < 0 or args.workers < 1 or not 0.0 <= args.outcome_weight <= 1.0:
+        parser.exit(2, f"{parser.prog}: --games and --workers must be >= 1, --eval-games >= 0, "
+                       "--outcome-weight in [0, 1]\n")
     data = None
     if args.data is not None:
         with np.load(args.data) as f:
             data = dict(f)
-    return recipe(args.games, args.eval_games, args.out, args.workers, args.budget, data)
+    return recipe(args.games, args.eval_games, args.out, args.workers, args.budget, data,
+                  outcome_weight=args.outcome_weight)
 
 
 if __name__ == "__main__":
