@@ -9,7 +9,7 @@ import numpy as np
 from gymnasium import logger, spaces
 
 from .. import rules
-from ..game import ELEVATED, GAME_BALLS, Game, Shot, game_observation, game_observation_size
+from ..game import ELEVATED, GAME_BALLS, Game, Shot, game_observation, game_observation_size, game_view
 from ..physics import Balls
 from ..players import make_player
 from ..render.overlay import overlay
@@ -50,12 +50,13 @@ def captioned(shots, captions, on: bool = True) -> list:
 
 @dataclass(frozen=True)
 class OpponentDecision:
-    """What `step_shots` yields (with `batch_opponent` on) when a player with `act_batch` is to
-    shoot: its driver sends back `player.act(observation)`, which it may compute for many
-    sub-envs in one `act_batch` call."""
+    """What `step_shots` yields (with `batch_opponent` on) when a built-in player that decides
+    from the game's state (`decide_batch` of `pool_env.game.GameView`s) is to shoot: its driver
+    sends back `player.decide(view)`, the `Shot`, which it may compute for many sub-envs in one
+    `decide_batch` call."""
 
     player: object
-    observation: np.ndarray
+    view: object
 
 
 def resolve_opponent(opponent, env):
@@ -352,7 +353,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         or ValueError it raised), and returns the step's (observation, reward, terminated,
         truncated, info); the observation is None with `observe=False`. `action` may also be a
         `pool_env.game.Shot`. With `batch_opponent` set, a built-in opponent's shot is asked of
-        the driver: the generator yields an `OpponentDecision` and is sent the action."""
+        the driver: the generator yields an `OpponentDecision` and is sent the Shot."""
         if not self._started:
             raise RuntimeError("call reset() before step()")
         if self._done:
@@ -376,18 +377,26 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
             if len(self._opponent_infos) >= self.max_shots:
                 self._error = f"the opponent took {self.max_shots} shots in a row"
                 return
-            observation = self.observation(OPPONENT)
-            if self.batch_opponent and hasattr(self._opponent_player, "act_batch"):
-                action = yield OpponentDecision(self._opponent_player, observation)  # the driver decides (at once)
+            player = self._opponent_player
+            direct = player is not None and hasattr(player, "decide_batch")  # it reads the game, not an observation
+            if direct:
+                view = game_view(game.balls, game.state, OPPONENT, self._shots, self.max_shots, self.table)
+                action = (yield OpponentDecision(player, view)) if self.batch_opponent else player.decide(view)
             else:
-                action = self._opponent(observation)
-            if self.elevation and np.shape(action) == (game.layout.size - 1,):
-                action = np.append(action, np.float32(0.0))  # the built-in players cue level
-            try:
-                struck = game.strike(action)
+                action = self._opponent_action()
+            try:  # a Shot plays as the action it would have encoded
+                struck = game.strike_encoded(action) if direct else game.strike(action)
             except ValueError as exc:
                 raise ValueError(f"the opponent ({self._opponent_name}) played a bad action: {exc}") from None
             self._note(game.resolve(struck, (yield struck)), mine=False)
+
+    def _opponent_action(self):
+        """The opponent's action for its observation (the built-in players cue level: with
+        `elevation`, their action gets a level cue's entry)."""
+        action = self._opponent(self.observation(OPPONENT))
+        if self.elevation and np.shape(action) == (self.game.layout.size - 1,):
+            action = np.append(action, np.float32(0.0))
+        return action
 
     def _begin_step(self):
         self._captions, self._step_records = [], []

@@ -124,3 +124,22 @@ def decode_game_observation(obs, game: str, table: Table) -> GameView:
         flags = obs[4 * n + 3: 4 * n + 6]
         group = "solids" if flags[1] > 0 else ("stripes" if flags[2] > 0 else None)
     return GameView(xy, on_table, legal, in_hand, fouls, group, float(obs[-1]))
+
+
+def game_view(balls: Balls, state, viewer: int, shots: int, max_shots: int, table: Table) -> GameView:
+    """The `GameView` that `decode_game_observation` reads from `game_observation(balls, state,
+    viewer, shots, max_shots, table)`, bit for bit (the positions rounded to float32 and back,
+    as the observation keeps them), without building the observation: for players that read
+    the game's state directly."""
+    n = len(balls)
+    kept = np.empty((n, 2), dtype=np.float32)  # the observation's entries ...
+    kept[:] = np.clip(balls.xy * (2.0 / table.length, 2.0 / table.width) - 1.0, -1.0, 1.0)
+    kept[balls.pocketed] = 0.0
+    entries = kept.astype(np.float64)  # ... read back as decode_game_observation reads them
+    xy = np.column_stack([(entries[:, 0] + 1.0) * 0.5 * table.length, (entries[:, 1] + 1.0) * 0.5 * table.width])
+    legal = frozenset(rules.legal_targets(state)) if state.winner is None else frozenset()
+    in_hand = state.ball_in_hand if state.shooter == viewer else None
+    fouls = (min(state.fouls[viewer], 2), min(state.fouls[1 - viewer], 2))
+    group = state.groups[viewer] if state.kind == "eight_ball" else None
+    counter = float(np.float32(2.0 * min(shots, max_shots) / max_shots - 1.0))
+    return GameView(xy, ~balls.pocketed, legal, in_hand, fouls, group, counter)

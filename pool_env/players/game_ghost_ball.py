@@ -59,7 +59,7 @@ class GameGhostBallAgent(Agent):
 
     @property
     def batch_key(self) -> tuple:
-        """Equal for players that plan alike (game, table, physics, radius): one's `act_batch` serves the others."""
+        """Equal for players that plan alike (game, table, physics, radius): one's `decide_batch` serves the others."""
         b = self.planner.batch
         return (self.game, b.constants.tobytes(), b.rails.tobytes(), b.jaws.tobytes(), b.captures.tobytes())
 
