@@ -131,13 +131,11 @@ def game_view(balls: Balls, state, viewer: int, shots: int, max_shots: int, tabl
     viewer, shots, max_shots, table)`, bit for bit (the positions rounded to float32 and back,
     as the observation keeps them), without building the observation: for players that read
     the game's state directly."""
-    n = len(balls)
-    kept = np.empty((n, 2), dtype=np.float32)  # the observation's entries ...
-    kept[:] = np.clip(balls.xy * (2.0 / table.length, 2.0 / table.width) - 1.0, -1.0, 1.0)
-    kept[balls.pocketed] = 0.0
-    entries = kept.astype(np.float64)  # ... read back as decode_game_observation reads them
-    xy = np.column_stack([(entries[:, 0] + 1.0) * 0.5 * table.length, (entries[:, 1] + 1.0) * 0.5 * table.width])
-    legal = frozenset(rules.legal_targets(state)) if state.winner is None else frozenset()
+    scaled = balls.xy * np.array((2.0 / table.length, 2.0 / table.width)) - 1.0
+    entries = np.minimum(np.maximum(scaled, -1.0), 1.0).astype(np.float32).astype(np.float64)  # the entries, read back
+    entries[balls.pocketed] = 0.0
+    xy = (entries + 1.0) * 0.5 * np.array((table.length, table.width))  # as decode_game_observation scales each column
+    legal = rules.legal_targets(state) if state.winner is None else frozenset()
     in_hand = state.ball_in_hand if state.shooter == viewer else None
     fouls = (min(state.fouls[viewer], 2), min(state.fouls[1 - viewer], 2))
     group = state.groups[viewer] if state.kind == "eight_ball" else None

@@ -10,6 +10,7 @@ from ..physics import BALL_RADIUS, Physics, Table
 from . import geometry as geo
 from .base import Agent, game_of
 from .ghost_ball import GhostBallAgent, best_row, pot_of
+from .plan_kernels import PATH_CLEARANCE, first_clear
 from .planner import SCORE, first_best
 
 BREAK_SPEED = 9.0  # m/s, full into the rack's apex ball
@@ -113,7 +114,8 @@ class GameGhostBallAgent(Agent):
         objects = np.array([view.on_table for view in views], dtype=bool)
         objects[:, 0] = False
         legal = np.zeros_like(objects)
-        legal[:, 1:] = [view.legal_mask for view in views]
+        for q, view in enumerate(views):
+            legal[q, list(view.legal)] = True  # the legal balls by number
         return xy, objects, legal & objects
 
     def plan_groups(self, xy, objects, index, aims, bounds, cues):
@@ -122,11 +124,15 @@ class GameGhostBallAgent(Agent):
         group_spots = [(q, spot) for q, (_, spots, _) in enumerate(cues) for spot in spots]
         if not group_spots:
             return [(None, None)] * len(cues)
-        views = np.array([q for q, _ in group_spots])
-        lengths = bounds[views + 1] - bounds[views]
-        groups = np.repeat(np.arange(len(group_spots)), lengths)
-        rows_of = np.arange(len(groups)) - np.repeat(np.cumsum(lengths) - lengths - bounds[views], lengths)
-        cue = np.repeat(np.array([spot for _, spot in group_spots]), lengths, axis=0)
+        if all(len(spots) == 1 for _, spots, _ in cues):  # one spot a view: each candidate once, grouped by view
+            groups, rows_of = index[:, 0], np.arange(len(index))
+            cue = np.array([spot for _, spot in group_spots])[groups]
+        else:
+            views = np.array([q for q, _ in group_spots])
+            lengths = bounds[views + 1] - bounds[views]
+            groups = np.repeat(np.arange(len(group_spots)), lengths)
+            rows_of = np.arange(len(groups)) - np.repeat(np.cumsum(lengths) - lengths - bounds[views], lengths)
+            cue = np.repeat(np.array([spot for _, spot in group_spots]), lengths, axis=0)
         rows = self.planner.batch.plan(cue, xy, objects, index[rows_of], aims[rows_of],
                                        np.full(len(rows_of), self.planner.arrival_speed))
         heads = first_best(rows, groups, len(group_spots))
@@ -200,15 +206,14 @@ class GameGhostBallAgent(Agent):
         return xy, place
 
     def safety(self, xy, on_table, legal, place) -> Shot:
-        """Full at the nearest legal ball with a clear path (any legal ball if none is clear)."""
+        """Full at the nearest legal ball with a clear path (the nearest if none is clear)."""
         everything = np.flatnonzero(on_table[1:]) + 1
         objects = everything[np.asarray(legal, dtype=bool)[everything - 1]]
         if not objects.size:
             return Shot.aimed((1.0, 0.0), SAFETY_SPEED, place=place)
         to = xy[objects] - xy[0]
         objects = objects[np.argsort(np.hypot(to[:, 0], to[:, 1]), kind="stable")]  # nearest first
-        gaps = geo.point_segment_distance(xy[everything][None, :, :], xy[0], xy[objects][:, None, :])  # (L, E)
-        gaps[objects[:, None] == everything[None, :]] = np.inf  # a ball does not block its own path
-        clear = np.flatnonzero(gaps.min(axis=1, initial=np.inf) >= 2.0 * self.radius * 1.02)
-        ball = objects[clear[0]] if clear.size else objects[0]
+        ball = first_clear(np.ascontiguousarray(xy, dtype=np.float64)[None], np.asarray(on_table, dtype=bool)[None],
+                           objects.astype(np.int64), 2.0 * self.radius * PATH_CLEARANCE)
+        ball = objects[0] if ball < 0 else ball
         return Shot.aimed(geo.unit(xy[ball] - xy[0]), SAFETY_SPEED, place=place)

@@ -322,6 +322,30 @@ def group_best(rows, groups, out):
 
 
 @kernel
+def first_clear(xy, on, balls, clearance):
+    """The first of `balls` (object balls of position 0 of xy (1, n, 2), on (1, n)) whose
+    line from the cue ball keeps `clearance` from every other object ball on the table
+    (geometry.path_clear), or -1 if none."""
+    for k in range(balls.shape[0]):
+        ball = balls[k]
+        if path_clear(xy, on, 0, ball, xy[0, 0, 0], xy[0, 0, 1], xy[0, ball, 0], xy[0, ball, 1], clearance):
+            return ball
+    return -1
+
+
+@kernel
+def plan_fault(cue, aims, arrival):
+    """True unless the cue balls (N, 2) and aims (N, 3) are finite and the arrival speeds (N,) >= 0."""
+    for i in range(cue.shape[0]):
+        if not (math.isfinite(cue[i, 0]) and math.isfinite(cue[i, 1]) and arrival[i] >= 0.0):
+            return True
+        for k in range(3):
+            if not math.isfinite(aims[i, k]):
+                return True
+    return False
+
+
+@kernel
 def batch_fault(xy, on, index, pockets):
     """0 if every candidate names a position, an object ball (not 0) and a pocket in range and
     every cue ball and object ball on the table is finite; else 1 (an index) or 2 (a position)."""

@@ -40,6 +40,7 @@ from .plan_kernels import (
     aim_kernel,
     batch_fault,
     group_best,
+    plan_fault,
     plan_kernel,
 )
 
@@ -55,6 +56,7 @@ class ShotPlanner:
                  max_speed: float = MAX_SPEED):
         self.table, self.physics, self.radius = table, physics, float(radius)
         self.pockets = pockets_of(table)
+        self.pocket_numbers = np.arange(len(self.pockets))
         self.jaws = np.array([np.concatenate([p.jaw_a, p.jaw_b]) for p in self.pockets]).reshape(-1, 4)
         self.captures = np.array([[*p.centre, p.radius] for p in self.pockets]).reshape(-1, 3)
         self.rails = np.ascontiguousarray(table.rails[:, 0:4], dtype=np.float64)
@@ -96,7 +98,7 @@ class ShotPlanner:
         if cue.shape != (len(index), 2) or aims.shape != (len(index), 3) or arrival.shape != (len(index),):
             raise ValueError(f"cue, aims and arrival must be ({len(index)}, 2), ({len(index)}, 3) and ({len(index)},), "
                              f"got {cue.shape}, {aims.shape} and {arrival.shape}")
-        if not (np.isfinite(cue).all() and np.isfinite(aims).all() and np.all(arrival >= 0.0)):
+        if plan_fault(cue, aims, arrival):
             raise ValueError("cue and aims must be finite and arrival speeds finite and >= 0")
         out = np.empty((len(index), PLAN_COLUMNS))
         plan_kernel(cue, xy, on, index, aims, arrival, self.constants, self.captures, np.empty(6), out)
@@ -105,14 +107,10 @@ class ShotPlanner:
     def candidates(self, legal) -> np.ndarray:
         """(N, 3) index of every legal ball (legal (Q, n) bool, column 0 the cue ball's, ignored)
         of every position into every pocket, position by position, ball by ball, pocket by pocket."""
-        legal = np.asarray(legal, dtype=bool).copy()
-        legal[:, 0] = False
-        q, ball = np.nonzero(legal)
-        pockets = len(self.pockets)
-        index = np.empty((len(q) * pockets, 3), dtype=np.int64)
-        index[:, 0], index[:, 1] = np.repeat(q, pockets), np.repeat(ball, pockets)
-        index[:, 2] = np.tile(np.arange(pockets), len(q))
-        return index
+        q, ball = np.nonzero(np.asarray(legal, dtype=bool)[:, 1:])
+        index = np.empty((len(q), len(self.pockets), 3), dtype=np.int64)
+        index[:, :, 0], index[:, :, 1], index[:, :, 2] = q[:, None], ball[:, None] + 1, self.pocket_numbers
+        return index.reshape(-1, 3)
 
 
 def first_best(rows, groups, count: int) -> np.ndarray:
