@@ -17,7 +17,7 @@ from ..render.playback import ShotPlayback
 from ..render.window import HumanWindow
 from ..rules import codes
 from .break_env import StepsShots, can_render, check_env_options, check_reset_options, run_step
-from .infos import check_info_mode, no_shot_info, record_info, rich_info, rules_info, winner_code
+from .infos import check_info_mode, no_shot_info, record_info, rich_info, winner_code
 
 SHAPING_BALL, SHAPING_FOUL = 0.1, 0.1  # shaping: + per ball the agent pockets legally, - per foul
 RESET_OPTIONS = ("balls", "ball_in_hand", "agent_breaks")
@@ -302,7 +302,9 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
             for record in records:
                 replay.shot(record.result)
                 shots.append(replay.shot_frames(fps))
-        return captioned(shots, self._captions, self.overlay)
+        captions = [(shot_caption(self.game, record, who), list(record.ruling.messages))
+                    for record, who in self._captions]
+        return captioned(shots, captions, self.overlay)
 
     def _annotate(self, frame):
         """The table now with the game's state on it (when `overlay`)."""
@@ -374,7 +376,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         """The opponent's shots while it is to shoot (a generator of StruckShots, as step_shots)."""
         game = self.game
         while self._error is None and not game.over and game.shooter == OPPONENT and self._opponent is not None:
-            if len(self._opponent_infos) >= self.max_shots:
+            if self._opponent_shots >= self.max_shots:
                 self._error = f"the opponent took {self.max_shots} shots in a row"
                 return
             player = self._opponent_player
@@ -401,7 +403,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
     def _begin_step(self):
         self._captions, self._step_records = [], []
         self._step_start = self.game.balls if self._started else None
-        self._reward, self._error, self._agent_info, self._opponent_infos = 0.0, None, None, []
+        self._reward, self._error, self._agent_info, self._opponent_shots = 0.0, None, None, 0
 
     def _note(self, record, mine: bool):
         """A shot just played (`mine`: the stepping player's): the playback follows it, its
@@ -416,14 +418,14 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         self.playback.shot(record.result)
         self.playback.place(record.balls_after)
         who = f"player {record.shooter + 1}" if self.hotseat else ("agent" if mine else "opponent")
-        self._captions.append((shot_caption(self.game, record, who), list(record.ruling.messages)))
+        self._captions.append((record, who))  # captioned when frames are asked for
         self._end_reason = record.ruling.end_reason
         if mine:
             self._shots += 1
             self._agent_info = record_info(record)
             self._reward += self._shot_reward(record)
         else:
-            self._opponent_infos.append(rules_info(record))
+            self._opponent_shots += 1
 
     def _shot_reward(self, record) -> float:
         ruling = record.ruling
@@ -451,7 +453,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         """The info of a step or a reset: the agent's shot's entries (`shot`), then the
         opponent's shots, the winner, the end reason and the error; the records if rich."""
         game = self.game
-        info = {**shot, "opponent_shots": len(self._opponent_infos), "winner": winner_code(game.winner),
+        info = {**shot, "opponent_shots": self._opponent_shots, "winner": winner_code(game.winner),
                 "end_reason": codes.encode("end_reason", self._end_reason if game.winner is not None else None),
                 "error": self._error is not None}
         return rich_info(info, records, self._error) if self.info_mode == "rich" else info

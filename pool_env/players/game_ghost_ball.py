@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .. import rules
@@ -77,7 +79,8 @@ class GameGhostBallAgent(Agent):
         xy, objects, legal = self.arrays(views)
         index = self.planner.batch.candidates(legal)
         aims = self.planner.batch.aims(xy, objects, index)
-        bounds = np.searchsorted(index[:, 0], np.arange(len(views) + 1))
+        one = np.array([0, len(index)])
+        bounds = one if len(views) == 1 else np.searchsorted(index[:, 0], np.arange(len(views) + 1))
         cues = [self.cue_spots(view, xy[q], objects[q], index[bounds[q]:bounds[q + 1]], aims[bounds[q]:bounds[q + 1]])
                 for q, view in enumerate(views)]
         tried = self.plan_groups(xy, objects, index, aims, bounds, cues)
@@ -99,7 +102,7 @@ class GameGhostBallAgent(Agent):
             else:
                 trial = xy[q].copy()
                 trial[0] = cue
-                shots.append(self.safety(trial, view.on_table, view.legal_mask, place))
+                shots.append(self.safety(trial, view.on_table, legal[q, 1:], place))
         return shots
 
     def encode(self, shot: Shot, in_hand) -> np.ndarray:
@@ -125,7 +128,7 @@ class GameGhostBallAgent(Agent):
         if not group_spots:
             return [(None, None)] * len(cues)
         if all(len(spots) == 1 for _, spots, _ in cues):  # one spot a view: each candidate once, grouped by view
-            groups, rows_of = index[:, 0], np.arange(len(index))
+            groups, rows_of = index[:, 0], None
             cue = np.array([spot for _, spot in group_spots])[groups]
         else:
             views = np.array([q for q, _ in group_spots])
@@ -133,16 +136,17 @@ class GameGhostBallAgent(Agent):
             groups = np.repeat(np.arange(len(group_spots)), lengths)
             rows_of = np.arange(len(groups)) - np.repeat(np.cumsum(lengths) - lengths - bounds[views], lengths)
             cue = np.repeat(np.array([spot for _, spot in group_spots]), lengths, axis=0)
-        rows = self.planner.batch.plan(cue, xy, objects, index[rows_of], aims[rows_of],
-                                       np.full(len(rows_of), self.planner.arrival_speed))
-        heads = first_best(rows, groups, len(group_spots))
+        if rows_of is not None:
+            index, aims = index[rows_of], aims[rows_of]
+        rows = self.planner.batch.plan(cue, xy, objects, index, aims, np.full(len(index), self.planner.arrival_speed))
+        heads = first_best(rows, groups, len(group_spots)).tolist()
         out = [(None, None)] * len(cues)
-        best = np.full(len(cues), -np.inf)
+        best = [-math.inf] * len(cues)
         for g, (q, spot) in enumerate(group_spots):
             k = heads[g]
             if k >= 0 and rows[k, SCORE] > best[q]:  # the first spot of the highest score
                 best[q] = rows[k, SCORE]
-                out[q] = (pot_of(index[rows_of[k]], rows[k]), spot)
+                out[q] = (pot_of(index[k], rows[k]), spot)
         return out
 
     def cue_spots(self, view, xy, objects, index, aims):
