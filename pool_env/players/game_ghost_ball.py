@@ -13,7 +13,7 @@ from . import geometry as geo
 from .base import Agent, game_of
 from .ghost_ball import GhostBallAgent, best_row, pot_of
 from .plan_kernels import PATH_CLEARANCE, first_clear
-from .planner import SCORE, first_best
+from .planner import DX, DY, SCORE, SPEED, first_best
 
 BREAK_SPEED = 9.0  # m/s, full into the rack's apex ball
 SAFETY_SPEED = 3.0  # m/s: no pot on, the cue ball sent full at a legal ball (far enough for a rail)
@@ -67,8 +67,15 @@ class GameGhostBallAgent(Agent):
         return (self.game, b.constants.tobytes(), b.rails.tobytes(), b.jaws.tobytes(), b.captures.tobytes())
 
     def decide(self, view) -> Shot:
-        """The shot for a decoded observation (`pool_env.game.GameView`)."""
-        return self.decide_batch([view])[0]
+        """The shot for a decoded observation (`pool_env.game.GameView`): `decide_batch([view])[0]`."""
+        if view.ball_in_hand is not None or not view.on_table[0]:
+            return self.decide_batch([view])[0]
+        # The cue ball plays from where it lies (most shots): one compiled call plans it.
+        xy, objects, legal = self.arrays([view])
+        index, rows, k = self.planner.batch.plan_lie(xy[0], objects[0], legal[0], self.planner.arrival_speed)
+        if k >= 0 and rows[k, SCORE] > -math.inf:
+            return Shot.aimed((rows[k, DX], rows[k, DY]), float(rows[k, SPEED]), pocket=int(index[k, 2]))
+        return self.safety(xy[0], view.on_table, legal[0, 1:], None)
 
     def decide_batch(self, views) -> list[Shot]:
         """The shots of several decoded observations (`GameView`s of this game), planned together:

@@ -2,7 +2,8 @@
 
 Each loop runs over the candidates of the arrays `planner` describes (a candidate is one
 position, object ball and pocket): `aim_kernel` finds the pocket windows, `plan_kernel` the
-pots, `group_best` the best pot of each group of candidates.
+pots, `group_best` the best pot of each group of candidates; `plan_lie` runs the three for
+one position whose cue ball plays from where it lies.
 """
 
 from __future__ import annotations
@@ -319,6 +320,37 @@ def group_best(rows, groups, out):
         g = groups[i]
         if rows[i, OK] > 0.0 and (out[g] < 0 or rows[i, SCORE] > rows[out[g], SCORE]):
             out[g] = i
+
+
+@kernel
+def plan_lie(xy, on, legal, tables, arrival, buffers):
+    """One position's pots from where its cue ball lies, in one call: every legal ball
+    (legal (n,), of position 0 of xy (1, n, 2), whose object balls on the table are on (1, n))
+    into every pocket, in `planner.ShotPlanner.candidates` order, its window (`aim_kernel`)
+    and its pot (`plan_kernel`, the cue ball at xy[0, 0], the object ball arriving at
+    `arrival`). `tables` holds the planner's (jaws, rails, lams, reach, near, constants,
+    captures), `buffers` (index (M, 3), aims (M, 3), rows (M, PLAN_COLUMNS), cue (M, 2),
+    arrivals (M,), work (6,)) with M at least the candidates. Returns (candidates, the row of
+    the best pot, the first of equal ones, or -1); (-1, -1) if a position is not finite."""
+    jaws, rails, lams, reach, near, c, captures = tables
+    index, aims, rows, cue, arrivals, work = buffers
+    if batch_fault(xy, on, index[:0], jaws.shape[0]) != 0:
+        return -1, -1
+    k = 0
+    for ball in range(1, xy.shape[1]):
+        if legal[ball]:
+            for p in range(jaws.shape[0]):
+                index[k, 0], index[k, 1], index[k, 2] = 0, ball, p
+                aims[k, 0], aims[k, 1], aims[k, 2] = 0.0, 0.0, 0.0
+                cue[k, 0], cue[k, 1], arrivals[k] = xy[0, 0, 0], xy[0, 0, 1], arrival
+                k += 1
+    aim_kernel(xy, on, index[:k], jaws, rails, lams, reach, near, aims[:k])
+    plan_kernel(cue[:k], xy, on, index[:k], aims[:k], arrivals[:k], c, captures, work, rows[:k])
+    best = -1
+    for i in range(k):
+        if rows[i, OK] > 0.0 and (best < 0 or rows[i, SCORE] > rows[best, SCORE]):
+            best = i
+    return k, best
 
 
 @kernel

@@ -42,6 +42,7 @@ from .plan_kernels import (
     group_best,
     plan_fault,
     plan_kernel,
+    plan_lie,
 )
 
 __all__ = ["D1", "D2", "DN", "DX", "DY", "OK", "PLAN_COLUMNS", "SCORE", "SCRATCH", "SPEED", "ShotPlanner",
@@ -64,6 +65,8 @@ class ShotPlanner:
         self.reach = np.array([RAIL_CLEARANCE * radius, BALL_CLEARANCE * radius])
         self.constants = np.array([radius, physics.g, physics.mu_s, physics.mu_r, physics.e_b, physics.e_c,
                                    math.cos(math.radians(max_cut)), max_speed, table.length, table.width, PATH_STEP])
+        self.tables = (self.jaws, self.rails, self.lams, self.reach, np.empty_like(self.rails), self.constants,
+                       self.captures)  # what plan_lie reads (its rail scratch space included)
 
     def checked(self, xy, on, index, columns: int = 3):
         """(xy, on, index) as the kernels read them; ValueError naming the first thing wrong
@@ -103,6 +106,25 @@ class ShotPlanner:
         out = np.empty((len(index), PLAN_COLUMNS))
         plan_kernel(cue, xy, on, index, aims, arrival, self.constants, self.captures, np.empty(6), out)
         return out
+
+    def plan_lie(self, xy, on, legal, arrival: float):
+        """One position's pots from where its cue ball lies, in one compiled call
+        (`plan_kernels.plan_lie`): xy (n, 2), on (n,) the object balls on the table (the cue
+        ball's entry ignored), legal (n,) the balls to pot. Returns (index (N, 3), rows (N,
+        PLAN_COLUMNS), the row of the best pot or -1): what `candidates`, `aims` and `plan`
+        give for it, and `first_best` of them. ValueError for a position that is not finite."""
+        xy = np.ascontiguousarray(xy, dtype=np.float64)[None]
+        on = np.ascontiguousarray(on, dtype=bool)[None]
+        legal = np.ascontiguousarray(legal, dtype=bool)
+        if xy.shape[2:] != (2,) or on.shape != xy.shape[:2] or legal.shape != xy.shape[1:2]:
+            raise ValueError(f"xy must be (n, 2), on and legal (n,), got {xy.shape[1:]}, {on.shape[1:]}, {legal.shape}")
+        m = xy.shape[1] * len(self.pockets)
+        index, rows = np.empty((m, 3), dtype=np.int64), np.empty((m, PLAN_COLUMNS))
+        buffers = (index, np.empty((m, 3)), rows, np.empty((m, 2)), np.empty(m), np.empty(6))
+        count, best = plan_lie(xy, on, legal, self.tables, float(arrival), buffers)
+        if count < 0:
+            raise ValueError("xy must be finite for the cue ball and the object balls on the table")
+        return index[:count], rows[:count], best
 
     def candidates(self, legal) -> np.ndarray:
         """(N, 3) index of every legal ball (legal (Q, n) bool, column 0 the cue ball's, ignored)
