@@ -12,7 +12,7 @@ from ..physics import BALL_RADIUS, Physics, Table
 from . import geometry as geo
 from .base import Agent, game_of
 from .ghost_ball import GhostBallAgent, best_row, pot_of
-from .plan_kernels import PATH_CLEARANCE, first_clear
+from .plan_kernels import PATH_CLEARANCE, safety_ball
 from .planner import DX, DY, SCORE, SPEED, first_best
 
 BREAK_SPEED = 9.0  # m/s, full into the rack's apex ball
@@ -67,15 +67,41 @@ class GameGhostBallAgent(Agent):
         return (self.game, b.constants.tobytes(), b.rails.tobytes(), b.jaws.tobytes(), b.captures.tobytes())
 
     def decide(self, view) -> Shot:
-        """The shot for a decoded observation (`pool_env.game.GameView`): `decide_batch([view])[0]`."""
-        if view.ball_in_hand is not None or not view.on_table[0]:
-            return self.decide_batch([view])[0]
-        # The cue ball plays from where it lies (most shots): one compiled call plans it.
+        """The shot for a decoded observation (`pool_env.game.GameView`): `decide_batch([view])[0]`,
+        planned in one or two compiled calls."""
+        if view.ball_in_hand is None and view.on_table[0]:  # the cue ball plays from where it lies
+            xy, objects, legal = self.arrays([view])
+            index, rows, k = self.planner.batch.plan_lie(xy[0], objects[0], legal[0], self.planner.arrival_speed)
+            if k >= 0 and rows[k, SCORE] > -math.inf:
+                return Shot.aimed((rows[k, DX], rows[k, DY]), float(rows[k, SPEED]), pocket=int(index[k, 2]))
+            return self.safety(xy[0], view.on_table, legal[0, 1:], None)
+        if view.ball_in_hand is None or (np.all(view.on_table) and view.ball_in_hand == "behind_head_string"):
+            return self.decide_batch([view])[0]  # a pocketed cue ball without ball in hand, or the break
+        return self.in_hand(view)
+
+    def in_hand(self, view) -> Shot:
+        """`decide` of a view with ball in hand (not the break): the spots of `cue_spots`
+        planned from in one compiled call (`planner.ShotPlanner.plan_from`)."""
         xy, objects, legal = self.arrays([view])
-        index, rows, k = self.planner.batch.plan_lie(xy[0], objects[0], legal[0], self.planner.arrival_speed)
-        if k >= 0 and rows[k, SCORE] > -math.inf:
-            return Shot.aimed((rows[k, DX], rows[k, DY]), float(rows[k, SPEED]), pocket=int(index[k, 2]))
-        return self.safety(xy[0], view.on_table, legal[0, 1:], None)
+        index = self.planner.batch.candidates(legal)
+        aims = self.planner.batch.aims(xy, objects, index)
+        _, spots, cue = self.cue_spots(view, xy[0], objects[0], index, aims)
+        pot = None
+        if spots:
+            rows, s, k = self.planner.batch.plan_from(xy, objects, index, aims, np.array(spots),
+                                                      self.planner.arrival_speed)
+            if s >= 0:
+                cue, pot = spots[s], pot_of(index[k % len(index)], rows[k])
+        place = (float(cue[0]), float(cue[1]))
+        if not view.on_table[0]:  # pots are planned for a cue ball on the table: a pocketed one plays safe
+            pot = None
+        elif pot is None:  # no spot has a pot: from the area's middle
+            pot = self.best(np.vstack([cue[None], xy[0, 1:]]), view.on_table, view.legal_mask)
+        if pot is not None:
+            return Shot.aimed(pot.direction, pot.speed, place=place, pocket=pot.pocket)
+        trial = xy[0].copy()
+        trial[0] = cue
+        return self.safety(trial, view.on_table, legal[0, 1:], place)
 
     def decide_batch(self, views) -> list[Shot]:
         """The shots of several decoded observations (`GameView`s of this game), planned together:
@@ -217,14 +243,13 @@ class GameGhostBallAgent(Agent):
         return xy, place
 
     def safety(self, xy, on_table, legal, place) -> Shot:
-        """Full at the nearest legal ball with a clear path (the nearest if none is clear)."""
-        everything = np.flatnonzero(on_table[1:]) + 1
-        objects = everything[np.asarray(legal, dtype=bool)[everything - 1]]
-        if not objects.size:
+        """Full at the nearest legal ball with a clear path (the nearest if none is clear;
+        `plan_kernels.safety_ball`)."""
+        n = len(on_table)
+        by_number = np.zeros(n, dtype=bool)
+        by_number[1:] = legal
+        ball = safety_ball(np.ascontiguousarray(xy, dtype=np.float64)[None], np.asarray(on_table, dtype=bool)[None],
+                           by_number, 2.0 * self.radius * PATH_CLEARANCE, np.empty(n, dtype=np.int64), np.empty(n))
+        if ball < 0:
             return Shot.aimed((1.0, 0.0), SAFETY_SPEED, place=place)
-        to = xy[objects] - xy[0]
-        objects = objects[np.argsort(np.hypot(to[:, 0], to[:, 1]), kind="stable")]  # nearest first
-        ball = first_clear(np.ascontiguousarray(xy, dtype=np.float64)[None], np.asarray(on_table, dtype=bool)[None],
-                           objects.astype(np.int64), 2.0 * self.radius * PATH_CLEARANCE)
-        ball = objects[0] if ball < 0 else ball
         return Shot.aimed(geo.unit(xy[ball] - xy[0]), SAFETY_SPEED, place=place)

@@ -354,15 +354,56 @@ def plan_lie(xy, on, legal, tables, arrival, buffers):
 
 
 @kernel
-def first_clear(xy, on, balls, clearance):
-    """The first of `balls` (object balls of position 0 of xy (1, n, 2), on (1, n)) whose
-    line from the cue ball keeps `clearance` from every other object ball on the table
-    (geometry.path_clear), or -1 if none."""
-    for k in range(balls.shape[0]):
-        ball = balls[k]
-        if path_clear(xy, on, 0, ball, xy[0, 0, 0], xy[0, 0, 1], xy[0, ball, 0], xy[0, ball, 1], clearance):
+def plan_from(xy, on, index, aims, spots, tables, arrival, buffers):
+    """The candidates (index (N, 3), of position 0 of xy (1, n, 2) and on (1, n), with their
+    windows aims (N, 3)) planned from each cue-ball spot (spots (S, 2)) in turn, the object
+    ball arriving at `arrival`; `tables` as `plan_lie` reads them, `buffers` (rows (S * N,
+    PLAN_COLUMNS): spot s's pots in rows s * N to s * N + N - 1, cue (N, 2), arrivals (N,),
+    work (6,)). Returns (the spot of the highest-scoring pot, the first such spot, and that
+    pot's row), or (-1, -1) if no spot has a pot."""
+    c, captures = tables[5], tables[6]
+    rows, cue, arrivals, work = buffers
+    n = index.shape[0]
+    best_spot, best_row, best_score = -1, -1, -np.inf
+    for s in range(spots.shape[0]):
+        for i in range(n):
+            cue[i, 0], cue[i, 1], arrivals[i] = spots[s, 0], spots[s, 1], arrival
+        block = rows[s * n:(s + 1) * n]
+        plan_kernel(cue[:n], xy, on, index, aims, arrivals[:n], c, captures, work, block)
+        head = -1  # the spot's best pot, the first of equal ones (group_best)
+        for i in range(n):
+            if block[i, OK] > 0.0 and (head < 0 or block[i, SCORE] > block[head, SCORE]):
+                head = i
+        if head >= 0 and block[head, SCORE] > best_score:  # the first spot of the highest score
+            best_spot, best_row, best_score = s, s * n + head, block[head, SCORE]
+    return best_spot, best_row
+
+
+@kernel
+def safety_ball(xy, on, legal, clearance, order, gaps):
+    """The ball a safety goes at, in position 0 of xy (1, n, 2) (on (1, n): the object balls
+    on the table): of its legal balls (legal (n,) by number), nearest the cue ball first (ties
+    in number order), the first whose line from the cue ball keeps `clearance` from every
+    other object ball (`path_clear`), else the nearest; -1 if none is legal. order (n,) int
+    and gaps (n,) are scratch space."""
+    cx, cy = xy[0, 0, 0], xy[0, 0, 1]
+    m = 0
+    for b in range(1, xy.shape[1]):
+        if on[0, b] and legal[b]:
+            d = math.hypot(xy[0, b, 0] - cx, xy[0, b, 1] - cy)
+            k = m
+            while k > 0 and gaps[k - 1] > d:  # insertion after the equal ones: a stable sort
+                gaps[k], order[k] = gaps[k - 1], order[k - 1]
+                k -= 1
+            gaps[k], order[k] = d, b
+            m += 1
+    if m == 0:
+        return -1
+    for k in range(m):
+        ball = order[k]
+        if path_clear(xy, on, 0, ball, cx, cy, xy[0, ball, 0], xy[0, ball, 1], clearance):
             return ball
-    return -1
+    return order[0]
 
 
 @kernel

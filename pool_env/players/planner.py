@@ -41,6 +41,7 @@ from .plan_kernels import (
     batch_fault,
     group_best,
     plan_fault,
+    plan_from,
     plan_kernel,
     plan_lie,
 )
@@ -125,6 +126,25 @@ class ShotPlanner:
         if count < 0:
             raise ValueError("xy must be finite for the cue ball and the object balls on the table")
         return index[:count], rows[:count], best
+
+    def plan_from(self, xy, on, index, aims, spots, arrival: float):
+        """One position's candidates (index, aims: `candidates` and `aims` of xy (1, n, 2) and
+        on (1, n)) planned from each cue-ball spot of spots (S, 2) in one compiled call
+        (`plan_kernels.plan_from`). Returns (rows (S * N, PLAN_COLUMNS), spot s's in rows
+        s * N to s * N + N - 1; the spot of the best pot, the first of equal ones, or -1; its
+        row or -1)."""
+        xy, on, index = self.checked(xy, on, index)
+        aims, spots = np.ascontiguousarray(aims, dtype=np.float64), np.ascontiguousarray(spots, dtype=np.float64)
+        if xy.shape[0] != 1 or aims.shape != (len(index), 3) or spots.ndim != 2 or spots.shape[1] != 2:
+            raise ValueError(f"xy must be one position, aims ({len(index)}, 3) and spots (S, 2), got {xy.shape}, "
+                             f"{aims.shape} and {spots.shape}")
+        if not (np.isfinite(aims).all() and np.isfinite(spots).all()):
+            raise ValueError("aims and spots must be finite")
+        n = len(index)
+        rows = np.empty((len(spots) * n, PLAN_COLUMNS))
+        buffers = (rows, np.empty((n, 2)), np.empty(n), np.empty(6))
+        spot, row = plan_from(xy, on, index, aims, spots, self.tables, float(arrival), buffers)
+        return rows, spot, row
 
     def candidates(self, legal) -> np.ndarray:
         """(N, 3) index of every legal ball (legal (Q, n) bool, column 0 the cue ball's, ignored)
