@@ -169,3 +169,38 @@ def test_one_position_planned_in_one_call_is_the_batch_plan():
         scores = [max((r[pk.SCORE] for r in many[s * len(index):(s + 1) * len(index)] if r[pk.OK] > 0),
                       default=-np.inf) for s in range(3)]
         assert spot == (-1 if max(scores) == -np.inf else int(np.argmax(scores)))
+
+
+def test_the_straight_in_spots_are_behind_each_open_window_and_free():
+    """straight_in_spots against the formula in numpy: 2 R + back behind the ball on the line
+    from its aim point, inside the area and 2.2 R from every object ball."""
+    agent = GameGhostBallAgent("eight_ball")
+    backs = np.array([0.15, 0.35])
+    checked = 0
+    for balls, state, _, table in positions("PoolEightBall-v0", seed=6, steps=30):
+        if state.winner is not None:
+            continue
+        on = ~balls.pocketed
+        on[0] = False
+        legal = np.zeros_like(on)
+        legal[list(rules.legal_targets(state))] = True
+        index, aims = agent.planner.batch.windows(balls.xy, on, legal & on)
+        area = placement_area(table, "anywhere", BALL_RADIUS)
+        open_ = aims[:, 2] > 0
+        ball, target, share = balls.xy[index[open_, 1]], aims[open_, :2], aims[open_, 2]
+        d2 = np.hypot(*(target - ball).T)
+        u = (target - ball) / np.where(d2 > 0, d2, 1.0)[:, None]
+        want = (ball[:, None, :] - u[:, None, :] * (2.0 * BALL_RADIUS + backs)[None, :, None]).reshape(-1, 2)
+        rank = (share[:, None] / ((d2[:, None] + 0.5) * (backs[None, :] + 0.5))).reshape(-1)
+        gap = np.hypot(balls.xy[on][None, :, 0] - want[:, None, 0], balls.xy[on][None, :, 1] - want[:, None, 1])
+        keep = (area[0] <= want[:, 0]) & (want[:, 0] <= area[1]) & (area[2] <= want[:, 1]) & (want[:, 1] <= area[3]) \
+            & (gap.min(axis=1, initial=np.inf) >= 2.2 * BALL_RADIUS)
+        spots, ranks = np.empty((2 * len(index), 2)), np.empty(2 * len(index))
+        limits = np.array([*area, 2.2 * BALL_RADIUS, BALL_RADIUS])
+        m = pk.straight_in_spots(np.ascontiguousarray(balls.xy), on, index, aims, backs, limits, spots, ranks)
+        assert spots[:m].tobytes() == want[keep].tobytes() and ranks[:m].tobytes() == rank[keep].tobytes()
+        flags = np.empty(len(want), dtype=bool)
+        pk.free_spots(np.ascontiguousarray(balls.xy), on, want, limits, flags)
+        assert flags.tolist() == keep.tolist()
+        checked += m
+    assert checked > 20

@@ -12,7 +12,7 @@ from ..physics import BALL_RADIUS, Physics, Table
 from . import geometry as geo
 from .base import Agent, game_of
 from .ghost_ball import GhostBallAgent, best_row, pot_of
-from .plan_kernels import PATH_CLEARANCE, safety_ball
+from .plan_kernels import PATH_CLEARANCE, free_spots, safety_ball, straight_in_spots
 from .planner import DX, DY, SCORE, SPEED, first_best
 
 BREAK_SPEED = 9.0  # m/s, full into the rack's apex ball
@@ -44,6 +44,7 @@ class GameGhostBallAgent(Agent):
         self.physics = Physics.standard() if physics is None else physics
         self.radius = radius
         self.planner = GhostBallAgent(self.table, self.physics, radius=radius)
+        self.grids: dict = {}  # the placement grid of each area (ball in hand), made once
 
     @classmethod
     def from_env(cls, env, **kwargs) -> GameGhostBallAgent:
@@ -83,20 +84,20 @@ class GameGhostBallAgent(Agent):
         """`decide` of a view with ball in hand (not the break): the spots of `cue_spots`
         planned from in one compiled call (`planner.ShotPlanner.plan_from`)."""
         xy, objects, legal = self.arrays([view])
-        index = self.planner.batch.candidates(legal)
-        aims = self.planner.batch.aims(xy, objects, index)
+        batch, arrival = self.planner.batch, self.planner.arrival_speed
+        index, aims = batch.windows(xy[0], objects[0], legal[0])
         _, spots, cue = self.cue_spots(view, xy[0], objects[0], index, aims)
         pot = None
         if spots:
-            rows, s, k = self.planner.batch.plan_from(xy, objects, index, aims, np.array(spots),
-                                                      self.planner.arrival_speed)
+            rows, s, k = batch.plan_from(xy, objects, index, aims, np.array(spots), arrival)
             if s >= 0:
                 cue, pot = spots[s], pot_of(index[k % len(index)], rows[k])
         place = (float(cue[0]), float(cue[1]))
         if not view.on_table[0]:  # pots are planned for a cue ball on the table: a pocketed one plays safe
             pot = None
-        elif pot is None:  # no spot has a pot: from the area's middle
-            pot = self.best(np.vstack([cue[None], xy[0, 1:]]), view.on_table, view.legal_mask)
+        elif pot is None:  # no spot has a pot: from the area's middle (the windows do not depend on the cue ball)
+            rows, s, k = batch.plan_from(xy, objects, index, aims, cue[None], arrival)
+            pot = None if s < 0 else pot_of(index[k], rows[k])
         if pot is not None:
             return Shot.aimed(pot.direction, pot.speed, place=place, pocket=pot.pocket)
         trial = xy[0].copy()
@@ -198,31 +199,26 @@ class GameGhostBallAgent(Agent):
     def spots(self, xy, objects, index, aims, area) -> list:
         """The cue-ball spots worth planning from with ball in hand: straight-in spots behind
         each legal ball for each open pocket, the best-ranked `PLACEMENT_TRIES` (by open mouth
-        and distances), or a coarse grid over the area when none is free."""
-        x_lo, x_hi, y_lo, y_hi = area
-        on = xy[objects]
-
-        def free(p):  # (K, 2) -> (K,): inside the area, clear of every object ball
-            gap = np.hypot(on[None, :, 0] - p[:, None, 0], on[None, :, 1] - p[:, None, 1]).min(axis=1, initial=np.inf)
-            return (x_lo <= p[:, 0]) & (p[:, 0] <= x_hi) & (y_lo <= p[:, 1]) & (p[:, 1] <= y_hi) & \
-                (gap >= 2.2 * self.radius)
-
-        open_ = aims[:, 2] > 0
-        ball, target, share = xy[index[open_, 1]], aims[open_, :2], aims[open_, 2]
-        v = target - ball
-        d2 = np.hypot(v[:, 0], v[:, 1])
-        u = v / np.where(d2 > 0, d2, 1.0)[:, None]
+        and distances), or a coarse grid over the area when none is free (spots inside the
+        area, clear of every object ball: `plan_kernels.straight_in_spots`, `free_spots`)."""
+        limits = np.array([*area, 2.2 * self.radius, self.radius])
+        xy, objects = np.ascontiguousarray(xy, dtype=np.float64), np.ascontiguousarray(objects, dtype=bool)
+        index, aims = np.ascontiguousarray(index, dtype=np.int64), np.ascontiguousarray(aims, dtype=np.float64)
         backs = np.array(STRAIGHT_IN_BACKS)
-        spot = (ball[:, None, :] - u[:, None, :] * (2.0 * self.radius + backs)[None, :, None]).reshape(-1, 2)
-        rank = (share[:, None] / ((d2[:, None] + 0.5) * (backs[None, :] + 0.5))).reshape(-1)
-        keep = free(spot)
-        spot, rank = spot[keep], rank[keep]
+        spot, rank = np.empty((len(index) * len(backs), 2)), np.empty(len(index) * len(backs))
+        kept = straight_in_spots(xy, objects, index, aims, backs, limits, spot, rank)
+        spot, rank = spot[:kept], rank[:kept]
         order = np.lexsort((spot[:, 1], spot[:, 0], rank))[::-1][:PLACEMENT_TRIES]  # sorted(reverse=True)
         if len(order):
             return list(spot[order])
-        grid = np.array([(x, y) for x in np.linspace(x_lo, x_hi, PLACEMENT_GRID[0])
-                         for y in np.linspace(y_lo, y_hi, PLACEMENT_GRID[1])])
-        return list(grid[free(grid)])
+        grid = self.grids.get(area)
+        if grid is None:
+            x_lo, x_hi, y_lo, y_hi = area
+            grid = self.grids[area] = np.array([(x, y) for x in np.linspace(x_lo, x_hi, PLACEMENT_GRID[0])
+                                                for y in np.linspace(y_lo, y_hi, PLACEMENT_GRID[1])])
+        keep = np.empty(len(grid), dtype=bool)
+        free_spots(xy, objects, grid, limits, keep)
+        return list(grid[keep])
 
     def best(self, xy, on_table, legal):
         """The best-scoring pot (`Pot`) of a legal first contact, or None."""

@@ -323,34 +323,92 @@ def group_best(rows, groups, out):
 
 
 @kernel
-def plan_lie(xy, on, legal, tables, arrival, buffers):
-    """One position's pots from where its cue ball lies, in one call: every legal ball
-    (legal (n,), of position 0 of xy (1, n, 2), whose object balls on the table are on (1, n))
-    into every pocket, in `planner.ShotPlanner.candidates` order, its window (`aim_kernel`)
-    and its pot (`plan_kernel`, the cue ball at xy[0, 0], the object ball arriving at
-    `arrival`). `tables` holds the planner's (jaws, rails, lams, reach, near, constants,
-    captures), `buffers` (index (M, 3), aims (M, 3), rows (M, PLAN_COLUMNS), cue (M, 2),
-    arrivals (M,), work (6,)) with M at least the candidates. Returns (candidates, the row of
-    the best pot, the first of equal ones, or -1); (-1, -1) if a position is not finite."""
-    jaws, rails, lams, reach, near, c, captures = tables
-    index, aims, rows, cue, arrivals, work = buffers
+def position_windows(xy, on, legal, tables, index, aims):
+    """One position's candidates and their windows in one call: every legal ball (legal (n,),
+    of position 0 of xy (1, n, 2), whose object balls on the table are on (1, n)) into every
+    pocket, in `planner.ShotPlanner.candidates` order, into index (M, 3), and `aim_kernel`'s
+    rows into aims (M, 3); `tables` holds the planner's (jaws, rails, lams, reach, near,
+    constants, captures). Returns the candidates' count, or -1 if a position is not finite."""
+    jaws, rails, lams, reach, near = tables[0], tables[1], tables[2], tables[3], tables[4]
     if batch_fault(xy, on, index[:0], jaws.shape[0]) != 0:
-        return -1, -1
+        return -1
     k = 0
     for ball in range(1, xy.shape[1]):
         if legal[ball]:
             for p in range(jaws.shape[0]):
                 index[k, 0], index[k, 1], index[k, 2] = 0, ball, p
                 aims[k, 0], aims[k, 1], aims[k, 2] = 0.0, 0.0, 0.0
-                cue[k, 0], cue[k, 1], arrivals[k] = xy[0, 0, 0], xy[0, 0, 1], arrival
                 k += 1
     aim_kernel(xy, on, index[:k], jaws, rails, lams, reach, near, aims[:k])
-    plan_kernel(cue[:k], xy, on, index[:k], aims[:k], arrivals[:k], c, captures, work, rows[:k])
+    return k
+
+
+@kernel
+def plan_lie(xy, on, legal, tables, arrival, buffers):
+    """One position's pots from where its cue ball lies, in one call: `position_windows`,
+    then each candidate's pot (`plan_kernel`, the cue ball at xy[0, 0], the object ball
+    arriving at `arrival`). `buffers` holds (index (M, 3), aims (M, 3), rows (M,
+    PLAN_COLUMNS), cue (M, 2), arrivals (M,), work (6,)), M at least the candidates. Returns
+    (candidates, the row of the best pot, the first of equal ones, or -1); (-1, -1) if a
+    position is not finite."""
+    index, aims, rows, cue, arrivals, work = buffers
+    k = position_windows(xy, on, legal, tables, index, aims)
+    if k < 0:
+        return -1, -1
+    for i in range(k):
+        cue[i, 0], cue[i, 1], arrivals[i] = xy[0, 0, 0], xy[0, 0, 1], arrival
+    plan_kernel(cue[:k], xy, on, index[:k], aims[:k], arrivals[:k], tables[5], tables[6], work, rows[:k])
     best = -1
     for i in range(k):
         if rows[i, OK] > 0.0 and (best < 0 or rows[i, SCORE] > rows[best, SCORE]):
             best = i
     return k, best
+
+
+@helper
+def spot_free(xy, on, x, y, limits):
+    """A cue-ball spot (x, y) inside the area limits[0:4] (x_lo, x_hi, y_lo, y_hi) and at least
+    limits[4] from every object ball on the table (on (n,) of xy (n, 2))."""
+    if not (limits[0] <= x <= limits[1] and limits[2] <= y <= limits[3]):
+        return False
+    for j in range(xy.shape[0]):
+        if on[j] and not math.hypot(xy[j, 0] - x, xy[j, 1] - y) >= limits[4]:
+            return False
+    return True
+
+
+@kernel
+def straight_in_spots(xy, on, index, aims, backs, limits, spots, ranks):
+    """The straight-in cue-ball spots of one position (xy (n, 2), on (n,)): behind each
+    candidate's object ball (index (N, 3), aims (N, 3) its window, an open one only) on the
+    line from its aim point, 2 R + backs[b] from it (limits[5] the radius), and each one's
+    rank (the open share over the distances); those `spot_free` keeps go into spots (K, 2),
+    ranks (K,), candidate by candidate, back by back. Returns how many."""
+    m = 0
+    for i in range(index.shape[0]):
+        share = aims[i, 2]
+        if not share > 0.0:
+            continue
+        bx, by = xy[index[i, 1], 0], xy[index[i, 1], 1]
+        vx, vy = aims[i, 0] - bx, aims[i, 1] - by
+        d2 = math.hypot(vx, vy)
+        length = d2 if d2 > 0.0 else 1.0
+        ux, uy = vx / length, vy / length
+        for b in range(backs.shape[0]):
+            scale = 2.0 * limits[5] + backs[b]
+            x, y = bx - ux * scale, by - uy * scale
+            if spot_free(xy, on, x, y, limits):
+                spots[m, 0], spots[m, 1] = x, y
+                ranks[m] = share / ((d2 + 0.5) * (backs[b] + 0.5))
+                m += 1
+    return m
+
+
+@kernel
+def free_spots(xy, on, spots, limits, keep):
+    """keep[k]: spot k of spots (K, 2) is `spot_free`."""
+    for k in range(spots.shape[0]):
+        keep[k] = spot_free(xy, on, spots[k, 0], spots[k, 1], limits)
 
 
 @kernel

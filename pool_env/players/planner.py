@@ -44,6 +44,7 @@ from .plan_kernels import (
     plan_from,
     plan_kernel,
     plan_lie,
+    position_windows,
 )
 
 __all__ = ["D1", "D2", "DN", "DX", "DY", "OK", "PLAN_COLUMNS", "SCORE", "SCRATCH", "SPEED", "ShotPlanner",
@@ -126,6 +127,22 @@ class ShotPlanner:
         if count < 0:
             raise ValueError("xy must be finite for the cue ball and the object balls on the table")
         return index[:count], rows[:count], best
+
+    def windows(self, xy, on, legal):
+        """One position's (index, aims): `candidates` and `aims` of xy (n, 2), on (n,) the object
+        balls on the table, legal (n,) the balls to pot, in one compiled call
+        (`plan_kernels.position_windows`). ValueError for a position that is not finite."""
+        xy = np.ascontiguousarray(xy, dtype=np.float64)[None]
+        on = np.ascontiguousarray(on, dtype=bool)[None]
+        legal = np.ascontiguousarray(legal, dtype=bool)
+        if xy.shape[2:] != (2,) or on.shape != xy.shape[:2] or legal.shape != xy.shape[1:2]:
+            raise ValueError(f"xy must be (n, 2), on and legal (n,), got {xy.shape[1:]}, {on.shape[1:]}, {legal.shape}")
+        m = xy.shape[1] * len(self.pockets)
+        index, aims = np.empty((m, 3), dtype=np.int64), np.empty((m, 3))
+        count = position_windows(xy, on, legal, self.tables, index, aims)
+        if count < 0:
+            raise ValueError("xy must be finite for the cue ball and the object balls on the table")
+        return index[:count], aims[:count]
 
     def plan_from(self, xy, on, index, aims, spots, arrival: float):
         """One position's candidates (index, aims: `candidates` and `aims` of xy (1, n, 2) and
