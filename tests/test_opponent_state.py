@@ -22,6 +22,7 @@ from pool_env.physics import BALL_RADIUS
 from pool_env.players import GameGhostBallAgent
 from pool_env.players import geometry as geo
 from pool_env.players import plan_kernels as pk
+from pool_env.players import position_kernels as positions_k
 
 IDS = ("PoolNineBall-v0", "PoolEightBall-v0")
 
@@ -138,7 +139,7 @@ def test_the_safety_goes_at_the_nearest_legal_ball_with_a_clear_line():
         want = -1 if not balls else next(
             (b for b in balls if geo.path_clear(xy[0], xy[b], xy[[j for j in range(1, n) if on[j] and j != b]],
                                                 clearance)), balls[0])
-        got = pk.safety_ball(xy[None], on[None], legal, clearance, np.empty(n, dtype=np.int64), np.empty(n))
+        got = positions_k.safety_ball(xy[None], on[None], legal, clearance, np.empty(n, dtype=np.int64), np.empty(n))
         assert got == want
         checked += want > 0
     assert checked > 200
@@ -197,10 +198,10 @@ def test_the_straight_in_spots_are_behind_each_open_window_and_free():
             & (gap.min(axis=1, initial=np.inf) >= 2.2 * BALL_RADIUS)
         spots, ranks = np.empty((2 * len(index), 2)), np.empty(2 * len(index))
         limits = np.array([*area, 2.2 * BALL_RADIUS, BALL_RADIUS])
-        m = pk.straight_in_spots(np.ascontiguousarray(balls.xy), on, index, aims, backs, limits, spots, ranks)
+        m = positions_k.straight_in_spots(np.ascontiguousarray(balls.xy), on, index, aims, backs, limits, spots, ranks)
         assert spots[:m].tobytes() == want[keep].tobytes() and ranks[:m].tobytes() == rank[keep].tobytes()
         flags = np.empty(len(want), dtype=bool)
-        pk.free_spots(np.ascontiguousarray(balls.xy), on, want, limits, flags)
+        positions_k.free_spots(np.ascontiguousarray(balls.xy), on, want, limits, flags)
         assert flags.tolist() == keep.tolist()
         checked += m
     assert checked > 20

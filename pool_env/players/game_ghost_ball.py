@@ -12,8 +12,9 @@ from ..physics import BALL_RADIUS, Physics, Table
 from . import geometry as geo
 from .base import Agent, game_of
 from .ghost_ball import GhostBallAgent, best_row, pot_of
-from .plan_kernels import PATH_CLEARANCE, free_spots, safety_ball, straight_in_spots
+from .plan_kernels import PATH_CLEARANCE
 from .planner import DX, DY, SCORE, SPEED, first_best
+from .position_kernels import free_spots, safety_ball, straight_in_spots
 
 BREAK_SPEED = 9.0  # m/s, full into the rack's apex ball
 SAFETY_SPEED = 3.0  # m/s: no pot on, the cue ball sent full at a legal ball (far enough for a rail)

@@ -41,11 +41,9 @@ from .plan_kernels import (
     batch_fault,
     group_best,
     plan_fault,
-    plan_from,
     plan_kernel,
-    plan_lie,
-    position_windows,
 )
+from .position_kernels import plan_from, plan_lie, position_windows
 
 __all__ = ["D1", "D2", "DN", "DX", "DY", "OK", "PLAN_COLUMNS", "SCORE", "SCRATCH", "SPEED", "ShotPlanner",
            "first_best"]
