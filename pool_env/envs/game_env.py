@@ -100,7 +100,9 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
     | `game` | `"nine_ball"` | `"nine_ball"` (PoolNineBall-v0: 10 balls) or `"eight_ball"` (PoolEightBall-v0: 16) |
     | `opponent` | `"ghost_ball"` | a player's name (`pool_env.make_player`: `"ghost_ball"`, the rule-aware
       `pool_env.players.GameGhostBallAgent`, `"random"`, `"search"`, a saved model's path), an agent with
-      `act(observation)`, a callable `observation -> action`, or None: practice (below) |
+      `act(observation)`, a callable `observation -> action`, or None: practice (below). A built-in name's player
+      that decides from views (`decide_batch`) reads the game's state instead (`pool_env.game.game_view`, the view
+      its observation would decode to) and hands the game its `Shot` (`Game.strike_encoded`): the same shots |
     | `noise` | None | None, `"olympiad"` (`NOISE_PRESETS`) or a dict of standard deviations (`angle` rad,
       `speed` m/s, `side`, `top` in R, `elevation` rad: elevated shots only) on every executed shot, both
       players'; deterministic given the seed |
