@@ -9,7 +9,7 @@ import numpy as np
 from gymnasium import logger, spaces
 
 from .. import rules
-from ..game import ELEVATED, GAME_BALLS, Game, Shot, game_observation, game_observation_size
+from ..game import ELEVATED, GAME_BALLS, Game, Shot, game_observation, game_observation_size, game_view
 from ..physics import Balls
 from ..players import make_player
 from ..render.overlay import overlay
@@ -17,7 +17,7 @@ from ..render.playback import ShotPlayback
 from ..render.window import HumanWindow
 from ..rules import codes
 from .break_env import StepsShots, can_render, check_env_options, check_reset_options, run_step
-from .infos import check_info_mode, no_shot_info, record_info, rich_info, rules_info, winner_code
+from .infos import check_info_mode, no_shot_info, record_info, rich_info, winner_code
 
 SHAPING_BALL, SHAPING_FOUL = 0.1, 0.1  # shaping: + per ball the agent pockets legally, - per foul
 RESET_OPTIONS = ("balls", "ball_in_hand", "agent_breaks")
@@ -50,12 +50,13 @@ def captioned(shots, captions, on: bool = True) -> list:
 
 @dataclass(frozen=True)
 class OpponentDecision:
-    """What `step_shots` yields (with `batch_opponent` on) when a player with `act_batch` is to
-    shoot: its driver sends back `player.act(observation)`, which it may compute for many
-    sub-envs in one `act_batch` call."""
+    """What `step_shots` yields (with `batch_opponent` on) when a built-in player that decides
+    from the game's state (`decide_batch` of `pool_env.game.GameView`s) is to shoot: its driver
+    sends back `player.decide(view)`, the `Shot`, which it may compute for many sub-envs in one
+    `decide_batch` call."""
 
     player: object
-    observation: np.ndarray
+    view: object
 
 
 def resolve_opponent(opponent, env):
@@ -99,7 +100,9 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
     | `game` | `"nine_ball"` | `"nine_ball"` (PoolNineBall-v0: 10 balls) or `"eight_ball"` (PoolEightBall-v0: 16) |
     | `opponent` | `"ghost_ball"` | a player's name (`pool_env.make_player`: `"ghost_ball"`, the rule-aware
       `pool_env.players.GameGhostBallAgent`, `"random"`, `"search"`, a saved model's path), an agent with
-      `act(observation)`, a callable `observation -> action`, or None: practice (below) |
+      `act(observation)`, a callable `observation -> action`, or None: practice (below). A built-in name's player
+      that decides from views (`decide_batch`) reads the game's state instead (`pool_env.game.game_view`, the view
+      its observation would decode to) and hands the game its `Shot` (`Game.strike_encoded`): the same shots |
     | `noise` | None | None, `"olympiad"` (`NOISE_PRESETS`) or a dict of standard deviations (`angle` rad,
       `speed` m/s, `side`, `top` in R, `elevation` rad: elevated shots only) on every executed shot, both
       players'; deterministic given the seed |
@@ -301,7 +304,9 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
             for record in records:
                 replay.shot(record.result)
                 shots.append(replay.shot_frames(fps))
-        return captioned(shots, self._captions, self.overlay)
+        captions = [(shot_caption(self.game, record, who), list(record.ruling.messages))
+                    for record, who in self._captions]
+        return captioned(shots, captions, self.overlay)
 
     def _annotate(self, frame):
         """The table now with the game's state on it (when `overlay`)."""
@@ -352,7 +357,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         or ValueError it raised), and returns the step's (observation, reward, terminated,
         truncated, info); the observation is None with `observe=False`. `action` may also be a
         `pool_env.game.Shot`. With `batch_opponent` set, a built-in opponent's shot is asked of
-        the driver: the generator yields an `OpponentDecision` and is sent the action."""
+        the driver: the generator yields an `OpponentDecision` and is sent the Shot."""
         if not self._started:
             raise RuntimeError("call reset() before step()")
         if self._done:
@@ -373,26 +378,34 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         """The opponent's shots while it is to shoot (a generator of StruckShots, as step_shots)."""
         game = self.game
         while self._error is None and not game.over and game.shooter == OPPONENT and self._opponent is not None:
-            if len(self._opponent_infos) >= self.max_shots:
+            if self._opponent_shots >= self.max_shots:
                 self._error = f"the opponent took {self.max_shots} shots in a row"
                 return
-            observation = self.observation(OPPONENT)
-            if self.batch_opponent and hasattr(self._opponent_player, "act_batch"):
-                action = yield OpponentDecision(self._opponent_player, observation)  # the driver decides (at once)
+            player = self._opponent_player
+            direct = player is not None and hasattr(player, "decide_batch")  # it reads the game, not an observation
+            if direct:
+                view = game_view(game.balls, game.state, OPPONENT, self._shots, self.max_shots, self.table)
+                action = (yield OpponentDecision(player, view)) if self.batch_opponent else player.decide(view)
             else:
-                action = self._opponent(observation)
-            if self.elevation and np.shape(action) == (game.layout.size - 1,):
-                action = np.append(action, np.float32(0.0))  # the built-in players cue level
-            try:
-                struck = game.strike(action)
+                action = self._opponent_action()
+            try:  # a Shot plays as the action it would have encoded
+                struck = game.strike_encoded(action) if direct else game.strike(action)
             except ValueError as exc:
                 raise ValueError(f"the opponent ({self._opponent_name}) played a bad action: {exc}") from None
             self._note(game.resolve(struck, (yield struck)), mine=False)
 
+    def _opponent_action(self):
+        """The opponent's action for its observation (the built-in players cue level: with
+        `elevation`, their action gets a level cue's entry)."""
+        action = self._opponent(self.observation(OPPONENT))
+        if self.elevation and np.shape(action) == (self.game.layout.size - 1,):
+            action = np.append(action, np.float32(0.0))
+        return action
+
     def _begin_step(self):
         self._captions, self._step_records = [], []
         self._step_start = self.game.balls if self._started else None
-        self._reward, self._error, self._agent_info, self._opponent_infos = 0.0, None, None, []
+        self._reward, self._error, self._agent_info, self._opponent_shots = 0.0, None, None, 0
 
     def _note(self, record, mine: bool):
         """A shot just played (`mine`: the stepping player's): the playback follows it, its
@@ -407,14 +420,14 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         self.playback.shot(record.result)
         self.playback.place(record.balls_after)
         who = f"player {record.shooter + 1}" if self.hotseat else ("agent" if mine else "opponent")
-        self._captions.append((shot_caption(self.game, record, who), list(record.ruling.messages)))
+        self._captions.append((record, who))  # captioned when frames are asked for
         self._end_reason = record.ruling.end_reason
         if mine:
             self._shots += 1
             self._agent_info = record_info(record)
             self._reward += self._shot_reward(record)
         else:
-            self._opponent_infos.append(rules_info(record))
+            self._opponent_shots += 1
 
     def _shot_reward(self, record) -> float:
         ruling = record.ruling
@@ -442,7 +455,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         """The info of a step or a reset: the agent's shot's entries (`shot`), then the
         opponent's shots, the winner, the end reason and the error; the records if rich."""
         game = self.game
-        info = {**shot, "opponent_shots": len(self._opponent_infos), "winner": winner_code(game.winner),
+        info = {**shot, "opponent_shots": self._opponent_shots, "winner": winner_code(game.winner),
                 "end_reason": codes.encode("end_reason", self._end_reason if game.winner is not None else None),
                 "error": self._error is not None}
         return rich_info(info, records, self._error) if self.info_mode == "rich" else info

@@ -18,15 +18,15 @@ from .game_env import OpponentDecision, PoolGameEnv
 
 
 def decide_all(asked: dict) -> dict:
-    """{sub-env: action} for {sub-env: OpponentDecision}: one `act_batch` call per group of
+    """{sub-env: Shot} for {sub-env: OpponentDecision}: one `decide_batch` call per group of
     players that plan alike (equal `batch_key`)."""
     groups: dict = {}
     for k, ask in asked.items():
         groups.setdefault((type(ask.player), ask.player.batch_key), []).append(k)
     out = {}
     for ks in groups.values():
-        actions = asked[ks[0]].player.act_batch([asked[k].observation for k in ks])
-        out.update(zip(ks, actions))
+        shots = asked[ks[0]].player.decide_batch([asked[k].view for k in ks])
+        out.update(zip(ks, shots))
     return out
 
 

@@ -1,6 +1,16 @@
 """pool_env.game: the game as an object (`Game`), its shots, records, snapshots, action and observation layouts."""
 
-from .actions import ELEVATED, LAYOUTS, ActionLayout, cue_force, decode_action, elevation_entry, encode_action
+from .actions import (
+    ELEVATED,
+    LAYOUTS,
+    ActionLayout,
+    cue_force,
+    decode_action,
+    decode_entries,
+    elevation_entry,
+    encode_action,
+    encoded_entries,
+)
 from .core import Game, GameSnapshot, ShotRecord, StruckShot, play_batch, simulate_struck, simulate_struck_batch
 from .modes import MODES, RULES_MODES, Mode, mode_of
 from .observation import (
@@ -13,6 +23,7 @@ from .observation import (
     decode_observation,
     game_observation,
     game_observation_size,
+    game_view,
 )
 from .placement import place_cue_ball, placement_area
 from .shot import CONTACT_TIME, MAX_FORCE, MAX_SPEED, MAX_TIP_OFFSET, NOISE_PRESETS, Shot, noise_of, noisy_shot
@@ -20,7 +31,7 @@ from .shot import CONTACT_TIME, MAX_FORCE, MAX_SPEED, MAX_TIP_OFFSET, NOISE_PRES
 __all__ = [
     "Game", "Shot", "ShotRecord", "GameSnapshot", "StruckShot", "play_batch", "simulate_struck",
     "simulate_struck_batch", "MODES", "RULES_MODES", "Mode", "mode_of", "LAYOUTS", "ELEVATED", "ActionLayout",
-    "cue_force", "elevation_entry",
+    "cue_force", "elevation_entry", "decode_entries", "encoded_entries", "game_view",
     "decode_action", "encode_action", "N_BALLS", "GameView", "GAME_BALLS", "break_observation", "break_observations",
     "decode_observation", "game_observation", "decode_game_observation", "game_observation_size",
     "place_cue_ball", "placement_area", "CONTACT_TIME", "MAX_FORCE", "MAX_SPEED", "MAX_TIP_OFFSET",

@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import math
+from array import array
 from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .shot import MAX_ELEVATION, MAX_FORCE, MAX_SPEED, MAX_TIP_OFFSET, Shot
+from ..physics import BALL_MASS
+from .shot import CONTACT_TIME, MAX_ELEVATION, MAX_FORCE, MAX_SPEED, MAX_TIP_OFFSET, Shot
 
 MIN_MAGNITUDE = 0.02  # weaker cue-force entries are raised to this (0.24 m/s)
 
@@ -58,7 +60,12 @@ def cue_force(action, spin: bool):
     values = a.tolist()  # Python floats: the same IEEE arithmetic as numpy's, without its per-call cost
     if not all(math.isfinite(v) for v in values):
         raise ValueError(f"action must be finite, got {values}")
-    values = [min(max(v, -1.0), 1.0) for v in values]  # np.clip(a, -1, 1)
+    force, tip = cue_entries([min(max(v, -1.0), 1.0) for v in values], spin)  # np.clip(a, -1, 1)
+    return np.array(force), np.array(tip)
+
+
+def cue_entries(values, spin: bool) -> tuple:
+    """`cue_force` of entries already checked and clipped (Python floats): ((fx, fy), (side, top))."""
     dx, dy = values[0], values[1]
     magnitude = math.hypot(dx, dy)
     if magnitude == 0.0:
@@ -75,7 +82,7 @@ def cue_force(action, spin: bool):
         if length > MAX_TIP_OFFSET:
             scale = MAX_TIP_OFFSET / length
             side, top = side * scale, top * scale
-    return np.array((MAX_FORCE * dx, MAX_FORCE * dy)), np.array((side, top))
+    return (MAX_FORCE * dx, MAX_FORCE * dy), (side, top)
 
 
 def decode_action(layout: ActionLayout, action, area=None, n_pockets: int = 6) -> Shot:
@@ -93,16 +100,21 @@ def decode_action(layout: ActionLayout, action, area=None, n_pockets: int = 6) -
     values = a.tolist()  # Python floats: the same IEEE arithmetic as numpy's, without its per-call cost
     if not all(math.isfinite(v) for v in values):
         raise ValueError(f"action must be finite, got {values}")
+    return decode_entries(layout, values, area, n_pockets)
+
+
+def decode_entries(layout: ActionLayout, values, area=None, n_pockets: int = 6) -> Shot:
+    """`decode_action` of an action's entries already checked (`layout.size` finite Python floats)."""
     a = [min(max(v, -1.0), 1.0) for v in values]  # np.clip(a, -1, 1)
     spin = layout.spin or layout.placement
-    force, tip = cue_force(a[0:4] if spin else a[0:2], spin=spin)
+    force, tip = cue_entries(a[0:4] if spin else a[0:2], spin)
     elevation = elevation_entry(a[-1]) if layout.elevation else 0.0
     place = None
     if layout.placement and area is not None:
         x_lo, x_hi, y_lo, y_hi = area
         place = (x_lo + 0.5 * (a[4] + 1.0) * (x_hi - x_lo), y_lo + 0.5 * (a[5] + 1.0) * (y_hi - y_lo))
     pocket = min(int((a[6] + 1.0) * 0.5 * n_pockets), n_pockets - 1) if layout.called_pocket else None
-    return Shot(tuple(force.tolist()), tuple(tip.tolist()), place, pocket, elevation)
+    return Shot(force, tip, place, pocket, elevation)
 
 
 def encode_action(layout: ActionLayout, shot: Shot, area=None, n_pockets: int = 6) -> np.ndarray:
@@ -110,10 +122,25 @@ def encode_action(layout: ActionLayout, shot: Shot, area=None, n_pockets: int = 
     (to float32 rounding): the force as a fraction of MAX_FORCE, the tip of MAX_TIP_OFFSET, the
     spot's place in `area` (0, 0 when `area` or the spot is None), the middle of the pocket's bin,
     the elevation as a fraction of MAX_ELEVATION."""
+    return np.clip(np.array(action_entries(layout, shot, area, n_pockets), dtype=np.float32), -1.0, 1.0)
+
+
+def encoded_entries(layout: ActionLayout, shot: Shot, area=None, n_pockets: int = 6) -> list:
+    """`encode_action`'s entries as Python floats (each rounded to float32 and clipped, as the
+    action holds them), without building the array: `decode_entries` of them is the shot an
+    env plays for the action of `shot`."""
+    rounded = array("f", action_entries(layout, shot, area, n_pockets)).tolist()  # float32 rounding, as numpy's cast
+    return [min(max(v, -1.0), 1.0) for v in rounded]
+
+
+def action_entries(layout: ActionLayout, shot: Shot, area=None, n_pockets: int = 6) -> list:
+    """The entries of `encode_action` before their float32 rounding and clipping (Python floats)."""
     if not isinstance(shot, Shot):
         raise TypeError(f"shot must be a pool_env.game.Shot, got {type(shot).__name__}")
-    force = shot.direction * min(shot.speed / MAX_SPEED, 1.0)
-    entries = [force[0], force[1]]
+    fx, fy = shot.force
+    length = math.hypot(fx, fy)
+    scale = min(length * CONTACT_TIME / BALL_MASS / MAX_SPEED, 1.0)  # shot.speed / MAX_SPEED
+    entries = [fx / length * scale, fy / length * scale]  # shot.direction * scale
     if layout.spin:
         entries += [shot.tip[0] / MAX_TIP_OFFSET, shot.tip[1] / MAX_TIP_OFFSET]
     if layout.placement:
@@ -128,4 +155,4 @@ def encode_action(layout: ActionLayout, shot: Shot, area=None, n_pockets: int = 
         entries.append(-1.0 + (2.0 * (shot.pocket if shot.pocket is not None else 0) + 1.0) / n)
     if layout.elevation:
         entries.append(shot.elevation / MAX_ELEVATION)
-    return np.clip(np.array(entries, dtype=np.float32), -1.0, 1.0)
+    return entries

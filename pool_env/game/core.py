@@ -11,7 +11,7 @@ import numpy as np
 from .. import rules
 from ..physics import BALL_RADIUS, Balls, Physics, Result, SimulationError, Table, simulate, simulate_batch, strike
 from ..physics.simulate import check_on_table
-from .actions import LAYOUTS, ActionLayout, decode_action, encode_action
+from .actions import LAYOUTS, ActionLayout, decode_action, decode_entries, encode_action, encoded_entries
 from .modes import Mode, mode_of
 from .placement import place_cue_ball, placement_area
 from .shot import CONTACT_TIME, Shot, noise_of, noisy_shot
@@ -355,6 +355,17 @@ class Game:
         if self._over:
             raise RuntimeError("the game is over; reset() it")
         return self._strike(*self._shot_and_action(shot), rng)
+
+    def strike_encoded(self, shot: Shot, rng=None) -> StruckShot:
+        """`strike` of the action vector that `encode` makes of `shot` (`strike(encode(shot))`,
+        the same StruckShot bit for bit: the shot as its float32 entries play it, and those
+        entries its `action`), without building the vector: for players that decide from the
+        game's state and hand it the Shot an env action of theirs would carry."""
+        if self._over:
+            raise RuntimeError("the game is over; reset() it")
+        area, pockets = self.placement_area(), self.table.pockets.shape[0]
+        entries = encoded_entries(self.layout, shot, area, pockets)
+        return self._strike(decode_entries(self.layout, entries, area, pockets), tuple(entries), rng)
 
     def _shot_and_action(self, shot) -> tuple:
         """(the `Shot`, the action vector's entries as a tuple or None) of a Shot or an action."""

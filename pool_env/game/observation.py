@@ -8,6 +8,7 @@ import numpy as np
 
 from .. import rules
 from ..physics import Balls, Table
+from ..physics.jit import helper, kernel
 
 N_BALLS = 16  # the break envs' balls: the cue ball and 15 object balls
 GAME_BALLS = {"nine_ball": 10, "eight_ball": 16}  # balls in play, the cue ball included
@@ -57,14 +58,42 @@ def game_observation_size(game: str) -> int:
     return 3 * n + (n - 1) + 4 + (3 if game == "eight_ball" else 0) + 1
 
 
+@helper
+def position_entry(v, scale):
+    """A centre's coordinate as the observation keeps it: scaled onto [-1, 1] (clipped: a ball
+    hanging in a mouth), rounded to float32."""
+    return np.float32(min(max(v * scale - 1.0, -1.0), 1.0))
+
+
+@kernel
+def observed_balls(xy, pocketed, length, width, out):
+    """The observation's entries of the balls (xy (n, 2), pocketed (n,)) into out (n, 3)
+    float32: x, y scaled (`position_entry`), +1; a pocketed ball (0, 0, -1)."""
+    sx, sy = 2.0 / length, 2.0 / width
+    for k in range(xy.shape[0]):
+        if pocketed[k]:
+            out[k, 0], out[k, 1], out[k, 2] = 0.0, 0.0, -1.0
+        else:
+            out[k, 0], out[k, 1], out[k, 2] = position_entry(xy[k, 0], sx), position_entry(xy[k, 1], sy), 1.0
+
+
+@kernel
+def viewed_balls(xy, pocketed, length, width, out):
+    """The balls' positions (n, 2) as `decode_game_observation` reads them back from the
+    observation's entries (`observed_balls`), into out (n, 2) float64."""
+    sx, sy = 2.0 / length, 2.0 / width
+    for k in range(xy.shape[0]):
+        ex = ey = 0.0
+        if not pocketed[k]:
+            ex, ey = np.float64(position_entry(xy[k, 0], sx)), np.float64(position_entry(xy[k, 1], sy))
+        out[k, 0], out[k, 1] = (ex + 1.0) * 0.5 * length, (ey + 1.0) * 0.5 * width
+
+
 def game_observation(balls: Balls, state, viewer: int, shots: int, max_shots: int, table: Table) -> np.ndarray:
     """The observation of `viewer` (0 or 1) as PoolGameEnv documents it, float32 in [-1, 1]."""
     n = len(balls)
     out = np.empty(game_observation_size(state.kind), dtype=np.float32)
-    per_ball = out[: 3 * n].reshape(n, 3)
-    per_ball[:, 0:2] = np.clip(balls.xy * (2.0 / table.length, 2.0 / table.width) - 1.0, -1.0, 1.0)
-    per_ball[:, 2] = 1.0
-    per_ball[balls.pocketed] = (0.0, 0.0, -1.0)
+    observed_balls(balls.xy, balls.pocketed, table.length, table.width, out[: 3 * n].reshape(n, 3))
     legal = out[3 * n: 4 * n - 1]
     legal[:] = -1.0
     if state.winner is None:
@@ -124,3 +153,18 @@ def decode_game_observation(obs, game: str, table: Table) -> GameView:
         flags = obs[4 * n + 3: 4 * n + 6]
         group = "solids" if flags[1] > 0 else ("stripes" if flags[2] > 0 else None)
     return GameView(xy, on_table, legal, in_hand, fouls, group, float(obs[-1]))
+
+
+def game_view(balls: Balls, state, viewer: int, shots: int, max_shots: int, table: Table) -> GameView:
+    """The `GameView` that `decode_game_observation` reads from `game_observation(balls, state,
+    viewer, shots, max_shots, table)`, bit for bit (the positions rounded to float32 and back,
+    as the observation keeps them), without building the observation: for players that read
+    the game's state directly."""
+    xy = np.empty((len(balls), 2))
+    viewed_balls(balls.xy, balls.pocketed, table.length, table.width, xy)
+    legal = rules.legal_targets(state) if state.winner is None else frozenset()
+    in_hand = state.ball_in_hand if state.shooter == viewer else None
+    fouls = (min(state.fouls[viewer], 2), min(state.fouls[1 - viewer], 2))
+    group = state.groups[viewer] if state.kind == "eight_ball" else None
+    counter = float(np.float32(2.0 * min(shots, max_shots) / max_shots - 1.0))
+    return GameView(xy, ~balls.pocketed, legal, in_hand, fouls, group, counter)

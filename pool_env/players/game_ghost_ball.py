@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .. import rules
@@ -10,7 +12,9 @@ from ..physics import BALL_RADIUS, Physics, Table
 from . import geometry as geo
 from .base import Agent, game_of
 from .ghost_ball import GhostBallAgent, best_row, pot_of
-from .planner import SCORE, first_best
+from .plan_kernels import PATH_CLEARANCE
+from .planner import DX, DY, SCORE, SPEED, first_best
+from .position_kernels import free_spots, safety_ball, straight_in_spots
 
 BREAK_SPEED = 9.0  # m/s, full into the rack's apex ball
 SAFETY_SPEED = 3.0  # m/s: no pot on, the cue ball sent full at a legal ball (far enough for a rail)
@@ -41,6 +45,7 @@ class GameGhostBallAgent(Agent):
         self.physics = Physics.standard() if physics is None else physics
         self.radius = radius
         self.planner = GhostBallAgent(self.table, self.physics, radius=radius)
+        self.grids: dict = {}  # the placement grid of each area (ball in hand), made once
 
     @classmethod
     def from_env(cls, env, **kwargs) -> GameGhostBallAgent:
@@ -59,13 +64,46 @@ class GameGhostBallAgent(Agent):
 
     @property
     def batch_key(self) -> tuple:
-        """Equal for players that plan alike (game, table, physics, radius): one's `act_batch` serves the others."""
+        """Equal for players that plan alike (game, table, physics, radius): one's `decide_batch` serves the others."""
         b = self.planner.batch
         return (self.game, b.constants.tobytes(), b.rails.tobytes(), b.jaws.tobytes(), b.captures.tobytes())
 
     def decide(self, view) -> Shot:
-        """The shot for a decoded observation (`pool_env.game.GameView`)."""
-        return self.decide_batch([view])[0]
+        """The shot for a decoded observation (`pool_env.game.GameView`): `decide_batch([view])[0]`,
+        planned in one or two compiled calls."""
+        if view.ball_in_hand is None and view.on_table[0]:  # the cue ball plays from where it lies
+            xy, objects, legal = self.arrays([view])
+            index, rows, k = self.planner.batch.plan_lie(xy[0], objects[0], legal[0], self.planner.arrival_speed)
+            if k >= 0 and rows[k, SCORE] > -math.inf:
+                return Shot.aimed((rows[k, DX], rows[k, DY]), float(rows[k, SPEED]), pocket=int(index[k, 2]))
+            return self.safety(xy[0], view.on_table, legal[0, 1:], None)
+        if view.ball_in_hand is None or (np.all(view.on_table) and view.ball_in_hand == "behind_head_string"):
+            return self.decide_batch([view])[0]  # a pocketed cue ball without ball in hand, or the break
+        return self.in_hand(view)
+
+    def in_hand(self, view) -> Shot:
+        """`decide` of a view with ball in hand (not the break): the spots of `cue_spots`
+        planned from in one compiled call (`planner.ShotPlanner.plan_from`)."""
+        xy, objects, legal = self.arrays([view])
+        batch, arrival = self.planner.batch, self.planner.arrival_speed
+        index, aims = batch.windows(xy[0], objects[0], legal[0])
+        _, spots, cue = self.cue_spots(view, xy[0], objects[0], index, aims)
+        pot = None
+        if spots:
+            rows, s, k = batch.plan_from(xy, objects, index, aims, np.array(spots), arrival)
+            if s >= 0:
+                cue, pot = spots[s], pot_of(index[k % len(index)], rows[k])
+        place = (float(cue[0]), float(cue[1]))
+        if not view.on_table[0]:  # pots are planned for a cue ball on the table: a pocketed one plays safe
+            pot = None
+        elif pot is None:  # no spot has a pot: from the area's middle (the windows do not depend on the cue ball)
+            rows, s, k = batch.plan_from(xy, objects, index, aims, cue[None], arrival)
+            pot = None if s < 0 else pot_of(index[k], rows[k])
+        if pot is not None:
+            return Shot.aimed(pot.direction, pot.speed, place=place, pocket=pot.pocket)
+        trial = xy[0].copy()
+        trial[0] = cue
+        return self.safety(trial, view.on_table, legal[0, 1:], place)
 
     def decide_batch(self, views) -> list[Shot]:
         """The shots of several decoded observations (`GameView`s of this game), planned together:
@@ -76,7 +114,8 @@ class GameGhostBallAgent(Agent):
         xy, objects, legal = self.arrays(views)
         index = self.planner.batch.candidates(legal)
         aims = self.planner.batch.aims(xy, objects, index)
-        bounds = np.searchsorted(index[:, 0], np.arange(len(views) + 1))
+        one = np.array([0, len(index)])
+        bounds = one if len(views) == 1 else np.searchsorted(index[:, 0], np.arange(len(views) + 1))
         cues = [self.cue_spots(view, xy[q], objects[q], index[bounds[q]:bounds[q + 1]], aims[bounds[q]:bounds[q + 1]])
                 for q, view in enumerate(views)]
         tried = self.plan_groups(xy, objects, index, aims, bounds, cues)
@@ -98,7 +137,7 @@ class GameGhostBallAgent(Agent):
             else:
                 trial = xy[q].copy()
                 trial[0] = cue
-                shots.append(self.safety(trial, view.on_table, view.legal_mask, place))
+                shots.append(self.safety(trial, view.on_table, legal[q, 1:], place))
         return shots
 
     def encode(self, shot: Shot, in_hand) -> np.ndarray:
@@ -113,7 +152,8 @@ class GameGhostBallAgent(Agent):
         objects = np.array([view.on_table for view in views], dtype=bool)
         objects[:, 0] = False
         legal = np.zeros_like(objects)
-        legal[:, 1:] = [view.legal_mask for view in views]
+        for q, view in enumerate(views):
+            legal[q, list(view.legal)] = True  # the legal balls by number
         return xy, objects, legal & objects
 
     def plan_groups(self, xy, objects, index, aims, bounds, cues):
@@ -122,21 +162,26 @@ class GameGhostBallAgent(Agent):
         group_spots = [(q, spot) for q, (_, spots, _) in enumerate(cues) for spot in spots]
         if not group_spots:
             return [(None, None)] * len(cues)
-        views = np.array([q for q, _ in group_spots])
-        lengths = bounds[views + 1] - bounds[views]
-        groups = np.repeat(np.arange(len(group_spots)), lengths)
-        rows_of = np.arange(len(groups)) - np.repeat(np.cumsum(lengths) - lengths - bounds[views], lengths)
-        cue = np.repeat(np.array([spot for _, spot in group_spots]), lengths, axis=0)
-        rows = self.planner.batch.plan(cue, xy, objects, index[rows_of], aims[rows_of],
-                                       np.full(len(rows_of), self.planner.arrival_speed))
-        heads = first_best(rows, groups, len(group_spots))
+        if all(len(spots) == 1 for _, spots, _ in cues):  # one spot a view: each candidate once, grouped by view
+            groups, rows_of = index[:, 0], None
+            cue = np.array([spot for _, spot in group_spots])[groups]
+        else:
+            views = np.array([q for q, _ in group_spots])
+            lengths = bounds[views + 1] - bounds[views]
+            groups = np.repeat(np.arange(len(group_spots)), lengths)
+            rows_of = np.arange(len(groups)) - np.repeat(np.cumsum(lengths) - lengths - bounds[views], lengths)
+            cue = np.repeat(np.array([spot for _, spot in group_spots]), lengths, axis=0)
+        if rows_of is not None:
+            index, aims = index[rows_of], aims[rows_of]
+        rows = self.planner.batch.plan(cue, xy, objects, index, aims, np.full(len(index), self.planner.arrival_speed))
+        heads = first_best(rows, groups, len(group_spots)).tolist()
         out = [(None, None)] * len(cues)
-        best = np.full(len(cues), -np.inf)
+        best = [-math.inf] * len(cues)
         for g, (q, spot) in enumerate(group_spots):
             k = heads[g]
             if k >= 0 and rows[k, SCORE] > best[q]:  # the first spot of the highest score
                 best[q] = rows[k, SCORE]
-                out[q] = (pot_of(index[rows_of[k]], rows[k]), spot)
+                out[q] = (pot_of(index[k], rows[k]), spot)
         return out
 
     def cue_spots(self, view, xy, objects, index, aims):
@@ -155,31 +200,26 @@ class GameGhostBallAgent(Agent):
     def spots(self, xy, objects, index, aims, area) -> list:
         """The cue-ball spots worth planning from with ball in hand: straight-in spots behind
         each legal ball for each open pocket, the best-ranked `PLACEMENT_TRIES` (by open mouth
-        and distances), or a coarse grid over the area when none is free."""
-        x_lo, x_hi, y_lo, y_hi = area
-        on = xy[objects]
-
-        def free(p):  # (K, 2) -> (K,): inside the area, clear of every object ball
-            gap = np.hypot(on[None, :, 0] - p[:, None, 0], on[None, :, 1] - p[:, None, 1]).min(axis=1, initial=np.inf)
-            return (x_lo <= p[:, 0]) & (p[:, 0] <= x_hi) & (y_lo <= p[:, 1]) & (p[:, 1] <= y_hi) & \
-                (gap >= 2.2 * self.radius)
-
-        open_ = aims[:, 2] > 0
-        ball, target, share = xy[index[open_, 1]], aims[open_, :2], aims[open_, 2]
-        v = target - ball
-        d2 = np.hypot(v[:, 0], v[:, 1])
-        u = v / np.where(d2 > 0, d2, 1.0)[:, None]
+        and distances), or a coarse grid over the area when none is free (spots inside the
+        area, clear of every object ball: `plan_kernels.straight_in_spots`, `free_spots`)."""
+        limits = np.array([*area, 2.2 * self.radius, self.radius])
+        xy, objects = np.ascontiguousarray(xy, dtype=np.float64), np.ascontiguousarray(objects, dtype=bool)
+        index, aims = np.ascontiguousarray(index, dtype=np.int64), np.ascontiguousarray(aims, dtype=np.float64)
         backs = np.array(STRAIGHT_IN_BACKS)
-        spot = (ball[:, None, :] - u[:, None, :] * (2.0 * self.radius + backs)[None, :, None]).reshape(-1, 2)
-        rank = (share[:, None] / ((d2[:, None] + 0.5) * (backs[None, :] + 0.5))).reshape(-1)
-        keep = free(spot)
-        spot, rank = spot[keep], rank[keep]
+        spot, rank = np.empty((len(index) * len(backs), 2)), np.empty(len(index) * len(backs))
+        kept = straight_in_spots(xy, objects, index, aims, backs, limits, spot, rank)
+        spot, rank = spot[:kept], rank[:kept]
         order = np.lexsort((spot[:, 1], spot[:, 0], rank))[::-1][:PLACEMENT_TRIES]  # sorted(reverse=True)
         if len(order):
             return list(spot[order])
-        grid = np.array([(x, y) for x in np.linspace(x_lo, x_hi, PLACEMENT_GRID[0])
-                         for y in np.linspace(y_lo, y_hi, PLACEMENT_GRID[1])])
-        return list(grid[free(grid)])
+        grid = self.grids.get(area)
+        if grid is None:
+            x_lo, x_hi, y_lo, y_hi = area
+            grid = self.grids[area] = np.array([(x, y) for x in np.linspace(x_lo, x_hi, PLACEMENT_GRID[0])
+                                                for y in np.linspace(y_lo, y_hi, PLACEMENT_GRID[1])])
+        keep = np.empty(len(grid), dtype=bool)
+        free_spots(xy, objects, grid, limits, keep)
+        return list(grid[keep])
 
     def best(self, xy, on_table, legal):
         """The best-scoring pot (`Pot`) of a legal first contact, or None."""
@@ -200,15 +240,13 @@ class GameGhostBallAgent(Agent):
         return xy, place
 
     def safety(self, xy, on_table, legal, place) -> Shot:
-        """Full at the nearest legal ball with a clear path (any legal ball if none is clear)."""
-        everything = np.flatnonzero(on_table[1:]) + 1
-        objects = everything[np.asarray(legal, dtype=bool)[everything - 1]]
-        if not objects.size:
+        """Full at the nearest legal ball with a clear path (the nearest if none is clear;
+        `plan_kernels.safety_ball`)."""
+        n = len(on_table)
+        by_number = np.zeros(n, dtype=bool)
+        by_number[1:] = legal
+        ball = safety_ball(np.ascontiguousarray(xy, dtype=np.float64)[None], np.asarray(on_table, dtype=bool)[None],
+                           by_number, 2.0 * self.radius * PATH_CLEARANCE, np.empty(n, dtype=np.int64), np.empty(n))
+        if ball < 0:
             return Shot.aimed((1.0, 0.0), SAFETY_SPEED, place=place)
-        to = xy[objects] - xy[0]
-        objects = objects[np.argsort(np.hypot(to[:, 0], to[:, 1]), kind="stable")]  # nearest first
-        gaps = geo.point_segment_distance(xy[everything][None, :, :], xy[0], xy[objects][:, None, :])  # (L, E)
-        gaps[objects[:, None] == everything[None, :]] = np.inf  # a ball does not block its own path
-        clear = np.flatnonzero(gaps.min(axis=1, initial=np.inf) >= 2.0 * self.radius * 1.02)
-        ball = objects[clear[0]] if clear.size else objects[0]
         return Shot.aimed(geo.unit(xy[ball] - xy[0]), SAFETY_SPEED, place=place)

@@ -2,7 +2,8 @@
 
 Each loop runs over the candidates of the arrays `planner` describes (a candidate is one
 position, object ball and pocket): `aim_kernel` finds the pocket windows, `plan_kernel` the
-pots, `group_best` the best pot of each group of candidates.
+pots, `group_best` the best pot of each group of candidates (`position_kernels` runs them
+for one position at a time).
 """
 
 from __future__ import annotations
@@ -319,6 +320,18 @@ def group_best(rows, groups, out):
         g = groups[i]
         if rows[i, OK] > 0.0 and (out[g] < 0 or rows[i, SCORE] > rows[out[g], SCORE]):
             out[g] = i
+
+
+@kernel
+def plan_fault(cue, aims, arrival):
+    """True unless the cue balls (N, 2) and aims (N, 3) are finite and the arrival speeds (N,) >= 0."""
+    for i in range(cue.shape[0]):
+        if not (math.isfinite(cue[i, 0]) and math.isfinite(cue[i, 1]) and arrival[i] >= 0.0):
+            return True
+        for k in range(3):
+            if not math.isfinite(aims[i, k]):
+                return True
+    return False
 
 
 @kernel

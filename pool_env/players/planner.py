@@ -40,8 +40,10 @@ from .plan_kernels import (
     aim_kernel,
     batch_fault,
     group_best,
+    plan_fault,
     plan_kernel,
 )
+from .position_kernels import plan_from, plan_lie, position_windows
 
 __all__ = ["D1", "D2", "DN", "DX", "DY", "OK", "PLAN_COLUMNS", "SCORE", "SCRATCH", "SPEED", "ShotPlanner",
            "first_best"]
@@ -55,6 +57,7 @@ class ShotPlanner:
                  max_speed: float = MAX_SPEED):
         self.table, self.physics, self.radius = table, physics, float(radius)
         self.pockets = pockets_of(table)
+        self.pocket_numbers = np.arange(len(self.pockets))
         self.jaws = np.array([np.concatenate([p.jaw_a, p.jaw_b]) for p in self.pockets]).reshape(-1, 4)
         self.captures = np.array([[*p.centre, p.radius] for p in self.pockets]).reshape(-1, 3)
         self.rails = np.ascontiguousarray(table.rails[:, 0:4], dtype=np.float64)
@@ -62,6 +65,8 @@ class ShotPlanner:
         self.reach = np.array([RAIL_CLEARANCE * radius, BALL_CLEARANCE * radius])
         self.constants = np.array([radius, physics.g, physics.mu_s, physics.mu_r, physics.e_b, physics.e_c,
                                    math.cos(math.radians(max_cut)), max_speed, table.length, table.width, PATH_STEP])
+        self.tables = (self.jaws, self.rails, self.lams, self.reach, np.empty_like(self.rails), self.constants,
+                       self.captures)  # what plan_lie reads (its rail scratch space included)
 
     def checked(self, xy, on, index, columns: int = 3):
         """(xy, on, index) as the kernels read them; ValueError naming the first thing wrong
@@ -96,23 +101,73 @@ class ShotPlanner:
         if cue.shape != (len(index), 2) or aims.shape != (len(index), 3) or arrival.shape != (len(index),):
             raise ValueError(f"cue, aims and arrival must be ({len(index)}, 2), ({len(index)}, 3) and ({len(index)},), "
                              f"got {cue.shape}, {aims.shape} and {arrival.shape}")
-        if not (np.isfinite(cue).all() and np.isfinite(aims).all() and np.all(arrival >= 0.0)):
+        if plan_fault(cue, aims, arrival):
             raise ValueError("cue and aims must be finite and arrival speeds finite and >= 0")
         out = np.empty((len(index), PLAN_COLUMNS))
         plan_kernel(cue, xy, on, index, aims, arrival, self.constants, self.captures, np.empty(6), out)
         return out
 
+    def plan_lie(self, xy, on, legal, arrival: float):
+        """One position's pots from where its cue ball lies, in one compiled call
+        (`plan_kernels.plan_lie`): xy (n, 2), on (n,) the object balls on the table (the cue
+        ball's entry ignored), legal (n,) the balls to pot. Returns (index (N, 3), rows (N,
+        PLAN_COLUMNS), the row of the best pot or -1): what `candidates`, `aims` and `plan`
+        give for it, and `first_best` of them. ValueError for a position that is not finite."""
+        xy = np.ascontiguousarray(xy, dtype=np.float64)[None]
+        on = np.ascontiguousarray(on, dtype=bool)[None]
+        legal = np.ascontiguousarray(legal, dtype=bool)
+        if xy.shape[2:] != (2,) or on.shape != xy.shape[:2] or legal.shape != xy.shape[1:2]:
+            raise ValueError(f"xy must be (n, 2), on and legal (n,), got {xy.shape[1:]}, {on.shape[1:]}, {legal.shape}")
+        m = xy.shape[1] * len(self.pockets)
+        index, rows = np.empty((m, 3), dtype=np.int64), np.empty((m, PLAN_COLUMNS))
+        buffers = (index, np.empty((m, 3)), rows, np.empty((m, 2)), np.empty(m), np.empty(6))
+        count, best = plan_lie(xy, on, legal, self.tables, float(arrival), buffers)
+        if count < 0:
+            raise ValueError("xy must be finite for the cue ball and the object balls on the table")
+        return index[:count], rows[:count], best
+
+    def windows(self, xy, on, legal):
+        """One position's (index, aims): `candidates` and `aims` of xy (n, 2), on (n,) the object
+        balls on the table, legal (n,) the balls to pot, in one compiled call
+        (`plan_kernels.position_windows`). ValueError for a position that is not finite."""
+        xy = np.ascontiguousarray(xy, dtype=np.float64)[None]
+        on = np.ascontiguousarray(on, dtype=bool)[None]
+        legal = np.ascontiguousarray(legal, dtype=bool)
+        if xy.shape[2:] != (2,) or on.shape != xy.shape[:2] or legal.shape != xy.shape[1:2]:
+            raise ValueError(f"xy must be (n, 2), on and legal (n,), got {xy.shape[1:]}, {on.shape[1:]}, {legal.shape}")
+        m = xy.shape[1] * len(self.pockets)
+        index, aims = np.empty((m, 3), dtype=np.int64), np.empty((m, 3))
+        count = position_windows(xy, on, legal, self.tables, index, aims)
+        if count < 0:
+            raise ValueError("xy must be finite for the cue ball and the object balls on the table")
+        return index[:count], aims[:count]
+
+    def plan_from(self, xy, on, index, aims, spots, arrival: float):
+        """One position's candidates (index, aims: `candidates` and `aims` of xy (1, n, 2) and
+        on (1, n)) planned from each cue-ball spot of spots (S, 2) in one compiled call
+        (`plan_kernels.plan_from`). Returns (rows (S * N, PLAN_COLUMNS), spot s's in rows
+        s * N to s * N + N - 1; the spot of the best pot, the first of equal ones, or -1; its
+        row or -1)."""
+        xy, on, index = self.checked(xy, on, index)
+        aims, spots = np.ascontiguousarray(aims, dtype=np.float64), np.ascontiguousarray(spots, dtype=np.float64)
+        if xy.shape[0] != 1 or aims.shape != (len(index), 3) or spots.ndim != 2 or spots.shape[1] != 2:
+            raise ValueError(f"xy must be one position, aims ({len(index)}, 3) and spots (S, 2), got {xy.shape}, "
+                             f"{aims.shape} and {spots.shape}")
+        if not (np.isfinite(aims).all() and np.isfinite(spots).all()):
+            raise ValueError("aims and spots must be finite")
+        n = len(index)
+        rows = np.empty((len(spots) * n, PLAN_COLUMNS))
+        buffers = (rows, np.empty((n, 2)), np.empty(n), np.empty(6))
+        spot, row = plan_from(xy, on, index, aims, spots, self.tables, float(arrival), buffers)
+        return rows, spot, row
+
     def candidates(self, legal) -> np.ndarray:
         """(N, 3) index of every legal ball (legal (Q, n) bool, column 0 the cue ball's, ignored)
         of every position into every pocket, position by position, ball by ball, pocket by pocket."""
-        legal = np.asarray(legal, dtype=bool).copy()
-        legal[:, 0] = False
-        q, ball = np.nonzero(legal)
-        pockets = len(self.pockets)
-        index = np.empty((len(q) * pockets, 3), dtype=np.int64)
-        index[:, 0], index[:, 1] = np.repeat(q, pockets), np.repeat(ball, pockets)
-        index[:, 2] = np.tile(np.arange(pockets), len(q))
-        return index
+        q, ball = np.nonzero(np.asarray(legal, dtype=bool)[:, 1:])
+        index = np.empty((len(q), len(self.pockets), 3), dtype=np.int64)
+        index[:, :, 0], index[:, :, 1], index[:, :, 2] = q[:, None], ball[:, None] + 1, self.pocket_numbers
+        return index.reshape(-1, 3)
 
 
 def first_best(rows, groups, count: int) -> np.ndarray:

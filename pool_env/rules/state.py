@@ -44,6 +44,17 @@ class GameState:
         object.__setattr__(self, "groups", tuple(self.groups))
         check_state(self)
 
+    @classmethod
+    def successor(cls, rules, on_table: frozenset, shooter: int, ball_in_hand, fouls: tuple, groups: tuple,
+                  shot: int, winner) -> GameState:
+        """The state after a shot, built by a rule set from a checked state (`advance`): the
+        fields as given (a frozenset and tuples already), without `__post_init__`'s
+        conversions and checks, which cost most of a ruling's time."""
+        state = object.__new__(cls)
+        state.__dict__.update(rules=rules, on_table=on_table, shooter=shooter, ball_in_hand=ball_in_hand,
+                              fouls=fouls, groups=groups, is_break=False, shot=shot, winner=winner)
+        return state
+
     @property
     def kind(self) -> str:
         """"nine_ball" or "eight_ball"."""
@@ -173,8 +184,8 @@ def advance(state, ruling, on_table, fouls, groups=None):
     groups and the balls left (`on_table`, spotted balls included)."""
     shooter = 1 - state.shooter if ruling.turn_passed else state.shooter
     # Built directly (dataclasses.replace costs several times as much, and a game judges every shot).
-    return GameState(state.rules, frozenset(on_table), shooter, ruling.ball_in_hand, tuple(fouls),
-                     state.groups if groups is None else tuple(groups), False, state.shot + 1, ruling.winner)
+    return GameState.successor(state.rules, frozenset(on_table), shooter, ruling.ball_in_hand, tuple(fouls),
+                               state.groups if groups is None else tuple(groups), state.shot + 1, ruling.winner)
 
 
 def turn_messages(new, turn_passed, warn_two_fouls) -> list:

@@ -1,0 +1,159 @@
+"""The ghost-ball planner's compiled calls for one position: its windows, and its pots from its cue-ball spots.
+
+A decision of `GameGhostBallAgent.decide` is one of these calls (or two, with ball in hand):
+each runs `plan_kernels`' loops over the position's candidates (every legal ball into every
+pocket, in `planner.ShotPlanner.candidates` order) without the batch arrays' setup, and
+picks the best pot as `plan_kernels.group_best` does; the safety's ball and the ball-in-hand
+spots are chosen here too.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..physics.jit import helper, kernel
+from .plan_kernels import OK, SCORE, aim_kernel, batch_fault, path_clear, plan_kernel
+
+
+@kernel
+def position_windows(xy, on, legal, tables, index, aims):
+    """One position's candidates and their windows in one call: every legal ball (legal (n,),
+    of position 0 of xy (1, n, 2), whose object balls on the table are on (1, n)) into every
+    pocket, in `planner.ShotPlanner.candidates` order, into index (M, 3), and `aim_kernel`'s
+    rows into aims (M, 3); `tables` holds the planner's (jaws, rails, lams, reach, near,
+    constants, captures). Returns the candidates' count, or -1 if a position is not finite."""
+    jaws, rails, lams, reach, near = tables[0], tables[1], tables[2], tables[3], tables[4]
+    if batch_fault(xy, on, index[:0], jaws.shape[0]) != 0:
+        return -1
+    k = 0
+    for ball in range(1, xy.shape[1]):
+        if legal[ball]:
+            for p in range(jaws.shape[0]):
+                index[k, 0], index[k, 1], index[k, 2] = 0, ball, p
+                aims[k, 0], aims[k, 1], aims[k, 2] = 0.0, 0.0, 0.0
+                k += 1
+    aim_kernel(xy, on, index[:k], jaws, rails, lams, reach, near, aims[:k])
+    return k
+
+
+@kernel
+def plan_lie(xy, on, legal, tables, arrival, buffers):
+    """One position's pots from where its cue ball lies, in one call: `position_windows`,
+    then each candidate's pot (`plan_kernel`, the cue ball at xy[0, 0], the object ball
+    arriving at `arrival`). `buffers` holds (index (M, 3), aims (M, 3), rows (M,
+    PLAN_COLUMNS), cue (M, 2), arrivals (M,), work (6,)), M at least the candidates. Returns
+    (candidates, the row of the best pot, the first of equal ones, or -1); (-1, -1) if a
+    position is not finite."""
+    index, aims, rows, cue, arrivals, work = buffers
+    k = position_windows(xy, on, legal, tables, index, aims)
+    if k < 0:
+        return -1, -1
+    for i in range(k):
+        cue[i, 0], cue[i, 1], arrivals[i] = xy[0, 0, 0], xy[0, 0, 1], arrival
+    plan_kernel(cue[:k], xy, on, index[:k], aims[:k], arrivals[:k], tables[5], tables[6], work, rows[:k])
+    best = -1
+    for i in range(k):
+        if rows[i, OK] > 0.0 and (best < 0 or rows[i, SCORE] > rows[best, SCORE]):
+            best = i
+    return k, best
+
+
+@helper
+def spot_free(xy, on, x, y, limits):
+    """A cue-ball spot (x, y) inside the area limits[0:4] (x_lo, x_hi, y_lo, y_hi) and at least
+    limits[4] from every object ball on the table (on (n,) of xy (n, 2))."""
+    if not (limits[0] <= x <= limits[1] and limits[2] <= y <= limits[3]):
+        return False
+    for j in range(xy.shape[0]):
+        if on[j] and not math.hypot(xy[j, 0] - x, xy[j, 1] - y) >= limits[4]:
+            return False
+    return True
+
+
+@kernel
+def straight_in_spots(xy, on, index, aims, backs, limits, spots, ranks):
+    """The straight-in cue-ball spots of one position (xy (n, 2), on (n,)): behind each
+    candidate's object ball (index (N, 3), aims (N, 3) its window, an open one only) on the
+    line from its aim point, 2 R + backs[b] from it (limits[5] the radius), and each one's
+    rank (the open share over the distances); those `spot_free` keeps go into spots (K, 2),
+    ranks (K,), candidate by candidate, back by back. Returns how many."""
+    m = 0
+    for i in range(index.shape[0]):
+        share = aims[i, 2]
+        if not share > 0.0:
+            continue
+        bx, by = xy[index[i, 1], 0], xy[index[i, 1], 1]
+        vx, vy = aims[i, 0] - bx, aims[i, 1] - by
+        d2 = math.hypot(vx, vy)
+        length = d2 if d2 > 0.0 else 1.0
+        ux, uy = vx / length, vy / length
+        for b in range(backs.shape[0]):
+            scale = 2.0 * limits[5] + backs[b]
+            x, y = bx - ux * scale, by - uy * scale
+            if spot_free(xy, on, x, y, limits):
+                spots[m, 0], spots[m, 1] = x, y
+                ranks[m] = share / ((d2 + 0.5) * (backs[b] + 0.5))
+                m += 1
+    return m
+
+
+@kernel
+def free_spots(xy, on, spots, limits, keep):
+    """keep[k]: spot k of spots (K, 2) is `spot_free`."""
+    for k in range(spots.shape[0]):
+        keep[k] = spot_free(xy, on, spots[k, 0], spots[k, 1], limits)
+
+
+@kernel
+def plan_from(xy, on, index, aims, spots, tables, arrival, buffers):
+    """The candidates (index (N, 3), of position 0 of xy (1, n, 2) and on (1, n), with their
+    windows aims (N, 3)) planned from each cue-ball spot (spots (S, 2)) in turn, the object
+    ball arriving at `arrival`; `tables` as `plan_lie` reads them, `buffers` (rows (S * N,
+    PLAN_COLUMNS): spot s's pots in rows s * N to s * N + N - 1, cue (N, 2), arrivals (N,),
+    work (6,)). Returns (the spot of the highest-scoring pot, the first such spot, and that
+    pot's row), or (-1, -1) if no spot has a pot."""
+    c, captures = tables[5], tables[6]
+    rows, cue, arrivals, work = buffers
+    n = index.shape[0]
+    best_spot, best_row, best_score = -1, -1, -np.inf
+    for s in range(spots.shape[0]):
+        for i in range(n):
+            cue[i, 0], cue[i, 1], arrivals[i] = spots[s, 0], spots[s, 1], arrival
+        block = rows[s * n:(s + 1) * n]
+        plan_kernel(cue[:n], xy, on, index, aims, arrivals[:n], c, captures, work, block)
+        head = -1  # the spot's best pot, the first of equal ones (group_best)
+        for i in range(n):
+            if block[i, OK] > 0.0 and (head < 0 or block[i, SCORE] > block[head, SCORE]):
+                head = i
+        if head >= 0 and block[head, SCORE] > best_score:  # the first spot of the highest score
+            best_spot, best_row, best_score = s, s * n + head, block[head, SCORE]
+    return best_spot, best_row
+
+
+@kernel
+def safety_ball(xy, on, legal, clearance, order, gaps):
+    """The ball a safety goes at, in position 0 of xy (1, n, 2) (on (1, n): the object balls
+    on the table): of its legal balls (legal (n,) by number), nearest the cue ball first (ties
+    in number order), the first whose line from the cue ball keeps `clearance` from every
+    other object ball (`path_clear`), else the nearest; -1 if none is legal. order (n,) int
+    and gaps (n,) are scratch space."""
+    cx, cy = xy[0, 0, 0], xy[0, 0, 1]
+    m = 0
+    for b in range(1, xy.shape[1]):
+        if on[0, b] and legal[b]:
+            d = math.hypot(xy[0, b, 0] - cx, xy[0, b, 1] - cy)
+            k = m
+            while k > 0 and gaps[k - 1] > d:  # insertion after the equal ones: a stable sort
+                gaps[k], order[k] = gaps[k - 1], order[k - 1]
+                k -= 1
+            gaps[k], order[k] = d, b
+            m += 1
+    if m == 0:
+        return -1
+    for k in range(m):
+        ball = order[k]
+        if path_clear(xy, on, 0, ball, cx, cy, xy[0, ball, 0], xy[0, ball, 1], clearance):
+            return ball
+    return order[0]
