@@ -110,6 +110,8 @@ def _run_events(balls, table, physics, max_events):
         raise ValueError(f"max_events must be >= 0, got {max_events!r}")
     reach = reach_of(balls, table, physics.cushion)
     args = physics.engine_args()
+    # No ball in the air: the level engine, compiled without airborne.py (see engine.run).
+    flight = True if balls.air.any() else None
     # Output buffers start small (a break takes ~100 events) and grow on demand; a rerun from
     # the start (simulate_scene packs the rows afresh: the run works in place) is exact, the
     # simulation being deterministic.
@@ -118,7 +120,7 @@ def _run_events(balls, table, physics, max_events):
         S, st = np.empty((n, ROW_WIDTH)), np.empty(n, dtype=np.int64)
         log = log_arrays(size, n + 2 * size + 2, cap, len(COUNTERS))
         code, spin = engine.simulate_scene((balls.xy, balls.v, balls.w, balls.air, balls.pocketed, balls.radii,
-                                            balls.masses, reach, S, st), args, bounds_tuple(table), log)
+                                            balls.masses, reach, S, st), args, bounds_tuple(table), log, flight)
         if code != BUFFER_FULL:
             break
         size = min(cap, 4 * size)
