@@ -64,7 +64,8 @@ def simulate_scene(balls, physics, bounds, log, flight):
     balls: (xy, v, w, air, pocketed, R, M, Rc, S, st), the Balls' arrays, each ball's cushion
     reach, and the Scene's rows and states to fill (N, ROW_WIDTH) and (N,); physics:
     Physics.engine_args(); bounds: bundles.bounds_tuple(table); log: a Log as a tuple;
-    flight: None for a scene no ball can leave the cloth in, else True (see `run`). Returns (exit code, spin tracked): MISPLACED (nothing ran) if first_misplaced finds a
+    flight: None for a scene no ball can leave the cloth in, else True (see `run`).
+    Returns (exit code, spin tracked): MISPLACED (nothing ran) if first_misplaced finds a
     ball that may not be where it is, else engine.run's code.
     """
     xy, v, w, air, pocketed, R, M, Rc, S, st = balls
