@@ -18,16 +18,16 @@ call site with another constant compiles the callee again. Such arguments are wr
 from numba import njit
 
 # No allocation: no reference counting. Callable from Python and from compiled code.
-kernel = njit(cache=True, error_model="numpy", _nrt=False, no_cfunc_wrapper=True)
+kernel = njit(cache=True, _nrt=False, no_cfunc_wrapper=True)
 # No allocation, called only from compiled code.
-helper = njit(cache=True, error_model="numpy", _nrt=False, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+helper = njit(cache=True, _nrt=False, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 # Allocates arrays (np.empty and the like): reference counting on. Releases the GIL while it
 # runs when called from Python (engine.run, fixed.run), so threads simulate scenes in parallel.
-allocating = njit(cache=True, error_model="numpy", _nrt=True, nogil=True, no_cfunc_wrapper=True)
+allocating = njit(cache=True, _nrt=True, nogil=True, no_cfunc_wrapper=True)
 # The one call from Python per simulation (engine.simulate_scene): allocates nothing itself, so
 # numba takes its array arguments without reference counting, which halves the dispatch of
 # ~25 arrays (with it each array gets a fresh meminfo, made and freed on every call); what it
 # calls allocates with reference counting on, as usual. Releases the GIL, as `allocating`.
-entry = njit(cache=True, error_model="numpy", _nrt=False, nogil=True, no_cfunc_wrapper=True)
+entry = njit(cache=True, _nrt=False, nogil=True, no_cfunc_wrapper=True)
 # Allocates, called only from compiled code.
-allocating_helper = njit(cache=True, error_model="numpy", _nrt=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+allocating_helper = njit(cache=True, _nrt=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
