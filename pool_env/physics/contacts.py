@@ -18,7 +18,7 @@ import math
 
 import numpy as np
 
-from . import airborne, ball_ball, cushion, settle
+from . import ball_ball, cushion, settle
 from .geometry import cushion_gap, cushion_normal
 from .jit import allocating_helper, helper
 from .kinds import AIRBORNE, BALL_BALL_SETTLE, POCKETED, VX, VY, X, Y
@@ -283,11 +283,9 @@ def _keep(work, n_c, mode):
 def resolve_ball_ball(scene, bounds, sched, work, now, bi, bj, kind):
     """Resolve the ball-ball event (bi, bj) at `now` with the contacts simultaneous with it.
     Returns (event kind, pairs recorded, balls touched) and whether the group's rows wait in
-    work.G (copied to the scene once the log has room: see engine.run). A contact in the air
-    (either ball airborne) is airborne.resolve_pair's, alone."""
+    work.G (copied to the scene once the log has room: see engine.run). Both balls on the
+    cloth: a contact in the air is airborne.resolve_pair's, alone (engine._resolve chooses)."""
     S, st, R, M, params = scene.S, scene.st, scene.R, scene.M, scene.params
-    if st[bi] == AIRBORNE or st[bj] == AIRBORNE:
-        return airborne.resolve_pair(scene, work, now, bi, bj)
     n_c, mode = gather(scene, bounds, sched, work, now, bi, bj)
     if mode != LONE:
         if _solve_group(scene, bounds, sched, work, now, n_c, mode):

@@ -56,14 +56,15 @@ ONE_EVENT, TWO_ROWS = np.int64(1), np.int64(2)
 
 
 @entry
-def simulate_scene(balls, physics, bounds, log):
+def simulate_scene(balls, physics, bounds, log, flight):
     """One call from Python for a whole `simulate`: check where the balls are, build the
     Scene, run. Everything comes in as plain tuples, which numba takes from Python in a
     fraction of the time namedtuples cost (a 2-ball shot's wrapper was mostly that):
 
     balls: (xy, v, w, air, pocketed, R, M, Rc, S, st), the Balls' arrays, each ball's cushion
     reach, and the Scene's rows and states to fill (N, ROW_WIDTH) and (N,); physics:
-    Physics.engine_args(); bounds: bundles.bounds_tuple(table); log: a Log as a tuple.
+    Physics.engine_args(); bounds: bundles.bounds_tuple(table); log: a Log as a tuple;
+    flight: None for a scene no ball can leave the cloth in, else True (see `run`).
     Returns (exit code, spin tracked): MISPLACED (nothing ran) if first_misplaced finds a
     ball that may not be where it is, else engine.run's code.
     """
@@ -75,15 +76,23 @@ def simulate_scene(balls, physics, bounds, log):
         return MISPLACED, False
     any_z_spin = pack_into(xy, v, w, air, pocketed, S, st)
     tracked = spin and (any_z_spin or makes_spin)
-    return run(Scene(S, st, R, Rc, M, params, bb_model, cu_model, tracked), table, Log(*log)), tracked
+    scene = Scene(S, st, R, Rc, M, params, bb_model, cu_model, tracked)
+    return run(scene, table, Log(*log), flight), tracked
 
 
 @allocating
-def run(scene, bounds, log):
+def run(scene, bounds, log, flight):
     """Simulate from the rows scene.S (all at t = 0) until every ball rests or is pocketed.
 
     scene.S and scene.st end as the final state; events and state segments go to the log.
     Returns the exit code (DONE, EVENT_CAP or BUFFER_FULL; also in log.size[CODE]).
+
+    `flight` None says no ball is in the air at the start: then none ever is (only
+    airborne.py lifts a ball off the cloth, and it runs only for a ball already in the air),
+    so every `flight is not None` branch is pruned before typing (numba prunes a branch on
+    an argument typed None) and a level scene compiles and runs without airborne.py. True
+    (a ball in the air, or an elevated strike's bounce) compiles the 3D engine, a second
+    signature of the same functions.
     """
     n = scene.S.shape[0]
     sched, work = new_schedule(n), new_work(n)
@@ -91,7 +100,7 @@ def run(scene, bounds, log):
         work.touched[i] = i
     now = 0.0
     _commit(scene, log, work, n, now)
-    predict(scene, bounds, sched, work, n, now, log.counters)
+    predict(scene, bounds, sched, work, n, now, log.counters, flight)
     while True:
         t, kind, bi, bj = _earliest(sched)
         if kind == NO_EVENT:
@@ -99,13 +108,13 @@ def run(scene, bounds, log):
         if not _room(log, (t, kind, bi, bj), ONE_EVENT, TWO_ROWS):
             return log.size[CODE]
         now = max(t, now)
-        kind, n_rec, n_touched = _resolve(scene, bounds, sched, work, log, now, (t, kind, bi, bj))
+        kind, n_rec, n_touched = _resolve(scene, bounds, sched, work, log, now, (t, kind, bi, bj), flight)
         if kind == NO_EVENT:  # no room in the log for what the event did
             return log.size[CODE]
         _commit(scene, log, work, n_touched, now)
         for m in range(n_rec):
             record_event(log, now, kind, work.rec_a[m], work.rec_b[m])
-        predict(scene, bounds, sched, work, n_touched, now, log.counters)
+        predict(scene, bounds, sched, work, n_touched, now, log.counters, flight)
 
 
 @helper
@@ -147,14 +156,18 @@ def _room(log, event, n_events, n_rows):
 
 
 @helper
-def _resolve(scene, bounds, sched, work, log, now, event):
+def _resolve(scene, bounds, sched, work, log, now, event, flight):
     """Bring the balls of the event to `now` and apply it. Returns (the event's kind, pairs
     recorded in work.rec_a/rec_b, balls touched in work.touched); kind NO_EVENT if the log
-    has no room for them."""
+    has no room for them. `flight` as in `run`."""
     S, st, R = scene.S, scene.st, scene.R
     _, kind, bi, bj = event
     if kind == BALL_BALL:
-        kind, n_rec, n_touched, grouped = contacts.resolve_ball_ball(scene, bounds, sched, work, now, bi, bj, kind)
+        if flight is not None and (st[bi] == AIRBORNE or st[bj] == AIRBORNE):
+            kind, n_rec, n_touched, grouped = airborne.resolve_pair(scene, work, now, bi, bj)
+        else:
+            kind, n_rec, n_touched, grouped = contacts.resolve_ball_ball(scene, bounds, sched, work, now, bi, bj,
+                                                                         kind)
         if kind == NO_EVENT:  # a ball perched on another (airborne._perched): the event kept, as past the cap
             e = log.size[EVENTS]
             log.t[e], log.kind[e], log.i[e], log.j[e] = event[0], BALL_BALL, bi, bj
@@ -168,21 +181,21 @@ def _resolve(scene, bounds, sched, work, log, now, event):
         contacts.remember_meetings(sched, work, n_rec, now)
         return kind, n_rec, n_touched
     if kind == BALL_CUSHION:
-        if st[bi] == AIRBORNE and airborne.perch(scene, bounds, work, now, bi, bj):
+        if flight is not None and st[bi] == AIRBORNE and airborne.perch(scene, bounds, work, now, bi, bj):
             return BALL_OFF_TABLE, 1, 1
-        return _resolve_cushions(scene, bounds, sched, work, log, now, event)
+        return _resolve_cushions(scene, bounds, sched, work, log, now, event, flight)
     work.touched[0] = bi
     work.rec_a[0], work.rec_b[0] = bi, bj
     state_at(S[bi], st[bi], now, R[bi], scene.params, work.row)
     copy_row(S[bi], work.row)
     if kind == BALL_POCKET:
-        if st[bi] == AIRBORNE:  # landing over an opening, or leaving the table
+        if flight is not None and st[bi] == AIRBORNE:  # landing over an opening, or leaving the table
             kind, j = airborne.drop(S[bi], bj, bounds)
             work.rec_b[0] = j
         else:
             pocket.capture(S[bi])
         st[bi] = POCKETED
-    elif st[bi] == AIRBORNE:
+    elif flight is not None and st[bi] == AIRBORNE:
         kind = airborne.land(S[bi], R[bi], scene.params)
     else:
         kind = transition.resolve(S[bi], st[bi], R[bi])
@@ -190,7 +203,7 @@ def _resolve(scene, bounds, sched, work, log, now, event):
 
 
 @helper
-def _resolve_cushions(scene, bounds, sched, work, log, now, event):
+def _resolve_cushions(scene, bounds, sched, work, log, now, event, flight):
     """Every ball meeting cushions within GROUP_WINDOW of `now`, in this one step (the
     event's ball first, the rest by index). Each involves one ball, so they commute, but
     taken one per step a contact the first creates (its rebound into a ball beside it) would
@@ -206,13 +219,16 @@ def _resolve_cushions(scene, bounds, sched, work, log, now, event):
         state_at(S[k], st[k], now, R[k], params, work.row)
         copy_row(S[k], work.row)
         c = bj if m == 0 else sched.cu_id[k]
-        n_k = 1 if st[k] == AIRBORNE else contacts.cushion_contacts(S[k], R[k], scene.Rc[k], params, bounds, c, work)
-        if not _room(log, event, n_rec + n_k, n_touched + 1):
-            return NO_EVENT, 0, 0
-        if st[k] == AIRBORNE:
+        if flight is not None and st[k] == AIRBORNE:
+            if not _room(log, event, n_rec + 1, n_touched + 1):
+                return NO_EVENT, 0, 0
+            n_k = 1
             work.cids[0] = c
             airborne.cushion_bounce(S[k], R[k], scene.Rc[k], params, bounds, c)
         else:
+            n_k = contacts.cushion_contacts(S[k], R[k], scene.Rc[k], params, bounds, c, work)
+            if not _room(log, event, n_rec + n_k, n_touched + 1):
+                return NO_EVENT, 0, 0
             contacts.resolve_cushions(scene, bounds, work, k, n_k)
         for q in range(n_k):
             work.rec_a[n_rec], work.rec_b[n_rec] = k, work.cids[q]

@@ -120,6 +120,12 @@ class Balls:
         """Which balls are in the air (above the cloth, or leaving it), shape (N,) bool."""
         return (self.air[:, 0] > 0.0) | (self.air[:, 1] != 0.0)
 
+    @property
+    def on_cloth(self) -> bool:
+        """True if every ball is on the cloth (no z, no vz): the level engine can simulate them.
+        Balls made without z and vz share one zeros array, so this is an identity test."""
+        return self.air is _on_cloth(self.air.shape[0]) or not self.air.any()
+
     def __reduce__(self):
         # copy.copy, copy.deepcopy and pickle all rebuild through _rebuild_balls, which marks
         # the arrays read-only again (a plain copy of a read-only array is writable, and numba

@@ -50,10 +50,8 @@ def out_of_reach(d, dv, da, horizon, reach):
 def pair_time(S, st, R, params, t_tr, i, k, now, counters):
     """Absolute time of the next contact of balls i and k (inf if none before either's next
     transition); S, st, R, params from the Scene, t_tr the Schedule's transition times.
-    (Plain arrays, not the bundles: this runs N times an event.) A pair with an airborne
-    ball is airborne.pair_time's."""
-    if st[i] == AIRBORNE or st[k] == AIRBORNE:
-        return airborne.pair_time(S, st, R, params, t_tr, i, k, now, counters)
+    (Plain arrays, not the bundles: this runs N times an event.) Both balls on the cloth: a
+    pair with an airborne ball is airborne.pair_time's (`predict` chooses)."""
     if not (moving(st[i]) or moving(st[k])) or st[i] == POCKETED or st[k] == POCKETED:
         counters[C_REST] += 1
         return np.inf
@@ -74,11 +72,8 @@ def boundary_times(scene, bounds, sched, i, now, counters):
     """Ball i's next cushion contact (into sched.t_cu, cu_id: rails and facings by row, jaw
     tips numbered after them) and next drop into a pocket (sched.t_po, po_id). A pocket's
     facings and jaw tips are looked at only if the ball can come within its reach circle.
-    An airborne ball's are airborne.boundary_times'."""
+    A ball on the cloth: an airborne ball's are airborne.boundary_times' (`predict` chooses)."""
     S, st, params = scene.S, scene.st, scene.params
-    if st[i] == AIRBORNE:
-        airborne.boundary_times(scene, bounds, sched, i, now, counters)
-        return
     t_cu, cu = np.inf, -1
     t_po, po = np.inf, -1
     if moving(st[i]):
@@ -136,10 +131,12 @@ def _rails_time(scene, bounds, i, span, xy, owner, travel, counters):
 
 
 @helper
-def predict(scene, bounds, sched, work, n_touched, now, counters):
+def predict(scene, bounds, sched, work, n_touched, now, counters, flight):
     """Predict the next events of the balls work.touched[:n_touched], each against every ball
     not predicted before it: at the start every ball (each pair once), after an event the
-    balls it touched. Transitions first: a pair's horizon is the earlier of the two."""
+    balls it touched. Transitions first: a pair's horizon is the earlier of the two.
+    `flight` is None when no ball can leave the cloth (see engine.run): then the airborne
+    branches are pruned before typing, and airborne.py is not compiled."""
     S, st, R, params = scene.S, scene.st, scene.R, scene.params
     touched, done, t_tr, pair = work.touched, work.done, sched.t_tr, sched.pair
     n = S.shape[0]
@@ -152,7 +149,14 @@ def predict(scene, bounds, sched, work, n_touched, now, counters):
     for m in range(n_touched):
         i = touched[m]
         done[i] = True
-        boundary_times(scene, bounds, sched, i, now, counters)
+        if flight is not None and st[i] == AIRBORNE:
+            airborne.boundary_times(scene, bounds, sched, i, now, counters)
+        else:
+            boundary_times(scene, bounds, sched, i, now, counters)
         for k in range(n):
-            if not done[k]:
+            if done[k]:
+                continue
+            if flight is not None and (st[i] == AIRBORNE or st[k] == AIRBORNE):
+                pair[i, k] = pair[k, i] = airborne.pair_time(S, st, R, params, t_tr, i, k, now, counters)
+            else:
                 pair[i, k] = pair[k, i] = pair_time(S, st, R, params, t_tr, i, k, now, counters)

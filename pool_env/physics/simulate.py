@@ -110,6 +110,8 @@ def _run_events(balls, table, physics, max_events):
         raise ValueError(f"max_events must be >= 0, got {max_events!r}")
     reach = reach_of(balls, table, physics.cushion)
     args = physics.engine_args()
+    # No ball in the air: the level engine, compiled without airborne.py (see engine.run).
+    flight = None if balls.on_cloth else True
     # Output buffers start small (a break takes ~100 events) and grow on demand; a rerun from
     # the start (simulate_scene packs the rows afresh: the run works in place) is exact, the
     # simulation being deterministic.
@@ -118,7 +120,7 @@ def _run_events(balls, table, physics, max_events):
         S, st = np.empty((n, ROW_WIDTH)), np.empty(n, dtype=np.int64)
         log = log_arrays(size, n + 2 * size + 2, cap, len(COUNTERS))
         code, spin = engine.simulate_scene((balls.xy, balls.v, balls.w, balls.air, balls.pocketed, balls.radii,
-                                            balls.masses, reach, S, st), args, bounds_tuple(table), log)
+                                            balls.masses, reach, S, st), args, bounds_tuple(table), log, flight)
         if code != BUFFER_FULL:
             break
         size = min(cap, 4 * size)
@@ -176,11 +178,13 @@ def _first_run(balls, table, physics, max_events):
 
 
 def warm_up() -> float:
-    """Compile the event engine (or load it from numba's cache) now, by simulating one short
-    shot, rather than in the middle of whatever runs first; returns the seconds it took.
-    train.py calls it before it starts its environments (and their worker processes)."""
+    """Compile the event engine (or load it from numba's cache) now, by simulating two short
+    shots (one level, one with a ball in the air: the level and the 3D engine, see
+    engine.run), rather than in the middle of whatever runs first; returns the seconds it
+    took. train.py calls it before it starts its environments (and their worker processes)."""
     start = time.perf_counter()
     table = Table.eight_foot()
     result = simulate(Balls([[0.5, 0.5], [1.0, 0.55]], v=[[1.0, 0.0], [0.0, 0.0]]), table, Physics.standard())
     result.at(0.1)  # the trajectory sampler (rendering) too
+    simulate(Balls([[0.5, 0.5], [1.0, 0.55]], v=[[1.0, 0.0], [0.0, 0.0]], z=[0.01, 0.0]), table, Physics.standard())
     return time.perf_counter() - start

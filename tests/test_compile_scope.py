@@ -1,0 +1,53 @@
+"""What a first shot compiles: a level scene compiles no airborne code; a ball in the air compiles it."""
+
+import json
+import os
+import subprocess
+import sys
+import textwrap
+
+import pytest
+
+# In a fresh process with an empty numba cache, every dispatcher a shot's compile reaches has
+# a signature afterwards (numba types the whole call graph it reaches, so this is the set of
+# functions compiled). Prints the compiled function names after each shot, one JSON line.
+PROGRAM = textwrap.dedent("""
+    import json, sys
+    from numba.core.registry import CPUDispatcher
+    from pool_env.physics import Balls, Physics, Table, simulate
+
+    def compiled():
+        names = []
+        for name, module in list(sys.modules.items()):
+            if name.startswith("pool_env.physics"):
+                for attr, obj in vars(module).items():
+                    if isinstance(obj, CPUDispatcher) and obj.py_func.__module__ == name and obj.signatures:
+                        names.append(f"{name}.{attr}")
+        return sorted(names)
+
+    table = Table.eight_foot()
+    level = simulate(Balls([[0.5, 0.5], [1.0, 0.55]], v=[[1.0, 0.0], [0.0, 0.0]]), table, Physics.standard())
+    after_level = compiled()
+    # The cue ball 1 cm above the cloth, moving at 1 m/s: it lands and bounces.
+    flying = simulate(Balls([[0.5, 0.5], [1.0, 0.55]], v=[[1.0, 0.0], [0.0, 0.0]], z=[0.01, 0.0]), table,
+                      Physics.standard())
+    print(json.dumps({"level": after_level, "air": compiled(), "level_events": level.stats["events"],
+                      "air_kinds": sorted({e.kind for e in flying.events})}))
+""")
+
+
+@pytest.mark.slow
+def test_a_level_shot_compiles_no_airborne_function(tmp_path):
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path))
+    out = subprocess.run([sys.executable, "-c", PROGRAM], env=env, capture_output=True, text=True, timeout=900)
+    assert out.returncode == 0, out.stderr[-3000:]
+    data = json.loads(out.stdout.strip().splitlines()[-1])
+    level, air = set(data["level"]), set(data["air"])
+    assert "pool_env.physics.engine.run" in level and data["level_events"] > 0
+    # A level scene: nothing of airborne.py, nor the fixed-step and seed-report loops.
+    for module in ("airborne", "fixed", "seed_loop"):
+        assert not [f for f in level if f.startswith(f"pool_env.physics.{module}.")], module
+    # A ball in the air reaches the 3D engine: the landing (a ball_table event) is airborne.py's.
+    assert "ball_table" in data["air_kinds"]
+    assert {"pool_env.physics.airborne.land", "pool_env.physics.airborne.boundary_times",
+            "pool_env.physics.airborne.pair_time"} <= air
