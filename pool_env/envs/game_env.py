@@ -125,7 +125,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
     | 0-1 | the cue force vector, mapped as `PoolBreakEnv` maps it (at most 12 m/s) |
     | 2-3 | the tip offset (side, top), mapped as `PoolBreakEnv(spin=True)` (within the miscue limit, 0.5 R) |
     | 4-5 | with ball in hand, where to place the cue ball: (x, y) mapped linearly onto the area it may go
-      (`placement_area`: the cloth, or behind the head string, x at most L/4); ignored otherwise. A spot on
+      (`placement_area`: the cloth, or behind the head string, x at most L/4 - 0.1 mm); ignored otherwise. A spot on
       a ball or outside the area moves to the nearest free one (`place_cue_ball`) |
     | 6 | 8-ball: the pocket called for the 8: [-1, 1] cut into six equal bins, pocket k (`Table.pockets`
       order) in bin k; ignored unless the agent shoots at the 8 |
