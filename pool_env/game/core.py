@@ -24,7 +24,7 @@ CUE_TRIES = 1000  # draws of a random cue spot before falling back to the head s
 @dataclass(eq=False, slots=True)
 class StruckShot:
     """A shot ready to simulate (`Game.strike`): who shoots, what he meant (`shot`, and the
-    `action` it was read from, if any), his ball in hand, the called pocket, the balls at rest
+    `action` it was read from, if any), his ball in hand, the called pocket (and ball), the balls at rest
     with the cue ball placed (`placed`), the cue's force, tip and elevation as executed (noise
     included), and `balls`, the struck balls to simulate, or the ValueError striking raised. Read-only by
     convention (not frozen: it is made for every shot, and a frozen dataclass is slow to make)."""
@@ -39,14 +39,15 @@ class StruckShot:
     balls: Balls | Exception
     action: tuple | None = None
     elevation: float = 0.0
+    called_ball: int | None = None
 
 
 @dataclass(eq=False, slots=True)
 class ShotRecord:
     """What one shot did (`Game.play`, `Game.evaluate`).
 
-    `shooter`, `shot`, `action`, `ball_in_hand`, `called_pocket`, `force`, `tip` and
-    `elevation` (executed) as in `StruckShot`; `balls_before` the balls at rest before the strike (the cue ball
+    `shooter`, `shot`, `action`, `ball_in_hand`, `called_pocket`, `called_ball`, `force`, `tip`
+    and `elevation` (executed) as in `StruckShot`; `balls_before` the balls at rest before the strike (the cue ball
     placed) and `state_before` the rules' state then, `balls_after` at rest after it
     (spotted balls back on the table); `result` the
     physics `Result` (events, trajectories, stats); `ruling` the rules' `Ruling` and
@@ -71,6 +72,7 @@ class ShotRecord:
     error: str | None = None
     judged: rules.ShotOutcome | None = None
     elevation: float = 0.0
+    called_ball: int | None = None
 
     @property
     def outcome(self) -> rules.ShotOutcome | None:
@@ -383,6 +385,9 @@ class Game:
         called = shot.pocket if self._mode.rules == "eight_ball" else None
         if called is not None and called >= self.table.pockets.shape[0]:
             raise ValueError(f"Shot.pocket {called} names no pocket (the table has {self.table.pockets.shape[0]})")
+        ball = shot.ball if self._mode.rules == "eight_ball" else None
+        if ball is not None and ball not in self._state.on_table:
+            raise ValueError(f"Shot.ball {ball} is not on the table (on it: {sorted(self._state.on_table)})")
         force, tip, elevation = shot.force, shot.tip, shot.elevation
         if self.noise is not None:
             force, tip, elevation = noisy_shot(force, tip, self.noise, self.rng if rng is None else rng, elevation)
@@ -390,7 +395,7 @@ class Game:
             struck = strike(placed, force, tip, CONTACT_TIME, elevation=elevation, physics=self.physics)
         except ValueError as exc:
             struck = exc
-        return StruckShot(shot, self.shooter, hand, called, placed, force, tip, struck, action, elevation)
+        return StruckShot(shot, self.shooter, hand, called, placed, force, tip, struck, action, elevation, ball)
 
     def resolve(self, struck: StruckShot, result) -> ShotRecord:
         """`play`'s second half: apply the simulation's `Result` (or the SimulationError or
@@ -412,23 +417,24 @@ class Game:
             if not isinstance(result, SHOT_ERRORS):
                 raise result
             error = f"{type(result).__name__}: {result}"
-            return ShotRecord(*head, struck.placed, None, None, self._state, False, error, elevation=struck.elevation)
+            return ShotRecord(*head, struck.placed, None, None, self._state, False, error, elevation=struck.elevation,
+                              called_ball=struck.called_ball)
         final = result.final
         if not self.has_rules:
             cleared = self.table.pockets.shape[0] > 0 and bool(final.pocketed[1:].all())
             over = self._mode.one_shot or bool(final.pocketed[0]) or cleared
             return ShotRecord(*head, final, result, None, None, over, elevation=struck.elevation)
         outcome = rules.outcome_from_result(result)
-        key = (outcome, struck.called_pocket)
+        key = (outcome, struck.called_pocket, struck.called_ball)
         judged = None if rulings is None else rulings.get(key)
         if judged is None:
-            judged = rules.judge(self._state, outcome, struck.called_pocket)
+            judged = rules.judge(self._state, outcome, struck.called_pocket, struck.called_ball)
             if rulings is not None:
                 rulings[key] = judged
         state, ruling = judged
         balls = rules.spot_balls(final, self.table, ruling.balls_to_spot) if ruling.balls_to_spot else final
         return ShotRecord(*head, balls, result, ruling, state, state.winner is not None, judged=outcome,
-                          elevation=struck.elevation)
+                          elevation=struck.elevation, called_ball=struck.called_ball)
 
     # --- branching ------------------------------------------------------------------------------
     @property
