@@ -1,4 +1,4 @@
-"""`Shot`: one cue shot as a player means it (force, tip, elevation, ball-in-hand spot, called pocket and ball); its noise."""
+"""`Shot`: one cue shot as a player means it (force, tip, elevation, ball in hand, called pocket, ball); its noise."""
 
 from __future__ import annotations
 
