@@ -119,3 +119,10 @@ def test_a_game_with_called_shots_judges_the_shots_call():
     game.reset(seed=0, balls=balls)
     with pytest.raises(ValueError, match="Shot.ball 5 is not on the table"):
         game.play(Shot.aimed(diag, 2.0, pocket=3, ball=5))
+    # The same call as an action of the eight_ball_call layout (entry 7: the called ball among
+    # the legal targets, here the 1 alone: the 8 is not on while the table is open).
+    acting = Game("eight_ball", layout="eight_ball_call", calling="ball_and_pocket").reset(seed=0, balls=balls)
+    action = acting.encode(Shot.aimed(diag, 2.0, pocket=3, ball=1))
+    assert action.shape == (8,) and acting.decode(action).ball == 1
+    record = acting.play(action)
+    assert record.called_ball == 1 and record.pocketed == (1,) and not record.ruling.turn_passed

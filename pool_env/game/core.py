@@ -259,11 +259,20 @@ class Game:
     def decode(self, action) -> Shot:
         """The `Shot` an action vector of the game's layout means now (the ball-in-hand entries
         map onto the shooter's placement area). ValueError for a wrong shape or a non-finite entry."""
-        return decode_action(self.layout, action, self.placement_area(), self.table.pockets.shape[0])
+        return decode_action(self.layout, action, self.placement_area(), self.table.pockets.shape[0],
+                             self._called_targets())
 
     def encode(self, shot: Shot) -> np.ndarray:
         """The action vector (float32) of the game's layout that `decode` reads back as `shot` now."""
-        return encode_action(self.layout, shot, self.placement_area(), self.table.pockets.shape[0])
+        return encode_action(self.layout, shot, self.placement_area(), self.table.pockets.shape[0],
+                             self._called_targets())
+
+    def _called_targets(self) -> tuple:
+        """The balls an action's called-ball entry chooses among (a layout with one): the legal
+        targets, ascending; none on the break (WPA 3.3: nothing is called)."""
+        if not self.layout.called_ball or self._state is None or self._state.is_break:
+            return ()
+        return tuple(sorted(self.legal_targets))
 
     # --- starting -------------------------------------------------------------------------------
     def reset(self, seed=None, *, rng=None, balls: Balls | None = None, breaker: int = 0,
