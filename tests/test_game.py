@@ -189,6 +189,9 @@ def test_decode_of_encode_gives_the_shot_back(name):
             assert back.place == pytest.approx(place, abs=1e-6)
 
 
+TARGETS = (1, 3, 9, 12)  # the balls a called-ball entry chooses among in the round trip
+
+
 @pytest.mark.parametrize("name", list(LAYOUTS))
 def test_encode_of_decode_gives_the_action_back(name):
     layout_ = LAYOUTS[name]
@@ -201,9 +204,12 @@ def test_encode_of_decode_gives_the_action_back(name):
             a[2:4] *= min(1.0, 0.99 / max(float(np.hypot(a[2], a[3])), 1e-9))  # inside the miscue limit
         if layout_.called_pocket:
             a[6] = -1.0 + (2 * int(rng.integers(6)) + 1) / 6  # a bin's centre
+        if layout_.called_ball:
+            a[7] = -1.0 + (2 * int(rng.integers(len(TARGETS))) + 1) / len(TARGETS)  # a bin's centre
         if layout_.elevation:
             a[-1] = max(a[-1], 0.0)  # every entry <= 0 is the level cue, written back as 0
-        assert np.allclose(encode_action(layout_, decode_action(layout_, a, area), area), a, atol=2e-6)
+        shot = decode_action(layout_, a, area, targets=TARGETS)
+        assert np.allclose(encode_action(layout_, shot, area, targets=TARGETS), a, atol=2e-6)
 
 
 def test_the_action_mapping_is_the_documented_one():
@@ -215,6 +221,20 @@ def test_the_action_mapping_is_the_documented_one():
     assert shot.tip == pytest.approx((0.1, -0.2)) and shot.place == pytest.approx((area[0], area[3]))
     assert shot.pocket == 3  # (0.1 + 1) / 2 * 6 = 3.3
     assert MAX_TIP_OFFSET == 0.5
+
+
+def test_the_called_ball_entry_cuts_into_one_bin_per_target():
+    """eight_ball_call's entry 7: [-1, 1] in len(targets) equal bins, targets[k] in bin k; no
+    targets (the break), no ball."""
+    layout_ = LAYOUTS["eight_ball_call"]
+    a = np.zeros(layout_.size)
+    for entry, ball in ((-1.0, 1), (-0.51, 1), (-0.49, 3), (0.01, 9), (1.0, 12), (7.0, 12)):
+        a[7] = entry
+        assert decode_action(layout_, a, targets=TARGETS).ball == ball
+    assert decode_action(layout_, a).ball is None
+    game = Game("eight_ball", layout="eight_ball_call", calling="ball_and_pocket", seed=0)
+    assert game.decode(a).ball is None  # the break calls nothing
+    assert game.layout.size == 8
 
 
 def test_the_observations_decode_to_what_was_encoded():

@@ -13,7 +13,8 @@ from pool_env.rules import codes
 
 BREAK_KEYS = {"pocketed", "first_contact", "cushion_hits", "scratch", "events", "shot_duration", "balls_left",
               "error"}
-GAME_KEYS = BREAK_KEYS | {"foul", "ball_in_hand", "turn_passed", "opponent_shots", "winner", "end_reason"}
+GAME_KEYS = BREAK_KEYS | {"foul", "ball_in_hand", "turn_passed", "opponent_shots", "winner", "end_reason",
+                          "truncation"}
 
 
 def signature(info: dict) -> dict:
@@ -65,7 +66,8 @@ def test_reset_info_describes_no_shot():
         _, info = gym.make(env_id).reset(seed=0)
         assert not info["pocketed"].any() and info["first_contact"] == -1 and info["events"] == 0
         assert info["cushion_hits"] == 0 and info["shot_duration"] == 0.0 and info["error"] is False
-    assert (info["foul"], info["winner"], info["end_reason"], info["opponent_shots"]) == (0, -1, 0, 0)
+    assert (info["foul"], info["winner"], info["end_reason"], info["opponent_shots"], info["truncation"]) == \
+        (0, -1, 0, 0, 0)
     assert codes.decode("ball_in_hand", info["ball_in_hand"]) == "behind_head_string"  # the breaker's
 
 
@@ -73,6 +75,7 @@ def test_code_tables_follow_the_rules_names_with_none_first():
     assert codes.FOUL_CODES == (None, *rules.FOULS)
     assert codes.END_REASON_CODES == (None, *rules.END_REASONS)
     assert codes.BALL_IN_HAND_CODES == (None, "anywhere", "behind_head_string")
+    assert codes.TRUNCATION_CODES == (None, "shot_limit", "opponent_shot_limit", "shot_error")
     for key, table in codes.CODE_TABLES.items():
         for code, name in enumerate(table):
             assert codes.encode(key, name) == code and codes.decode(key, code) == name

@@ -128,7 +128,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
     | 0-1 | the cue force vector, mapped as `PoolBreakEnv` maps it (at most 12 m/s) |
     | 2-3 | the tip offset (side, top), mapped as `PoolBreakEnv(spin=True)` (within the miscue limit, 0.5 R) |
     | 4-5 | with ball in hand, where to place the cue ball: (x, y) mapped linearly onto the area it may go
-      (`placement_area`: the cloth, or behind the head string, x at most L/4); ignored otherwise. A spot on
+      (`placement_area`: the cloth, or behind the head string, x at most L/4 - 0.1 mm); ignored otherwise. A spot on
       a ball or outside the area moves to the nearest free one (`place_cue_ball`) |
     | 6 | 8-ball: the pocket called for the 8: [-1, 1] cut into six equal bins, pocket k (`Table.pockets`
       order) in bin k; ignored unless the agent shoots at the 8 |
@@ -161,7 +161,9 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
     ## Episode End
 
     Terminated when the game ends (or, in practice, when the turn passes); truncated after
-    `max_shots` agent shots, or when a shot cannot be simulated (`info["error"]`).
+    `max_shots` agent shots, when the opponent takes `max_shots` shots in a row, or when a shot
+    cannot be simulated (`info["error"]`); `info["truncation"]` says which. The shot limit
+    stands in for the WPA's stalemate (1.12), which is not declared (docs/rules.md).
 
     ## Starting State
 
@@ -186,7 +188,8 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
     next shooter's, a code of `BALL_IN_HAND_CODES`), `turn_passed`; `opponent_shots` (how many
     shots the opponent played in the step, or in `reset` when it broke), `winner` (-1 while
     the game goes on, 0 the agent, 1 the opponent), `end_reason` (0, or a code of
-    `END_REASON_CODES` once the game is over), `error` (a shot could not be simulated), and the
+    `END_REASON_CODES` once the game is over), `error` (a shot could not be simulated),
+    `truncation` (0, or a code of `TRUNCATION_CODES` on the step that truncates), and the
     agent's shot's `first_contact`, `cushion_hits`, `scratch`, `events`, `shot_duration`,
     `balls_left` as `PoolBreakEnv` reports them. A step without an agent shot (the game ended
     in `reset`) and `reset` itself report no shot: nothing pocketed, no foul.
@@ -271,6 +274,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         self._begin_step()
         run_step(self._reset_turn(), self.table, self.physics)  # the opponent's break and turn, if it breaks
         self._reset_records, self._reset_error = tuple(self._step_records), self._error
+        self._reset_truncation, self._truncation = self._truncation, None  # the next step ends the episode
         self._step_records = []
         return self._info(no_shot_info(self.game.balls, self.game.ball_in_hand, self._error), self._reset_records)
 
@@ -367,7 +371,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         if self.game.over or ended_at_reset is not None:  # the opponent's turn at reset ended the game
             if not isinstance(action, Shot):
                 self.game.decode(action)  # a bad action still raises
-            self._error = ended_at_reset
+            self._error, self._truncation = ended_at_reset, self._reset_truncation
             return self._finish(observe)
         struck = self.game.strike(action)
         self._note(self.game.resolve(struck, (yield struck)), mine=True)
@@ -380,6 +384,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         while self._error is None and not game.over and game.shooter == OPPONENT and self._opponent is not None:
             if self._opponent_shots >= self.max_shots:
                 self._error = f"the opponent took {self.max_shots} shots in a row"
+                self._truncation = "opponent_shot_limit"
                 return
             player = self._opponent_player
             direct = player is not None and hasattr(player, "decide_batch")  # it reads the game, not an observation
@@ -406,6 +411,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         self._captions, self._step_records = [], []
         self._step_start = self.game.balls if self._started else None
         self._reward, self._error, self._agent_info, self._opponent_shots = 0.0, None, None, 0
+        self._truncation = None
 
     def _note(self, record, mine: bool):
         """A shot just played (`mine`: the stepping player's): the playback follows it, its
@@ -443,6 +449,8 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         game, practice = self.game, self._opponent is None
         terminated = game.over or (practice and not self.hotseat and game.shooter != 0)
         truncated = not terminated and (self._error is not None or self._shots >= self.max_shots)
+        if truncated and self._truncation is None:
+            self._truncation = "shot_error" if self._error is not None else "shot_limit"
         reward = self._reward
         if not practice and game.winner is not None:
             reward += 1.0 if game.winner == 0 else -1.0
@@ -453,9 +461,10 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
 
     def _info(self, shot: dict, records) -> dict:
         """The info of a step or a reset: the agent's shot's entries (`shot`), then the
-        opponent's shots, the winner, the end reason and the error; the records if rich."""
+        opponent's shots, the winner, the end reason, the error and why the episode was
+        truncated (`codes.TRUNCATIONS`; 0 if it was not); the records if rich."""
         game = self.game
         info = {**shot, "opponent_shots": self._opponent_shots, "winner": winner_code(game.winner),
                 "end_reason": codes.encode("end_reason", self._end_reason if game.winner is not None else None),
-                "error": self._error is not None}
+                "error": self._error is not None, "truncation": codes.encode("truncation", self._truncation)}
         return rich_info(info, records, self._error) if self.info_mode == "rich" else info

@@ -18,6 +18,7 @@ MIN_MAGNITUDE = 0.02  # weaker cue-force entries are raised to this (0.24 m/s)
 class ActionLayout:
     """An action vector's layout: `size` entries in [-1, 1]; `spin` has the tip entries (2-3);
     `placement` the ball-in-hand entries (4-5); `called_pocket` the pocket entry (6);
+    `called_ball` the called-ball entry (7: 8-ball with called ball and pocket, WPA 1.6);
     `elevation` the cue-elevation entry, the last one (a layout's "+elevation" variant)."""
 
     name: str
@@ -26,6 +27,7 @@ class ActionLayout:
     placement: bool = False
     called_pocket: bool = False
     elevation: bool = False
+    called_ball: bool = False
 
 
 _LEVEL = {
@@ -33,6 +35,9 @@ _LEVEL = {
     "cue_spin": ActionLayout("cue_spin", 4, spin=True),
     "nine_ball": ActionLayout("nine_ball", 6, spin=True, placement=True),
     "eight_ball": ActionLayout("eight_ball", 7, spin=True, placement=True, called_pocket=True),
+    # `Game("eight_ball", layout="eight_ball_call", calling="ball_and_pocket")`: a ball and a pocket every shot.
+    "eight_ball_call": ActionLayout("eight_ball_call", 8, spin=True, placement=True, called_pocket=True,
+                                    called_ball=True),
 }
 ELEVATED = "+elevation"  # the suffix of a layout's variant with the cue-elevation entry last
 LAYOUTS = {**_LEVEL, **{name + ELEVATED: replace(layout, name=name + ELEVATED, size=layout.size + 1, elevation=True)
@@ -85,12 +90,14 @@ def cue_entries(values, spin: bool) -> tuple:
     return (MAX_FORCE * dx, MAX_FORCE * dy), (side, top)
 
 
-def decode_action(layout: ActionLayout, action, area=None, n_pockets: int = 6) -> Shot:
+def decode_action(layout: ActionLayout, action, area=None, n_pockets: int = 6, targets=()) -> Shot:
     """The `Shot` an action of `layout` means. `area` (x_lo, x_hi, y_lo, y_hi) is where the
     cue ball may be placed (ball in hand; None: it plays from where it lies, and entries 4-5
     are ignored): entries 4-5 map linearly onto it. Entry 6 cuts [-1, 1] into `n_pockets`
-    equal bins, pocket k in bin k. An elevated layout's last entry is the cue's elevation
-    (`elevation_entry`). ValueError for a wrong shape or a non-finite entry."""
+    equal bins, pocket k in bin k. Entry 7 (`called_ball`) cuts [-1, 1] into len(`targets`)
+    equal bins, targets[k] (the balls the shooter may call, ascending) in bin k; no targets, no
+    called ball. An elevated layout's last entry is the cue's elevation (`elevation_entry`).
+    ValueError for a wrong shape or a non-finite entry."""
     if not (layout.placement or layout.elevation):
         force, tip = cue_force(action, layout.spin)
         return Shot(tuple(force.tolist()), tuple(tip.tolist()))
@@ -100,10 +107,10 @@ def decode_action(layout: ActionLayout, action, area=None, n_pockets: int = 6) -
     values = a.tolist()  # Python floats: the same IEEE arithmetic as numpy's, without its per-call cost
     if not all(math.isfinite(v) for v in values):
         raise ValueError(f"action must be finite, got {values}")
-    return decode_entries(layout, values, area, n_pockets)
+    return decode_entries(layout, values, area, n_pockets, targets)
 
 
-def decode_entries(layout: ActionLayout, values, area=None, n_pockets: int = 6) -> Shot:
+def decode_entries(layout: ActionLayout, values, area=None, n_pockets: int = 6, targets=()) -> Shot:
     """`decode_action` of an action's entries already checked (`layout.size` finite Python floats)."""
     a = [min(max(v, -1.0), 1.0) for v in values]  # np.clip(a, -1, 1)
     spin = layout.spin or layout.placement
@@ -114,26 +121,30 @@ def decode_entries(layout: ActionLayout, values, area=None, n_pockets: int = 6) 
         x_lo, x_hi, y_lo, y_hi = area
         place = (x_lo + 0.5 * (a[4] + 1.0) * (x_hi - x_lo), y_lo + 0.5 * (a[5] + 1.0) * (y_hi - y_lo))
     pocket = min(int((a[6] + 1.0) * 0.5 * n_pockets), n_pockets - 1) if layout.called_pocket else None
-    return Shot(force, tip, place, pocket, elevation)
+    ball = None
+    if layout.called_ball and len(targets):
+        ball = int(targets[min(int((a[7] + 1.0) * 0.5 * len(targets)), len(targets) - 1)])
+    return Shot(force, tip, place, pocket, elevation, ball)
 
 
-def encode_action(layout: ActionLayout, shot: Shot, area=None, n_pockets: int = 6) -> np.ndarray:
+def encode_action(layout: ActionLayout, shot: Shot, area=None, n_pockets: int = 6, targets=()) -> np.ndarray:
     """The action of `layout` (float32, in [-1, 1]) that `decode_action` reads back as `shot`
     (to float32 rounding): the force as a fraction of MAX_FORCE, the tip of MAX_TIP_OFFSET, the
     spot's place in `area` (0, 0 when `area` or the spot is None), the middle of the pocket's bin,
-    the elevation as a fraction of MAX_ELEVATION."""
-    return np.clip(np.array(action_entries(layout, shot, area, n_pockets), dtype=np.float32), -1.0, 1.0)
+    the middle of the called ball's bin among `targets` (the first's when the ball is None or
+    not a target), the elevation as a fraction of MAX_ELEVATION."""
+    return np.clip(np.array(action_entries(layout, shot, area, n_pockets, targets), dtype=np.float32), -1.0, 1.0)
 
 
-def encoded_entries(layout: ActionLayout, shot: Shot, area=None, n_pockets: int = 6) -> list:
+def encoded_entries(layout: ActionLayout, shot: Shot, area=None, n_pockets: int = 6, targets=()) -> list:
     """`encode_action`'s entries as Python floats (each rounded to float32 and clipped, as the
     action holds them), without building the array: `decode_entries` of them is the shot an
     env plays for the action of `shot`."""
-    rounded = array("f", action_entries(layout, shot, area, n_pockets)).tolist()  # float32 rounding, as numpy's cast
+    rounded = array("f", action_entries(layout, shot, area, n_pockets, targets)).tolist()  # as numpy's float32 cast
     return [min(max(v, -1.0), 1.0) for v in rounded]
 
 
-def action_entries(layout: ActionLayout, shot: Shot, area=None, n_pockets: int = 6) -> list:
+def action_entries(layout: ActionLayout, shot: Shot, area=None, n_pockets: int = 6, targets=()) -> list:
     """The entries of `encode_action` before their float32 rounding and clipping (Python floats)."""
     if not isinstance(shot, Shot):
         raise TypeError(f"shot must be a pool_env.game.Shot, got {type(shot).__name__}")
@@ -153,6 +164,10 @@ def action_entries(layout: ActionLayout, shot: Shot, area=None, n_pockets: int =
     if layout.called_pocket:
         n = max(int(n_pockets), 1)
         entries.append(-1.0 + (2.0 * (shot.pocket if shot.pocket is not None else 0) + 1.0) / n)
+    if layout.called_ball:
+        called = list(targets)
+        k = called.index(shot.ball) if shot.ball in called else 0
+        entries.append(-1.0 + (2.0 * k + 1.0) / max(len(called), 1))
     if layout.elevation:
         entries.append(shot.elevation / MAX_ELEVATION)
     return entries

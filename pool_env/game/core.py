@@ -24,7 +24,7 @@ CUE_TRIES = 1000  # draws of a random cue spot before falling back to the head s
 @dataclass(eq=False, slots=True)
 class StruckShot:
     """A shot ready to simulate (`Game.strike`): who shoots, what he meant (`shot`, and the
-    `action` it was read from, if any), his ball in hand, the called pocket, the balls at rest
+    `action` it was read from, if any), his ball in hand, the called pocket (and ball), the balls at rest
     with the cue ball placed (`placed`), the cue's force, tip and elevation as executed (noise
     included), and `balls`, the struck balls to simulate, or the ValueError striking raised. Read-only by
     convention (not frozen: it is made for every shot, and a frozen dataclass is slow to make)."""
@@ -39,14 +39,15 @@ class StruckShot:
     balls: Balls | Exception
     action: tuple | None = None
     elevation: float = 0.0
+    called_ball: int | None = None
 
 
 @dataclass(eq=False, slots=True)
 class ShotRecord:
     """What one shot did (`Game.play`, `Game.evaluate`).
 
-    `shooter`, `shot`, `action`, `ball_in_hand`, `called_pocket`, `force`, `tip` and
-    `elevation` (executed) as in `StruckShot`; `balls_before` the balls at rest before the strike (the cue ball
+    `shooter`, `shot`, `action`, `ball_in_hand`, `called_pocket`, `called_ball`, `force`, `tip`
+    and `elevation` (executed) as in `StruckShot`; `balls_before` the balls at rest before the strike (the cue ball
     placed) and `state_before` the rules' state then, `balls_after` at rest after it
     (spotted balls back on the table); `result` the
     physics `Result` (events, trajectories, stats); `ruling` the rules' `Ruling` and
@@ -71,6 +72,7 @@ class ShotRecord:
     error: str | None = None
     judged: rules.ShotOutcome | None = None
     elevation: float = 0.0
+    called_ball: int | None = None
 
     @property
     def outcome(self) -> rules.ShotOutcome | None:
@@ -257,11 +259,20 @@ class Game:
     def decode(self, action) -> Shot:
         """The `Shot` an action vector of the game's layout means now (the ball-in-hand entries
         map onto the shooter's placement area). ValueError for a wrong shape or a non-finite entry."""
-        return decode_action(self.layout, action, self.placement_area(), self.table.pockets.shape[0])
+        return decode_action(self.layout, action, self.placement_area(), self.table.pockets.shape[0],
+                             self._called_targets())
 
     def encode(self, shot: Shot) -> np.ndarray:
         """The action vector (float32) of the game's layout that `decode` reads back as `shot` now."""
-        return encode_action(self.layout, shot, self.placement_area(), self.table.pockets.shape[0])
+        return encode_action(self.layout, shot, self.placement_area(), self.table.pockets.shape[0],
+                             self._called_targets())
+
+    def _called_targets(self) -> tuple:
+        """The balls an action's called-ball entry chooses among (a layout with one): the legal
+        targets, ascending; none on the break (WPA 3.3: nothing is called)."""
+        if not self.layout.called_ball or self._state is None or self._state.is_break:
+            return ()
+        return tuple(sorted(self.legal_targets))
 
     # --- starting -------------------------------------------------------------------------------
     def reset(self, seed=None, *, rng=None, balls: Balls | None = None, breaker: int = 0,
@@ -364,8 +375,9 @@ class Game:
         if self._over:
             raise RuntimeError("the game is over; reset() it")
         area, pockets = self.placement_area(), self.table.pockets.shape[0]
-        entries = encoded_entries(self.layout, shot, area, pockets)
-        return self._strike(decode_entries(self.layout, entries, area, pockets), tuple(entries), rng)
+        targets = self._called_targets()
+        entries = encoded_entries(self.layout, shot, area, pockets, targets)
+        return self._strike(decode_entries(self.layout, entries, area, pockets, targets), tuple(entries), rng)
 
     def _shot_and_action(self, shot) -> tuple:
         """(the `Shot`, the action vector's entries as a tuple or None) of a Shot or an action."""
@@ -394,6 +406,9 @@ class Game:
         called = shot.pocket if self._mode.rules == "eight_ball" else None
         if called is not None and called >= self.table.pockets.shape[0]:
             raise ValueError(f"Shot.pocket {called} names no pocket (the table has {self.table.pockets.shape[0]})")
+        ball = shot.ball if self._mode.rules == "eight_ball" else None
+        if ball is not None and ball not in self._state.on_table:
+            raise ValueError(f"Shot.ball {ball} is not on the table (on it: {sorted(self._state.on_table)})")
         force, tip, elevation = shot.force, shot.tip, shot.elevation
         if self.noise is not None:
             force, tip, elevation = noisy_shot(force, tip, self.noise, self.rng if rng is None else rng, elevation)
@@ -401,7 +416,7 @@ class Game:
             struck = strike(placed, force, tip, CONTACT_TIME, elevation=elevation, physics=self.physics)
         except ValueError as exc:
             struck = exc
-        return StruckShot(shot, self.shooter, hand, called, placed, force, tip, struck, action, elevation)
+        return StruckShot(shot, self.shooter, hand, called, placed, force, tip, struck, action, elevation, ball)
 
     def resolve(self, struck: StruckShot, result) -> ShotRecord:
         """`play`'s second half: apply the simulation's `Result` (or the SimulationError or
@@ -423,23 +438,24 @@ class Game:
             if not isinstance(result, SHOT_ERRORS):
                 raise result
             error = f"{type(result).__name__}: {result}"
-            return ShotRecord(*head, struck.placed, None, None, self._state, False, error, elevation=struck.elevation)
+            return ShotRecord(*head, struck.placed, None, None, self._state, False, error, elevation=struck.elevation,
+                              called_ball=struck.called_ball)
         final = result.final
         if not self.has_rules:
             cleared = self.table.pockets.shape[0] > 0 and bool(final.pocketed[1:].all())
             over = self._mode.one_shot or bool(final.pocketed[0]) or cleared
             return ShotRecord(*head, final, result, None, None, over, elevation=struck.elevation)
         outcome = rules.outcome_from_result(result)
-        key = (outcome, struck.called_pocket)
+        key = (outcome, struck.called_pocket, struck.called_ball)
         judged = None if rulings is None else rulings.get(key)
         if judged is None:
-            judged = rules.judge(self._state, outcome, struck.called_pocket)
+            judged = rules.judge(self._state, outcome, struck.called_pocket, struck.called_ball)
             if rulings is not None:
                 rulings[key] = judged
         state, ruling = judged
         balls = rules.spot_balls(final, self.table, ruling.balls_to_spot) if ruling.balls_to_spot else final
         return ShotRecord(*head, balls, result, ruling, state, state.winner is not None, judged=outcome,
-                          elevation=struck.elevation)
+                          elevation=struck.elevation, called_ball=struck.called_ball)
 
     # --- branching ------------------------------------------------------------------------------
     @property

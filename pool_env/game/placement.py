@@ -11,6 +11,10 @@ from ..physics import BALL_RADIUS, Balls, Physics, Table
 from ..physics.simulate import check_on_table
 
 PLACE_MARGIN = 1e-4  # m: a placed cue ball clears rails and balls by this much
+# A ball on the head string is not behind it (WPA 8.1: the kitchen is the area behind the
+# string, the string itself excluded): a cue ball in hand behind the head string keeps its
+# centre (the point it stands on) this far (m) short of the string, as it keeps clear of a rail.
+HEAD_STRING_MARGIN = PLACE_MARGIN
 PLACE_STEP, PLACE_RINGS, PLACE_ANGLES = 2e-3, 600, 32  # the search for the nearest legal spot
 RING_ANGLES = np.linspace(0.0, 2.0 * math.pi, PLACE_ANGLES, endpoint=False)
 RING_COS, RING_SIN = np.cos(RING_ANGLES), np.sin(RING_ANGLES)
@@ -18,9 +22,10 @@ RING_COS, RING_SIN = np.cos(RING_ANGLES), np.sin(RING_ANGLES)
 
 def placement_area(table: Table, where: str, radius: float = BALL_RADIUS):
     """(x_lo, x_hi, y_lo, y_hi) of the cue ball's centre with ball in hand: anywhere on the
-    cloth, or behind the head string (the centre at most L/4 from the head rail: the kitchen)."""
+    cloth, or behind the head string (the kitchen: the centre strictly short of the string at
+    L/4 from the head rail, by HEAD_STRING_MARGIN, so a ball is never placed on the string)."""
     r = radius + PLACE_MARGIN
-    x_hi = rules.head_string_x(table) if where == "behind_head_string" else table.length - r
+    x_hi = rules.head_string_x(table) - HEAD_STRING_MARGIN if where == "behind_head_string" else table.length - r
     return r, x_hi, r, table.width - r
 
 

@@ -1,4 +1,4 @@
-"""`Shot`: one cue shot as a player means it (force, tip, elevation, ball-in-hand spot, called pocket); its noise."""
+"""`Shot`: one cue shot as a player means it (force, tip, elevation, ball in hand, called pocket, ball); its noise."""
 
 from __future__ import annotations
 
@@ -52,7 +52,10 @@ class Shot:
     - `place` (m, (x, y), or None): with ball in hand, where the shooter puts the cue ball (the
       free spot nearest it in the area the rules allow); ignored otherwise. None: where it
       lies, or the area's middle if it was pocketed.
-    - `pocket` (an index in `Table.pockets`, or None): the called pocket (8-ball, at the 8).
+    - `pocket` (an index in `Table.pockets`, or None): the called pocket (8-ball, at the 8;
+      every shot with `calling="ball_and_pocket"`).
+    - `ball` (an object ball's number, or None): the called ball (8-ball with
+      `calling="ball_and_pocket"`, WPA 1.6; None at the 8 means the 8); ignored otherwise.
     - `elevation` (rad, 0 to `MAX_ELEVATION`, 85 deg): the cue's angle above the table; 0 is a
       level cue. An elevated cue drives the ball into the slate: it swerves, masses or jumps
       (`pool_env.physics.strike`). `force` keeps its meaning: its direction is the aim seen
@@ -60,13 +63,14 @@ class Shot:
 
     `Shot.aimed(direction, speed, ...)` builds one from a direction and a speed in m/s. A
     non-finite entry, a zero or too strong force, a tip past the miscue limit, an elevation
-    out of range or a negative pocket raises ValueError."""
+    out of range or a negative pocket or ball raises ValueError."""
 
     force: tuple[float, float]
     tip: tuple[float, float] = (0.0, 0.0)
     place: tuple[float, float] | None = None
     pocket: int | None = None
     elevation: float = 0.0
+    ball: int | None = None
 
     def __post_init__(self):
         force = _pair(self.force, "Shot.force")
@@ -90,9 +94,15 @@ class Shot:
             if isinstance(self.pocket, bool) or int(self.pocket) != self.pocket or self.pocket < 0:
                 raise ValueError(f"Shot.pocket must be None or a pocket's index (an integer >= 0), got {self.pocket!r}")
             object.__setattr__(self, "pocket", int(self.pocket))
+        if self.ball is not None:
+            if isinstance(self.ball, bool) or int(self.ball) != self.ball or self.ball < 1:
+                raise ValueError(f"Shot.ball must be None or an object ball's number (an integer >= 1), "
+                                 f"got {self.ball!r}")
+            object.__setattr__(self, "ball", int(self.ball))
 
     @classmethod
-    def aimed(cls, direction, speed: float, tip=(0.0, 0.0), place=None, pocket=None, elevation=0.0) -> Shot:
+    def aimed(cls, direction, speed: float, tip=(0.0, 0.0), place=None, pocket=None, elevation=0.0,
+              ball=None) -> Shot:
         """The cue ball sent along `direction` (any length) at `speed` m/s (the push along the
         cue: an elevated cue's ball leaves slower along the table, driven into the slate)."""
         dx, dy = _pair(direction, "direction")
@@ -100,7 +110,7 @@ class Shot:
         if length == 0.0:
             raise ValueError("direction must not be zero")
         scale = float(speed) * BALL_MASS / CONTACT_TIME / length
-        return cls((dx * scale, dy * scale), tip, place, pocket, elevation)
+        return cls((dx * scale, dy * scale), tip, place, pocket, elevation, ball)
 
     @property
     def speed(self) -> float:

@@ -60,13 +60,15 @@ class PoolGameAEC(AECEnv):
     - **Rewards**: +1 to the winner and -1 to the loser on the shot that ends the game (both
       terminate), 0 otherwise, plus the shaping if asked.
     - **Truncation** of both agents after `max_shots` shots, or when a shot cannot be simulated
-      (`info["error"]`).
+      (`info["error"]`); `info["truncation"]` says which (the shot limit stands in for the WPA's
+      stalemate, 1.12, which is not declared).
     - **Infos** (both agents, after `reset` and every shot; the same keys each time, each a
       number, a bool or a fixed-shape array, as PoolGameEnv's, docs/env.md): the last shot's
       `shooter` (0 or 1), `foul` (a code, `pool_env.rules.codes`), `pocketed` (bool array of
       the game's balls), `ball_in_hand` (the next shooter's, a code), `turn_passed`, `winner`
       (-1 while the game goes on, else the winner's number k of `player_k`), `end_reason` (a
-      code), `shots` (so far), `error` (the shot could not be simulated), and PoolBreakEnv's
+      code), `shots` (so far), `error` (the shot could not be simulated), `truncation` (0, or
+      a code of `TRUNCATION_CODES` on the shot that truncates), and PoolBreakEnv's
       per-shot entries (`first_contact`, `cushion_hits`, `scratch`, `events`, `shot_duration`,
       `balls_left`). After `reset` they describe no shot (`shooter` is the breaker). With
       `info_mode="rich"` they also hold `records` (the shot's `ShotRecord`, a one-tuple) and
@@ -166,25 +168,30 @@ class PoolGameAEC(AECEnv):
                 self.rewards[agent] += SHAPING_BALL * legal - (SHAPING_FOUL if foul else 0.0)
         else:
             info = no_shot_info(game.balls, game.ball_in_hand, record.error)
-        info = self._info(info, record.shooter, record)
+        truncation = None
+        if winner is None and (record.error is not None or self.shots >= self.max_shots):
+            truncation = "shot_error" if record.error is not None else "shot_limit"
+        info = self._info(info, record.shooter, record, truncation)
         if winner is not None:
             for other in AGENTS:
                 self.rewards[other] += 1.0 if other == winner else -1.0
                 self.terminations[other] = True
-        elif record.error is not None or self.shots >= self.max_shots:
+        elif truncation is not None:
             self.truncations = dict.fromkeys(AGENTS, True)
         self.infos = {other: dict(info) for other in AGENTS}
         self.agent_selection = AGENTS[game.shooter]
         self._accumulate_rewards()
 
-    def _info(self, shot: dict, shooter: int, record) -> dict:
+    def _info(self, shot: dict, shooter: int, record, truncation=None) -> dict:
         """Both agents' info: the shot's entries (`shot`) with the shooter, the winner, the end
-        reason and the shots so far; the record too if rich."""
+        reason, the shots so far and why the game was truncated (`codes.TRUNCATIONS`: the
+        shot limit, or a shot that could not be simulated; 0 if it was not); the record too if rich."""
         game = self.game
         ended = game.winner is not None and record is not None and record.ruling is not None
         end_reason = record.ruling.end_reason if ended else None
         info = {**shot, "shooter": int(shooter), "winner": winner_code(game.winner),
-                "end_reason": codes.encode("end_reason", end_reason), "shots": self.shots}
+                "end_reason": codes.encode("end_reason", end_reason), "shots": self.shots,
+                "truncation": codes.encode("truncation", truncation)}
         if self.info_mode == "rich":
             info = rich_info(info, () if record is None else (record,), None if record is None else record.error)
         return info

@@ -9,6 +9,7 @@ import numpy as np
 from .bundles import EVENTS, ROWS, Log, Scene
 from .engine import sample
 from .kinds import COUNTERS, EVENT_KINDS, POCKETED, ROW_WIDTH, VZ, Z
+from .pressed import pressed_cushion_events
 
 
 class SimulationError(RuntimeError):
@@ -42,7 +43,7 @@ class Result:
     def __init__(self, balls, physics, table, scene, log, wall, counters):
         self._balls, self.physics, self.table = balls, physics, table
         self._scene, self._log, self._wall, self._counters = scene, log, wall, counters
-        self._arrays = self._final = self._stats = self._events = None
+        self._arrays = self._final = self._stats = self._events = self._pressed = None
 
     @property
     def _run(self):
@@ -69,6 +70,23 @@ class Result:
         if self._events is None:
             self._events = [Event(float(t), EVENT_KINDS[k], int(i), int(j)) for t, k, i, j in zip(*self.event_arrays)]
         return self._events
+
+    def pressed_cushion_events(self) -> np.ndarray:
+        """(E,) bools, one per event: True for a "ball_cushion" event whose ball, just before
+        the contacts of that instant, already touched that cushion (gap within
+        CONTACT_TOLERANCE) and was not moving into it (approach below MIN_APPROACH): a ball
+        frozen to a cushion and pressed into it, which the rules do not count as reaching
+        that cushion (WPA 8.4). The contacts of an instant are the events chained to it at
+        most LOOP_WINDOW apart (a cascade), so a frozen ball that another ball presses in
+        is judged by its state before that ball arrived. A ball that left the cushion and
+        comes back approaches it: a real contact. False for every other event."""
+        if self._pressed is None:
+            scene, log = self._run
+            table = self.table
+            self._pressed = pressed_cushion_events(self.event_arrays, log.hist[:int(log.size[ROWS])],
+                                                   log.hist_ball[:int(log.size[ROWS])], scene.R, scene.Rc,
+                                                   scene.params, table.rails, table.jaws)
+        return self._pressed
 
     @property
     def final(self):

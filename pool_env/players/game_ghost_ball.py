@@ -187,13 +187,14 @@ class GameGhostBallAgent(Agent):
     def cue_spots(self, view, xy, objects, index, aims):
         """(kind, the spots to plan from, where the cue ball goes if none has a pot): "lies"
         (where it lies), "hand" (ball in hand: `spots`; the area's middle) or "break" (none;
-        the head spot)."""
+        the head spot, or the nearest spot behind the head string to it)."""
         in_hand = view.ball_in_hand
         if in_hand is None:
             return "lies", [xy[0]], xy[0]
-        if np.all(view.on_table) and in_hand == "behind_head_string":  # the break: every ball racked
-            return "break", [], np.array(rules.head_spot(self.table), dtype=np.float64)
         area = placement_area(self.table, in_hand, self.radius)
+        if np.all(view.on_table) and in_hand == "behind_head_string":  # the break: every ball racked
+            x, y = rules.head_spot(self.table)  # on the head string: placed just behind it (the kitchen)
+            return "break", [], np.array((min(x, area[1]), y), dtype=np.float64)
         middle = np.array([0.5 * (area[0] + area[1]), 0.5 * (area[2] + area[3])])
         return "hand", self.spots(xy, objects, index, aims, area), middle
 

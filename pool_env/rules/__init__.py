@@ -35,13 +35,16 @@ def new_game(kind, breaker: int = 0, **options) -> GameState:
     return rules.new_game(breaker)
 
 
-def judge(state: GameState, outcome: ShotOutcome, called_pocket: int | None = None) -> tuple[GameState, Ruling]:
+def judge(state: GameState, outcome: ShotOutcome, called_pocket: int | None = None,
+          called_ball: int | None = None) -> tuple[GameState, Ruling]:
     """(the next GameState, the Ruling) after the shot `outcome` played from `state`, by
-    `state.rules`. `called_pocket` names the pocket for the 8 (8-ball only). Raises ValueError
-    for a finished game, a shot naming balls not on the table, or a bad called pocket."""
+    `state.rules`. 8-ball only: `called_pocket` names the pocket, `called_ball` the ball
+    (read by `EightBall(calling="ball_and_pocket")`; the default "eight_only" calls only the
+    8's pocket). Raises ValueError for a finished game, a shot naming balls not on the
+    table, or a bad called pocket or ball."""
     if not isinstance(state, GameState):
         raise TypeError(f"state must be a pool_env.rules.GameState, got {type(state).__name__}")
-    return state.rules.judge(state, outcome, called_pocket)
+    return state.rules.judge(state, outcome, called_pocket, called_ball)
 
 
 def legal_targets(state: GameState) -> frozenset:

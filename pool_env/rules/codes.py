@@ -4,12 +4,19 @@ from __future__ import annotations
 
 from .state import BALL_IN_HAND, END_REASONS, FOULS
 
-# Code k names entry k; code 0 is None (no foul, the game goes on, no ball in hand), so a code is
-# falsy exactly when its name is None.
+# Why a game env's episode stopped without a winner (its `truncation` info): the agent's shot
+# limit (`max_shots`, the envs' stand-in for the WPA's stalemate, 1.12, which is not declared:
+# docs/rules.md), the opponent's shots in a row reaching it, a shot the simulator could not finish.
+TRUNCATIONS = ("shot_limit", "opponent_shot_limit", "shot_error")
+
+# Code k names entry k; code 0 is None (no foul, the game goes on, no ball in hand, not
+# truncated), so a code is falsy exactly when its name is None.
 FOUL_CODES = (None, *FOULS)
 END_REASON_CODES = (None, *END_REASONS)
 BALL_IN_HAND_CODES = BALL_IN_HAND
-CODE_TABLES = {"foul": FOUL_CODES, "end_reason": END_REASON_CODES, "ball_in_hand": BALL_IN_HAND_CODES}
+TRUNCATION_CODES = (None, *TRUNCATIONS)
+CODE_TABLES = {"foul": FOUL_CODES, "end_reason": END_REASON_CODES, "ball_in_hand": BALL_IN_HAND_CODES,
+               "truncation": TRUNCATION_CODES}
 
 
 def _table(key: str) -> tuple:
@@ -36,7 +43,7 @@ def decode(key: str, code) -> str | None:
 
 def decode_info(info: dict) -> dict:
     """A copy of one env's numeric `info` with every coded entry (`foul`, `end_reason`,
-    `ball_in_hand`) replaced by its name, and the `pocketed` mask by the tuple of ball numbers."""
+    `ball_in_hand`, `truncation`) replaced by its name, and the `pocketed` mask by the tuple of ball numbers."""
     out = dict(info)
     for key in CODE_TABLES:
         if key in out:

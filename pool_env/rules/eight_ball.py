@@ -21,6 +21,9 @@ SOLIDS = frozenset(range(1, 8))
 STRIPES = frozenset(range(9, 16))
 GROUP_BALLS = {"solids": SOLIDS, "stripes": STRIPES}
 ILLEGAL_BREAK_OPTIONS = ("ball_in_hand", "table_in_position")
+# What the shooter calls on a shot after the break: a ball and a pocket (WPA 1.6, 3.4-3.5), or
+# only the 8's pocket (the common simplification: every other ball counts wherever it drops).
+CALLING_OPTIONS = ("ball_and_pocket", "eight_only")
 
 
 def group_of(ball: int) -> str | None:
@@ -37,12 +40,18 @@ class EightBall:
     break (WPA 3.3(d) lets him accept the table or have it re-racked; an env cannot re-rack
     mid-episode): "ball_in_hand" (default: the table as it lies with the cue ball in hand
     anywhere, so a soft break never pays) or "table_in_position" (WPA 3.3(d)(1) to the
-    letter: the cue ball where it stopped). Only the 8 is called (`called_pocket`); every other
-    ball counts wherever it drops, and on an open table the first ball to drop on a legal
-    shot decides the groups. See docs/rules.md for every deviation."""
+    letter: the cue ball where it stopped). `calling`: "eight_only" (default: the env's
+    action layouts name a pocket, not a ball): only the 8 is called, every other ball counts
+    wherever it drops, and on an open table the first ball to drop on a legal shot decides
+    the groups; or "ball_and_pocket" (WPA 1.6 and 3.4-3.5): every shot after the break calls
+    a ball and a pocket (`called_ball`, `called_pocket`), the shooter stays at the table only
+    when the called ball drops in the called pocket on a legal shot, and on an open table
+    that ball decides the groups (other balls that drop stay down and count for nothing).
+    See docs/rules.md for every deviation."""
 
     n_pockets: int = 6
     illegal_break: str = "ball_in_hand"
+    calling: str = "eight_only"
     name = "eight_ball"
     object_balls = frozenset(range(1, 16))
     money_ball = EIGHT
@@ -52,6 +61,8 @@ class EightBall:
             raise ValueError(f"n_pockets must be an integer >= 1, got {self.n_pockets!r}")
         if self.illegal_break not in ILLEGAL_BREAK_OPTIONS:
             raise ValueError(f"illegal_break must be one of {ILLEGAL_BREAK_OPTIONS}, got {self.illegal_break!r}")
+        if self.calling not in CALLING_OPTIONS:
+            raise ValueError(f"calling must be one of {CALLING_OPTIONS}, got {self.calling!r}")
 
     def new_game(self, breaker: int = 0) -> GameState:
         """A racked game: `breaker` (0 or 1) breaks with the cue ball in hand behind the head
@@ -67,18 +78,25 @@ class EightBall:
         balls = state.on_table - {EIGHT} if group is None else state.on_table & GROUP_BALLS[group]
         return balls or state.on_table & {EIGHT}
 
-    def judge(self, state: GameState, outcome, called_pocket=None):
+    def judge(self, state: GameState, outcome, called_pocket=None, called_ball=None):
         """(next GameState, Ruling) after `outcome` played from `state`. `called_pocket` is the
-        pocket the shooter names for the 8 (WPA 1.6, 3.8): an index below `n_pockets`, or None;
-        it matters only when the 8 drops on a shot at the 8."""
+        pocket the shooter names (WPA 1.6, 3.8): an index below `n_pockets`, or None;
+        `called_ball` the ball he names (read with `calling="ball_and_pocket"`; None at the 8
+        means the 8): an object ball on the table, or None (no call: nothing he pockets keeps
+        him at the table). The break calls nothing (3.3). ValueError for a pocket or a ball that is
+        not there."""
         check_shot(state, outcome)
         if called_pocket is not None and (isinstance(called_pocket, bool) or not isinstance(called_pocket, int)
                                           or not 0 <= called_pocket < self.n_pockets):
             raise ValueError(f"called_pocket must be None or a pocket index 0..{self.n_pockets - 1}, "
                              f"got {called_pocket!r}")
+        if called_ball is not None and (isinstance(called_ball, bool) or not isinstance(called_ball, int)
+                                        or called_ball not in state.on_table):
+            raise ValueError(f"called_ball must be None or an object ball on the table {sorted(state.on_table)}, "
+                             f"got {called_ball!r}")
         if state.is_break:
             return self._judge_break(state, outcome)
-        return self._judge_shot(state, outcome, called_pocket)
+        return self._judge_shot(state, outcome, called_pocket, called_ball)
 
     def _judge_break(self, state, outcome):
         """The break (WPA 3.3): an object ball pocketed or four to a rail; no ball need be hit
@@ -107,7 +125,7 @@ class EightBall:
         new = advance(state, ruling, on_table, counts)
         return new, with_messages(ruling, messages + turn_messages(new, turn_passed, False))
 
-    def _judge_shot(self, state, outcome, called_pocket):
+    def _judge_shot(self, state, outcome, called_pocket, called_ball=None):
         """Any shot after the break: WPA 3.4 (open table, groups), 3.5 (continuing play), 3.7
         (standard fouls: ball in hand anywhere), 3.8 (losing the rack with the 8)."""
         player, other = state.shooter, 1 - state.shooter
@@ -124,11 +142,17 @@ class EightBall:
             messages.append(f"player {player} {'wins' if winner == player else 'loses'}: {line}")
         counts, groups = list(state.fouls), state.groups
         counts[player] = counts[player] + 1 if fouls else 0
+        called = self.calling == "ball_and_pocket"
+        scored = called and not fouls and _called_down(outcome, called_ball, called_pocket, targets)
         if winner is None and not fouls and group is None:
-            groups, line = _assign_groups(player, outcome.pocketed)
+            dropped = ((called_ball,) if scored else ()) if called else outcome.pocketed
+            groups, line = _assign_groups(player, dropped)
             messages += [line] if line else []
         own = GROUP_BALLS[groups[player]] if groups[player] else frozenset()
-        turn_passed = winner is None and (bool(fouls) or not any(b in own for b in outcome.pocketed))
+        kept = scored if called else any(b in own for b in outcome.pocketed)
+        if called and not fouls and not kept and winner is None and outcome.pocketed:
+            messages.append("no called ball in its called pocket: the balls that dropped stay down")
+        turn_passed = winner is None and (bool(fouls) or not kept)
         hand = "anywhere" if fouls and winner is None else None
         ruling = Ruling(names[0] if names else None, names, turn_passed, hand, (), winner, end, ())
         new = advance(state, ruling, on_table, counts, groups)
@@ -163,6 +187,19 @@ def _eight_down(outcome, called_pocket, on_eight, fouled):
     if pocket != called_pocket:
         return "eight_wrong_pocket", f"the 8 pocketed in pocket {pocket}, pocket {called_pocket} was called"
     return "eight_pocketed", f"the 8 pocketed in the called pocket {pocket}"
+
+
+def _called_down(outcome, ball, pocket, targets):
+    """The called ball (a legal target; the 8 when it is the only one and none is named)
+    dropped in the called pocket (WPA 1.6: the called shot made)."""
+    if ball is None and targets == {EIGHT}:
+        ball = EIGHT
+    if ball is None or pocket is None or ball not in targets or ball not in outcome.pocketed:
+        return False
+    if ball not in outcome.pocket_of:
+        raise ValueError(f"the called ball {ball} dropped but outcome.pocket_of does not say in which pocket; "
+                         "it is needed to check the called pocket")
+    return outcome.pocket_of[ball] == pocket
 
 
 def _assign_groups(player, pocketed):

@@ -44,14 +44,14 @@ class NineBall:
         the break too, the 1)."""
         return frozenset({min(state.on_table)}) if state.on_table else frozenset()
 
-    def judge(self, state: GameState, outcome, called_pocket=None):
-        """(next GameState, Ruling) after `outcome` played from `state`. `called_pocket` is
-        ignored (9-ball calls no shot: WPA section 2), so one env loop can pass it for both
-        games; it must still be None or an index >= 0."""
+    def judge(self, state: GameState, outcome, called_pocket=None, called_ball=None):
+        """(next GameState, Ruling) after `outcome` played from `state`. `called_pocket` and
+        `called_ball` are ignored (9-ball calls no shot: WPA section 2), so one env loop can
+        pass them for both games; they must still be None or integers >= 0."""
         check_shot(state, outcome)
-        if called_pocket is not None and (isinstance(called_pocket, bool) or not isinstance(called_pocket, int)
-                                          or called_pocket < 0):
-            raise ValueError(f"called_pocket must be None or a pocket index >= 0, got {called_pocket!r}")
+        for name, value in (("called_pocket", called_pocket), ("called_ball", called_ball)):
+            if value is not None and (isinstance(value, bool) or not isinstance(value, int) or value < 0):
+                raise ValueError(f"{name} must be None or an integer >= 0, got {value!r}")
         lowest = min(state.on_table)
         fouls = standard_fouls(outcome, {lowest}, lambda b: f"hit the {b}, lowest is the {lowest}", state.is_break)
         if state.is_break:

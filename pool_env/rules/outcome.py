@@ -26,6 +26,9 @@ class ShotOutcome:
     A cushion is any cushion body the engine has: the rail noses, the pockets' facings and
     their jaw tips (all "ball_cushion" events); a ball that touches a facing or a jaw tip in a
     pocket's mouth has touched a cushion (the WPA's "rail" is the cushion, definitions 8.x).
+    A ball frozen to a cushion (touching it before the shot's contact with it) that is only
+    pressed into it has not touched it (WPA 8.4, "driven to a rail"); one that leaves it and
+    comes back has.
     """
 
     first_contact: int | None = None
@@ -94,22 +97,31 @@ def outcome_from_result(result) -> ShotOutcome:
 
     Ball index = ball number (the racks in `pool_env.rules.racks` put ball k at index k).
     Contacts are the "ball_ball" kinds (a pressed "ball_ball_settle" contact included); a
-    cushion contact is a "ball_cushion" event (rails, facings and jaw tips alike); a drop is a
-    "ball_pocket" event (j the pocket index); a ball leaving the table through the air is a
-    "ball_off_table" event. Motion transitions and bounces on the slate are ignored."""
+    cushion contact is a "ball_cushion" event (rails, facings and jaw tips alike), except one
+    that only presses a ball frozen to that cushion into it (`Result.pressed_cushion_events`:
+    WPA 8.4, a ball touching a rail is driven to it only if it leaves it and comes back; an
+    object without `event_arrays` has no such flag, and all its cushion events count); a drop
+    is a "ball_pocket" event (j the pocket index); a ball leaving the table through the air
+    is a "ball_off_table" event. Motion transitions and bounces on the slate are ignored."""
     arrays = getattr(result, "event_arrays", None)
     if arrays is not None:  # a physics Result: its arrays as lists, without an Event object per event
         kinds, i_s, j_s = (a.tolist() for a in arrays[1:])
+        pressed = result.pressed_cushion_events().tolist() if BALL_CUSHION in kinds else None
     else:
         kinds = [EVENT_KINDS.index(event.kind) for event in result.events]
         i_s, j_s = [int(event.i) for event in result.events], [int(event.j) for event in result.events]
+        pressed = None
+    if pressed is None:
+        pressed = [False] * len(kinds)
     first, contact_seen, rail_after = None, False, False
     to_rail, dropped, pockets, gone = set(), [], [], []
-    for kind, i, j in zip(kinds, i_s, j_s):
+    for kind, i, j, frozen in zip(kinds, i_s, j_s, pressed):
         if kind in BALL_BALL_KINDS:
             if not contact_seen and CUE in (i, j):
                 first, contact_seen = (j if i == CUE else i), True
         elif kind == BALL_CUSHION:
+            if frozen:  # a ball frozen to this cushion pressed into it: not driven to it (WPA 8.4)
+                continue
             rail_after = rail_after or contact_seen
             if i != CUE:
                 to_rail.add(i)
