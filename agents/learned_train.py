@@ -13,12 +13,13 @@ import numpy as np
 from pool_env.game import Game, game_observation
 from pool_env.players import GameGhostBallAgent
 
-from .learned import LearnedPlayer, ValueNet, menu
+from .learned import KINDS, LAYOUT, LearnedPlayer, ValueNet, menu
 from .search import SearchAgent, balls_of, game_state
 from .stats import wilson
 
 MAX_SHOTS = 100  # each player's shots in a game, as the game envs' max_shots
 ROUND_SEEDS = 100_000  # round r's games are seeded seed + r * ROUND_SEEDS + k (train.py's games start at 1,000,000)
+BREAK_COLUMNS, BREAK_HIDDEN, BREAK_EPOCHS = 12, (32,), 30  # the break net: its inputs, layers, epochs
 EXPLORE = 0.25  # share of the data games' shots played by a random menu candidate (positions off the usual path)
 
 
@@ -167,6 +168,26 @@ def fit(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, lr: floa
     return value_net(model, mean, std)
 
 
+def fit_player(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, log=print) -> ValueNet:
+    """The learned player's nets: `fit` of the shot net on every decision but the break, and
+    of a break net (`ValueNet.breaks`, one layer of BREAK_HIDDEN) on the breaks' candidates that
+    reads only their own shot (BREAK_COLUMNS: kind, speed, tip, direction, spot): the rack is the
+    same but for its jitter, so the break net learns each break's mean value."""
+    rows = np.asarray(data["features"][:, KINDS.index("break")] == 1.0)
+    shot = fit(subset(data, ~rows), hidden, epochs, seed, log=log)
+    if not rows.any():
+        return shot
+    breaks = subset(data, rows)
+    breaks["features"] = breaks["features"][:, :BREAK_COLUMNS]
+    net = fit(breaks, BREAK_HIDDEN, BREAK_EPOCHS, seed, log=None)
+    return ValueNet(shot.arrays, breaks=ValueNet({**net.arrays, "columns": np.float32(BREAK_COLUMNS)}))
+
+
+def subset(data: dict, rows) -> dict:
+    """The rows `rows` (a mask) of a dataset."""
+    return {k: np.asarray(v)[rows] for k, v in data.items()}
+
+
 def torch_mlp(features, hidden) -> tuple:
     """(the feature rows standardised as a torch tensor, their mean, their std, a torch MLP of
     tanh layers `hidden` with one linear output, freshly initialised from torch's generator)."""
@@ -185,7 +206,7 @@ def value_net(model, mean, std) -> ValueNet:
     """The NumPy `ValueNet` of a `torch_mlp` model and its inputs' standardisation."""
     import torch
 
-    arrays = {"mean": mean, "std": std}
+    arrays = {"mean": mean, "std": std, "layout": np.float32(LAYOUT)}
     for n, m in enumerate(m for m in model if isinstance(m, torch.nn.Linear)):
         arrays[f"w{n}"] = m.weight.detach().numpy().T.copy()
         arrays[f"b{n}"] = m.bias.detach().numpy().copy()
@@ -234,7 +255,7 @@ def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int
         timing[f"data_round_{r}"] = time.perf_counter() - t
         log(f"round {r}: {int(data['decision'].max()) + 1} decisions labelled in {timing[f'data_round_{r}']:.0f} s")
         t = time.perf_counter()
-        net = fit(data, seed=seed, log=log)
+        net = fit_player(data, seed=seed, log=log)
         timing[f"fit_round_{r}"] = time.perf_counter() - t
     Path(out).mkdir(parents=True, exist_ok=True)
     net.save(Path(out) / "learned.npz")
