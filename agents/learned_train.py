@@ -19,6 +19,7 @@ from .stats import wilson
 
 MAX_SHOTS = 100  # each player's shots in a game, as the game envs' max_shots
 ROUND_SEEDS = 100_000  # round r's games are seeded seed + r * ROUND_SEEDS + k (train.py's games start at 1,000,000)
+EVAL_NOISES = (None, "olympiad")  # the recipe's evaluations: the published figures
 BREAK_COLUMNS, BREAK_HIDDEN, BREAK_EPOCHS = 12, (32,), 30  # the break net: its inputs, layers, epochs
 EXPLORE = 0.25  # share of the data games' shots played by a random menu candidate (positions off the usual path)
 
@@ -241,12 +242,15 @@ def match(player, game: str = "nine_ball", noise=None, games: int = 400, seed: i
     return {"games": games, "wins": wins, "win_rate": wins / games, "ci95": (lo, hi)}
 
 
-def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int, workers: int, out, log=print) -> dict:
+def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int, workers: int, out, log=print,
+           epochs: int = 30) -> dict:
     """The learned player, start to finish: `data_games` ghost-ball self-play games labelled
     (`parallel_dataset`), a value net fitted; then `rounds - 1` times as many games again of
     that net against the ghost-ball player, labelled and added, the net fitted anew; the last
-    net against the ghost-ball player on `eval_seeds`. Writes the net (`learned.npz`) and the
-    result (`learned.json`) into `out`; returns the result."""
+    net against the ghost-ball player on `eval_seeds`, without noise and with olympiad noise
+    (`EVAL_NOISES`; the top-level figures are those at `noise`). Writes the net (`learned.npz`),
+    the labelled data (`learned-data.npz`) and the result (`learned.json`) into `out`; returns
+    the result."""
     started, net, parts, timing = time.perf_counter(), None, [], {}
     for r in range(rounds):
         t = time.perf_counter()
@@ -255,18 +259,23 @@ def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int
         timing[f"data_round_{r}"] = time.perf_counter() - t
         log(f"round {r}: {int(data['decision'].max()) + 1} decisions labelled in {timing[f'data_round_{r}']:.0f} s")
         t = time.perf_counter()
-        net = fit_player(data, seed=seed, log=log)
+        net = fit_player(data, epochs=epochs, seed=seed, log=log)
         timing[f"fit_round_{r}"] = time.perf_counter() - t
     Path(out).mkdir(parents=True, exist_ok=True)
     net.save(Path(out) / "learned.npz")
+    np.savez_compressed(Path(out) / "learned-data.npz", **data)
     t = time.perf_counter()
-    result = match(LearnedPlayer(game, net), game, noise, len(eval_seeds), int(eval_seeds[0]))
+    by_noise = {str(n or "none"): match(LearnedPlayer(game, net), game, n, len(eval_seeds), int(eval_seeds[0]))
+                for n in dict.fromkeys((noise, *EVAL_NOISES))}
     timing["evaluation"], timing["total"] = time.perf_counter() - t, time.perf_counter() - started
-    result = {**result, "game": game, "noise": noise, "data_games": data_games, "rounds": rounds,
-              "decisions": int(data["decision"].max()) + 1, "rows": len(data["values"]), "seconds": timing}
+    result = {**by_noise[str(noise or "none")], "game": game, "noise": noise, "data_games": data_games,
+              "rounds": rounds, "epochs": epochs, "decisions": int(data["decision"].max()) + 1,
+              "rows": len(data["values"]), "by_noise": by_noise, "seconds": timing}
     (Path(out) / "learned.json").write_text(json.dumps(result, indent=2))
-    log(f"learned player against ghost_ball: {result['wins']:g}/{result['games']} = {result['win_rate']:.1%} "
-        f"[{result['ci95'][0]:.1%}, {result['ci95'][1]:.1%}], {timing['total']:.0f} s in all")
+    for name, r in by_noise.items():
+        log(f"learned player against ghost_ball ({name}): {r['wins']:g}/{r['games']} = {r['win_rate']:.1%} "
+            f"[{r['ci95'][0]:.1%}, {r['ci95'][1]:.1%}]")
+    log(f"{timing['total']:.0f} s in all")
     return result
 
 
@@ -287,6 +296,6 @@ if __name__ == "__main__":
     np.savez_compressed(args.out + "-data.npz", **data)
     if args.data_only:
         raise SystemExit(0)
-    net = fit(data)
+    net = fit_player(data)
     net.save(args.out + ".npz")
-    print(match(LearnedPlayer("nine_ball", net, noise=args.noise), noise=args.noise, games=args.eval_games))
+    print(match(LearnedPlayer("nine_ball", net), noise=args.noise, games=args.eval_games))

@@ -11,8 +11,7 @@ from agents.learned_features import contact, pocket_gap
 from agents.learned_train import padded, play_game
 from pool_env.game import Game
 from pool_env.physics import Physics
-from pool_env.players import GameGhostBallAgent
-from pool_env.players import geometry
+from pool_env.players import GameGhostBallAgent, geometry
 
 PHYS = Physics.standard()
 G, MU_S, MU_R = PHYS.g, PHYS.mu_s, PHYS.mu_r
@@ -127,6 +126,27 @@ def test_the_shipped_player_makes_one_net_evaluation_per_shot_and_plays_whole_ga
     game.reset(seed=5)
     obs = pool_env.game.game_observation(game.balls, game.state, 0, 0, 100, game.table)
     assert np.array_equal(player.act(obs), player.act(obs))
+
+
+@pytest.mark.skipif(not weights_path("nine_ball").exists(), reason="no shipped 9-ball network")
+def test_a_learned_players_game_is_the_same_game_for_the_same_seed_and_its_actions_fit_the_space():
+    import gymnasium as gym
+
+    space = gym.make("PoolNineBall-v0").action_space
+
+    def one_game():
+        player, game = LearnedPlayer("nine_ball"), Game("nine_ball")
+        ghost, actions = GameGhostBallAgent.from_env(game), []
+        act = player.act
+        player.act = lambda obs: actions.append(act(obs)) or actions[-1]
+        winner = play_game(game, (player, ghost), seed=11, breaker=0)
+        return winner, actions, game.balls.xy.copy()
+
+    first, second = one_game(), one_game()
+    assert first[0] == second[0] and len(first[1]) == len(second[1]) >= 1
+    assert all(np.array_equal(a, b) for a, b in zip(first[1], second[1], strict=True))
+    assert np.array_equal(first[2], second[2])
+    assert all(space.contains(np.asarray(a, dtype=space.dtype)) for a in first[1])
 
 
 def test_a_game_without_a_shipped_network_is_refused_by_name(monkeypatch, tmp_path):
