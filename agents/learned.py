@@ -15,11 +15,14 @@ from pool_env.players import Agent, game_of
 from pool_env.players import geometry as geo
 from pool_env.players.planner import D1, D2, DN, DX, DY, OK, SCORE, SCRATCH, SPEED
 
+from .learned_features import outcome_features, roll_at_contact
 from .search import ARRIVALS, Candidate, SearchAgent, decode, game_state, legal_mask, racked
 
 WEIGHTS = Path(__file__).with_name("weights")  # the shipped networks, one file per game
 KINDS = ("pot", "safety", "kick", "break")
 CANDIDATE_FEATURES = 36  # see `candidate_features`
+LAYOUT = 2  # the feature rows new nets are fitted on (`menu`)
+BREAK_PREFIX = "break_"  # a saved net's arrays of its break net (`ValueNet.breaks`)
 
 
 @dataclass
@@ -28,24 +31,6 @@ class Menu:
 
     candidates: list
     features: np.ndarray
-
-
-def roll_at_contact(v0: float, top: float, distance: float, physics) -> float:
-    """R times the forward spin of a cue ball struck at `v0` m/s with the tip `top` ball radii
-    above centre (R w = 5/2 top v0 at the strike) after `distance` m: the slip v - R w decays at
-    7/2 mu_s g (v changes at mu_s g, R w at 5/2 mu_s g, opposite ways) until it rolls, then
-    v = R w falls at mu_r g."""
-    g, mu_s, mu_r = physics.g, physics.mu_s, physics.mu_r
-    slip = v0 * (1.0 - 2.5 * top)
-    a = mu_s * g * np.sign(slip)  # the deceleration of v while sliding
-    t_slide = 2.0 * abs(slip) / (7.0 * mu_s * g)
-    x_slide = v0 * t_slide - 0.5 * a * t_slide**2
-    if distance <= x_slide:
-        disc = max(v0 * v0 - 2.0 * a * distance, 0.0)
-        t = distance / v0 if abs(a) < 1e-12 else (v0 - np.sqrt(disc)) / a
-        return 2.5 * top * v0 + 2.5 * a * t
-    v_roll = v0 - a * t_slide
-    return float(np.sqrt(max(v_roll * v_roll - 2.0 * mu_r * g * (distance - x_slide), 0.0)))
 
 
 def cue_rest(search: SearchAgent, cue, obj, d, speed: float, top: float):
@@ -166,7 +151,8 @@ def shot_menu(search: SearchAgent, d, state) -> tuple[list, list]:
     return cands, rows
 
 
-def candidate_features(cands, rows, d, table: Table, game_ball: int, pockets, radius: float) -> np.ndarray:
+def candidate_features(cands, rows, d, table: Table, game_ball: int, pockets, radius: float,
+                       hits=None) -> np.ndarray:
     """(K, CANDIDATE_FEATURES) float32: kind (4), speed / MAX_SPEED, tip (side, top), direction
     (cos, sin), placed, the cue ball's spot (x, y in [-1, 1]), and for a pot: the planner's score,
     cos of the cut, cue-object and object-pocket distances (m), a slot kept at 0 (the shipped
@@ -194,39 +180,63 @@ def candidate_features(cands, rows, d, table: Table, game_ball: int, pockets, ra
             out[i, 29:31] = np.asarray(rest) * scale - 1.0
             out[i, 31] = quality
             out[i, 32] = geo.enters_pocket(np.asarray(rest).reshape(1, 2), pockets)
-    for spot in {None if c.spot is None else tuple(c.spot) for c in cands}:
-        rows_here = [i for i, c in enumerate(cands) if (None if c.spot is None else tuple(c.spot)) == spot]
-        cue = d.xy[0] if spot is None else np.asarray(spot)
-        hits = first_contacts(d.xy, d.on_table, cue, [cands[i].direction for i in rows_here], radius, table)
-        legal = np.array([int(b) in d.legal for b in hits[:, 0]])
-        legal_after = np.array([int(b) in d.legal for b in hits[:, 2]])
-        out[rows_here, 33] = legal
-        out[rows_here, 34] = np.minimum(hits[:, 1], 3.0)
-        out[rows_here, 35] = legal_after
+    hits = contacts_of(cands, d, table, radius) if hits is None else hits
+    out[:, 33] = [int(b) in d.legal for b in hits[:, 0]]
+    out[:, 34] = np.minimum(hits[:, 1], 3.0)
+    out[:, 35] = [int(b) in d.legal for b in hits[:, 2]]
     return out
 
 
-def menu(search: SearchAgent, observation, game: str | None) -> tuple[Menu, object]:
-    """The decision's `Menu` for a game observation, and its decoded view."""
+def contacts_of(cands, d, table: Table, radius: float) -> np.ndarray:
+    """(K, 3): `first_contacts` of each candidate from its own cue-ball spot."""
+    hits = np.zeros((len(cands), 3))
+    for spot in {None if c.spot is None else tuple(c.spot) for c in cands}:
+        rows_here = [i for i, c in enumerate(cands) if (None if c.spot is None else tuple(c.spot)) == spot]
+        cue = d.xy[0] if spot is None else np.asarray(spot)
+        hits[rows_here] = first_contacts(d.xy, d.on_table, cue, [cands[i].direction for i in rows_here], radius, table)
+    return hits
+
+
+def menu(search: SearchAgent, observation, game: str | None, layout: int = LAYOUT) -> tuple[Menu, object]:
+    """The decision's `Menu` for a game observation, and its decoded view. Feature rows of
+    `layout` 2: `candidate_features`, `learned_features.outcome_features`, the observation;
+    layout 1 (the first shipped nets): without the outcome features."""
     d = decode(observation, search.n_balls, search.table, game=game is not None)
     state = game_state(d, game, search.rule_options) if game is not None else None
     cands, rows = shot_menu(search, d, state)
     game_ball = 9 if game == "nine_ball" else 8
-    feats = candidate_features(cands, rows, d, search.table, game_ball, search.pockets, search.radius)
-    obs = np.broadcast_to(np.asarray(observation, dtype=np.float32), (len(cands), len(observation)))
-    return Menu(cands, np.concatenate([feats, obs], axis=1)), d
+    hits = contacts_of(cands, d, search.table, search.radius)
+    parts = [candidate_features(cands, rows, d, search.table, game_ball, search.pockets, search.radius, hits)]
+    if layout >= 2:
+        parts.append(outcome_features(search, d, state, cands, rows, hits))
+    parts.append(np.broadcast_to(np.asarray(observation, dtype=np.float32), (len(cands), len(observation))))
+    return Menu(cands, np.concatenate(parts, axis=1)), d
 
 
 class ValueNet:
     """A small MLP in NumPy (tanh hidden layers, linear output) with the input standardised:
-    the arrays of `save`/`load` (an .npz file)."""
+    the arrays of `save`/`load` (an .npz file). `breaks` (the arrays named "break_..."), if
+    any, is a second net that scores the break's menus (`score`). "columns", if saved, is how
+    many leading feature columns the net reads."""
 
-    def __init__(self, arrays: dict):
-        self.arrays = {k: np.asarray(v, dtype=np.float32) for k, v in arrays.items()}
+    def __init__(self, arrays: dict, breaks: ValueNet | None = None):
+        own = {k: v for k, v in arrays.items() if not k.startswith(BREAK_PREFIX)}
+        inner = {k[len(BREAK_PREFIX):]: v for k, v in arrays.items() if k.startswith(BREAK_PREFIX)}
+        self.arrays = {k: np.asarray(v, dtype=np.float32) for k, v in own.items()}
         self.layers = sorted({int(k[1:]) for k in self.arrays if k.startswith("w")})
+        self.layout = int(self.arrays["layout"]) if "layout" in self.arrays else 1
+        self.columns = int(self.arrays["columns"]) if "columns" in self.arrays else None  # reads only these
+        self.breaks = breaks if breaks is not None else ValueNet(inner) if inner else None
+
+    def score(self, features: np.ndarray) -> np.ndarray:
+        """The values of a menu's rows: by `breaks` if it is the break's menu and there is one."""
+        if self.breaks is not None and np.all(features[:, KINDS.index("break")] == 1.0):
+            return self.breaks(features)
+        return self(features)
 
     def __call__(self, x: np.ndarray) -> np.ndarray:
-        h = (np.asarray(x, dtype=np.float32) - self.arrays["mean"]) / self.arrays["std"]
+        x = np.asarray(x, dtype=np.float32)
+        h = ((x if self.columns is None else x[:, :self.columns]) - self.arrays["mean"]) / self.arrays["std"]
         for n in self.layers:
             h = h @ self.arrays[f"w{n}"] + self.arrays[f"b{n}"]
             if n != self.layers[-1]:
@@ -234,7 +244,8 @@ class ValueNet:
         return h[:, 0]
 
     def save(self, path) -> None:
-        np.savez_compressed(path, **self.arrays)
+        inner = {} if self.breaks is None else {BREAK_PREFIX + k: v for k, v in self.breaks.arrays.items()}
+        np.savez_compressed(path, **self.arrays, **inner)
 
     @classmethod
     def load(cls, path) -> ValueNet:
@@ -279,8 +290,8 @@ class LearnedPlayer(Agent):
         return cls(game.mode, table=game.table, physics=game.physics, **options)
 
     def act(self, observation) -> np.ndarray:
-        m, d = menu(self.search, observation, self.game)
-        values = self.net(m.features)
+        m, d = menu(self.search, observation, self.game, self.net.layout)
+        values = self.net.score(m.features)
         best = int(np.argmax(values))
         self.last_stats = {"candidates": len(m.candidates), "value": float(values[best]),
                            "kind": m.candidates[best].kind}

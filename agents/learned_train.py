@@ -13,12 +13,14 @@ import numpy as np
 from pool_env.game import Game, game_observation
 from pool_env.players import GameGhostBallAgent
 
-from .learned import LearnedPlayer, ValueNet, menu
+from .learned import KINDS, LAYOUT, LearnedPlayer, ValueNet, menu
 from .search import SearchAgent, balls_of, game_state
 from .stats import wilson
 
 MAX_SHOTS = 100  # each player's shots in a game, as the game envs' max_shots
 ROUND_SEEDS = 100_000  # round r's games are seeded seed + r * ROUND_SEEDS + k (train.py's games start at 1,000,000)
+EVAL_NOISES = (None, "olympiad")  # the recipe's evaluations: the published figures
+BREAK_COLUMNS, BREAK_HIDDEN, BREAK_EPOCHS = 12, (32,), 30  # the break net: its inputs, layers, epochs
 EXPLORE = 0.25  # share of the data games' shots played by a random menu candidate (positions off the usual path)
 
 
@@ -146,6 +148,7 @@ def fit(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, lr: floa
     ranking, chose worse shots in our trials: 56.5 % against 58.5 % of 200 games.)"""
     import torch
 
+    torch.set_num_threads(1)  # the same sums in the same order on any machine: the same net from the same data
     torch.manual_seed(seed)
     xt, mean, std, model = torch_mlp(data["features"], hidden)
     yt = torch.from_numpy(np.asarray(data["values"], dtype=np.float32))
@@ -167,6 +170,26 @@ def fit(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, lr: floa
     return value_net(model, mean, std)
 
 
+def fit_player(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, log=print) -> ValueNet:
+    """The learned player's nets: `fit` of the shot net on every decision but the break, and
+    of a break net (`ValueNet.breaks`, one layer of BREAK_HIDDEN) on the breaks' candidates that
+    reads only their own shot (BREAK_COLUMNS: kind, speed, tip, direction, spot): the rack is the
+    same but for its jitter, so the break net learns each break's mean value."""
+    rows = np.asarray(data["features"][:, KINDS.index("break")] == 1.0)
+    shot = fit(subset(data, ~rows), hidden, epochs, seed, log=log)
+    if not rows.any():
+        return shot
+    breaks = subset(data, rows)
+    breaks["features"] = breaks["features"][:, :BREAK_COLUMNS]
+    net = fit(breaks, BREAK_HIDDEN, BREAK_EPOCHS, seed, log=None)
+    return ValueNet(shot.arrays, breaks=ValueNet({**net.arrays, "columns": np.float32(BREAK_COLUMNS)}))
+
+
+def subset(data: dict, rows) -> dict:
+    """The rows `rows` (a mask) of a dataset."""
+    return {k: np.asarray(v)[rows] for k, v in data.items()}
+
+
 def torch_mlp(features, hidden) -> tuple:
     """(the feature rows standardised as a torch tensor, their mean, their std, a torch MLP of
     tanh layers `hidden` with one linear output, freshly initialised from torch's generator)."""
@@ -185,7 +208,7 @@ def value_net(model, mean, std) -> ValueNet:
     """The NumPy `ValueNet` of a `torch_mlp` model and its inputs' standardisation."""
     import torch
 
-    arrays = {"mean": mean, "std": std}
+    arrays = {"mean": mean, "std": std, "layout": np.float32(LAYOUT)}
     for n, m in enumerate(m for m in model if isinstance(m, torch.nn.Linear)):
         arrays[f"w{n}"] = m.weight.detach().numpy().T.copy()
         arrays[f"b{n}"] = m.bias.detach().numpy().copy()
@@ -220,12 +243,15 @@ def match(player, game: str = "nine_ball", noise=None, games: int = 400, seed: i
     return {"games": games, "wins": wins, "win_rate": wins / games, "ci95": (lo, hi)}
 
 
-def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int, workers: int, out, log=print) -> dict:
+def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int, workers: int, out, log=print,
+           epochs: int = 30) -> dict:
     """The learned player, start to finish: `data_games` ghost-ball self-play games labelled
     (`parallel_dataset`), a value net fitted; then `rounds - 1` times as many games again of
     that net against the ghost-ball player, labelled and added, the net fitted anew; the last
-    net against the ghost-ball player on `eval_seeds`. Writes the net (`learned.npz`) and the
-    result (`learned.json`) into `out`; returns the result."""
+    net against the ghost-ball player on `eval_seeds`, without noise and with olympiad noise
+    (`EVAL_NOISES`; the top-level figures are those at `noise`). Writes the net (`learned.npz`),
+    the labelled data (`learned-data.npz`) and the result (`learned.json`) into `out`; returns
+    the result."""
     started, net, parts, timing = time.perf_counter(), None, [], {}
     for r in range(rounds):
         t = time.perf_counter()
@@ -234,18 +260,23 @@ def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int
         timing[f"data_round_{r}"] = time.perf_counter() - t
         log(f"round {r}: {int(data['decision'].max()) + 1} decisions labelled in {timing[f'data_round_{r}']:.0f} s")
         t = time.perf_counter()
-        net = fit(data, seed=seed, log=log)
+        net = fit_player(data, epochs=epochs, seed=seed, log=log)
         timing[f"fit_round_{r}"] = time.perf_counter() - t
     Path(out).mkdir(parents=True, exist_ok=True)
     net.save(Path(out) / "learned.npz")
+    np.savez_compressed(Path(out) / "learned-data.npz", **data)
     t = time.perf_counter()
-    result = match(LearnedPlayer(game, net), game, noise, len(eval_seeds), int(eval_seeds[0]))
+    by_noise = {str(n or "none"): match(LearnedPlayer(game, net), game, n, len(eval_seeds), int(eval_seeds[0]))
+                for n in dict.fromkeys((noise, *EVAL_NOISES))}
     timing["evaluation"], timing["total"] = time.perf_counter() - t, time.perf_counter() - started
-    result = {**result, "game": game, "noise": noise, "data_games": data_games, "rounds": rounds,
-              "decisions": int(data["decision"].max()) + 1, "rows": len(data["values"]), "seconds": timing}
+    result = {**by_noise[str(noise or "none")], "game": game, "noise": noise, "data_games": data_games,
+              "rounds": rounds, "epochs": epochs, "decisions": int(data["decision"].max()) + 1,
+              "rows": len(data["values"]), "by_noise": by_noise, "seconds": timing}
     (Path(out) / "learned.json").write_text(json.dumps(result, indent=2))
-    log(f"learned player against ghost_ball: {result['wins']:g}/{result['games']} = {result['win_rate']:.1%} "
-        f"[{result['ci95'][0]:.1%}, {result['ci95'][1]:.1%}], {timing['total']:.0f} s in all")
+    for name, r in by_noise.items():
+        log(f"learned player against ghost_ball ({name}): {r['wins']:g}/{r['games']} = {r['win_rate']:.1%} "
+            f"[{r['ci95'][0]:.1%}, {r['ci95'][1]:.1%}]")
+    log(f"{timing['total']:.0f} s in all")
     return result
 
 
@@ -266,6 +297,6 @@ if __name__ == "__main__":
     np.savez_compressed(args.out + "-data.npz", **data)
     if args.data_only:
         raise SystemExit(0)
-    net = fit(data)
+    net = fit_player(data)
     net.save(args.out + ".npz")
-    print(match(LearnedPlayer("nine_ball", net, noise=args.noise), noise=args.noise, games=args.eval_games))
+    print(match(LearnedPlayer("nine_ball", net), noise=args.noise, games=args.eval_games))

@@ -7,10 +7,11 @@ import pytest
 
 import pool_env
 from agents.learned import LearnedPlayer, ValueNet, roll_at_contact, weights_path
+from agents.learned_features import contact, pocket_gap
 from agents.learned_train import padded, play_game
 from pool_env.game import Game
 from pool_env.physics import Physics
-from pool_env.players import GameGhostBallAgent
+from pool_env.players import GameGhostBallAgent, geometry
 
 PHYS = Physics.standard()
 G, MU_S, MU_R = PHYS.g, PHYS.mu_s, PHYS.mu_r
@@ -56,6 +57,50 @@ def test_the_value_net_is_a_standardised_tanh_mlp_and_survives_a_file(tmp_path):
     assert np.array_equal(ValueNet.load(tmp_path / "n.npz")(x), net(x))
 
 
+def test_a_break_net_scores_only_break_menus_and_reads_only_its_columns(tmp_path):
+    def linear(w, columns=None):
+        arrays = {"w0": np.array(w, dtype=float)[:, None], "b0": np.zeros(1), "mean": np.zeros(len(w)),
+                  "std": np.ones(len(w))}
+        return arrays if columns is None else {**arrays, "columns": columns}
+
+    shot = ValueNet(linear([1.0, 0.0, 0.0, 0.0, 2.0]))
+    net = ValueNet(shot.arrays, breaks=ValueNet(linear([0.0, 0.0, 0.0, 1.0], columns=4)))
+    breaks = np.array([[0, 0, 0, 1, 5.0], [0, 0, 0, 1, 7.0]])  # the kinds' one-hot: column 3 is "break"
+    pots = np.array([[1, 0, 0, 0, 5.0]])
+    assert net.score(breaks).tolist() == [1.0, 1.0]  # the break net: column 3 only, column 4 unread
+    assert net.score(pots).tolist() == [11.0]  # the shot net: 1 + 2 * 5
+    net.save(tmp_path / "n.npz")
+    again = ValueNet.load(tmp_path / "n.npz")
+    assert again.breaks is not None and again.score(breaks).tolist() == [1.0, 1.0]
+    assert again.score(pots).tolist() == [11.0]
+
+
+def test_a_full_ball_stun_hit_sends_the_object_ball_off_at_the_restitution_share_and_rolls_it_to_rest():
+    # Cue ball touching the object ball, centre hit (no spin at the contact): the object ball
+    # leaves at (1 + e_b) / 2 v along the line, slides 12 u^2 / (49 mu_s g), then rolls at 5/7 u
+    # for (5/7 u)^2 / (2 mu_r g); the cue ball keeps (1 - e_b) / 2 v.
+    table = pool_env.physics.Table.eight_foot()
+    R = pool_env.physics.BALL_RADIUS
+    cue, obj = np.array([0.5, 0.5 * table.width]), np.array([0.5 + 2 * R, 0.5 * table.width])
+    v = 0.5  # the object ball stops 0.65 m on, short of the foot rail
+    c = contact(cue, obj, np.array([1.0, 0.0]), v, 0.0, 1, PHYS, table, R)
+    u = 0.5 * (1 + PHYS.e_b) * v
+    assert c.object_speed == pytest.approx(u, rel=1e-12)
+    run = 12 * u * u / (49 * MU_S * G) + (5 / 7 * u) ** 2 / (2 * MU_R * G)
+    assert c.object_path[-1][0] - obj[0] == pytest.approx(run, abs=0.011)  # the path's points are 1 cm apart
+    assert np.allclose(c.object_path[:, 1], obj[1])
+    cue_run = 12 * (0.5 * (1 - PHYS.e_b) * v) ** 2 / (49 * MU_S * G)
+    assert c.cue_path[-1][0] - cue[0] >= cue_run - 1e-9
+
+
+def test_a_point_at_a_pockets_centre_is_its_radius_inside_it():
+    table = pool_env.physics.Table.eight_foot()
+    pockets = geometry.pockets_of(table)
+    p = pockets[2]
+    assert pocket_gap(p.centre[None], pockets) == pytest.approx(-p.radius, rel=1e-12)
+    assert pocket_gap(np.array([[0.5 * table.length, 0.5 * table.width]]), pockets) > 0.3
+
+
 def test_padded_groups_each_decisions_rows():
     index, mask = padded(np.array([0, 0, 0, 1, 2, 2]))
     assert mask.tolist() == [[True, True, True], [True, False, False], [True, True, False]]
@@ -66,8 +111,8 @@ def test_padded_groups_each_decisions_rows():
 def test_the_shipped_player_makes_one_net_evaluation_per_shot_and_plays_whole_games():
     player = LearnedPlayer("nine_ball")
     calls = []
-    net = player.net
-    player.net = lambda x: calls.append(len(x)) or net(x)
+    score = player.net.score
+    player.net.score = lambda x: calls.append(len(x)) or score(x)
     game = Game("nine_ball")
     ghost = GameGhostBallAgent.from_env(game)
     decisions = []
@@ -81,6 +126,27 @@ def test_the_shipped_player_makes_one_net_evaluation_per_shot_and_plays_whole_ga
     game.reset(seed=5)
     obs = pool_env.game.game_observation(game.balls, game.state, 0, 0, 100, game.table)
     assert np.array_equal(player.act(obs), player.act(obs))
+
+
+@pytest.mark.skipif(not weights_path("nine_ball").exists(), reason="no shipped 9-ball network")
+def test_a_learned_players_game_is_the_same_game_for_the_same_seed_and_its_actions_fit_the_space():
+    import gymnasium as gym
+
+    space = gym.make("PoolNineBall-v0").action_space
+
+    def one_game():
+        player, game = LearnedPlayer("nine_ball"), Game("nine_ball")
+        ghost, actions = GameGhostBallAgent.from_env(game), []
+        act = player.act
+        player.act = lambda obs: actions.append(act(obs)) or actions[-1]
+        winner = play_game(game, (player, ghost), seed=11, breaker=0)
+        return winner, actions, game.balls.xy.copy()
+
+    first, second = one_game(), one_game()
+    assert first[0] == second[0] and len(first[1]) == len(second[1]) >= 1
+    assert all(np.array_equal(a, b) for a, b in zip(first[1], second[1], strict=True))
+    assert np.array_equal(first[2], second[2])
+    assert all(space.contains(np.asarray(a, dtype=space.dtype)) for a in first[1])
 
 
 def test_a_game_without_a_shipped_network_is_refused_by_name(monkeypatch, tmp_path):
