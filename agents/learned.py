@@ -15,7 +15,7 @@ from pool_env.players import Agent, game_of
 from pool_env.players import geometry as geo
 from pool_env.players.planner import D1, D2, DN, DX, DY, OK, SCORE, SCRATCH, SPEED
 
-from .learned_features import outcome_features, roll_at_contact
+from .learned_features import contact_frame, outcome_features, roll_at_contact
 from .search import ARRIVALS, Candidate, SearchAgent, decode, game_state, legal_mask, racked
 
 WEIGHTS = Path(__file__).with_name("weights")  # the shipped networks, one file per game
@@ -37,13 +37,7 @@ def cue_rest(search: SearchAgent, cue, obj, d, speed: float, top: float):
     """Where the ghost-ball model leaves the cue ball sent along `d` at `speed` m/s with the tip
     `top` at the ball `obj` (`geometry.cue_path`'s last point: the contact by `geometry.collision`)."""
     phys, R = search.physics, search.radius
-    to_obj = obj - cue
-    along = float(to_obj @ d)
-    off = float(d[0] * to_obj[1] - d[1] * to_obj[0])
-    travel = along - np.sqrt(max(4.0 * R * R - off * off, 0.0))  # the cue ball's run to the contact
-    ghost = cue + d * travel
-    n = geo.unit(obj - ghost)
-    t = np.array([-n[1], n[0]])
+    travel, ghost, n, t = contact_frame(cue, obj, d, R)  # the cue ball's run to the contact
     v = geo.speed_after(speed, travel, phys)
     roll = roll_at_contact(speed, top, travel, phys)
     _, _, cn, ct = geo.collision(v, roll, float(d @ n), float(d @ t), phys)

@@ -16,6 +16,21 @@ GAP_CAP = 0.5  # m: gaps (to a pocket, to a ball) beyond this are all "far"
 RAIL_TOUCH = 2e-3  # m: a path point this near a cushion line is a cushion contact
 
 
+def contact_frame(cue, obj, d, radius: float, clamp: bool = False) -> tuple:
+    """(the cue ball's run to the contact, its centre there (the ghost ball), the unit line of
+    centres n and its normal t) of a cue ball at `cue` sent along the unit `d` at the ball at
+    `obj`; `clamp`: a run never below 0 (a cue ball already touching the ball)."""
+    to_obj = obj - cue
+    along = float(to_obj @ d)
+    off = float(d[0] * to_obj[1] - d[1] * to_obj[0])
+    travel = along - np.sqrt(max(4.0 * radius * radius - off * off, 0.0))
+    if clamp:
+        travel = max(travel, 0.0)
+    ghost = cue + d * travel
+    n = geo.unit(obj - ghost)
+    return travel, ghost, n, np.array([-n[1], n[0]])
+
+
 def roll_at_contact(v0: float, top: float, distance: float, physics) -> float:
     """R times the forward spin of a cue ball struck at `v0` m/s with the tip `top` ball radii
     above centre (R w = 5/2 top v0 at the strike) after `distance` m: the slip v - R w decays at
@@ -50,13 +65,7 @@ def contact(cue, obj, d, speed: float, top: float, ball: int, physics, table: Ta
     """The cue ball sent from `cue` along the unit `d` at `speed` m/s with the tip `top` meets
     the ball at `obj`: the contact (`geometry.collision`, friction and throw included) and the
     paths both balls then roll (`geometry.cue_path`: slide, roll, rails, rest)."""
-    to_obj = obj - cue
-    along = float(to_obj @ d)
-    off = float(d[0] * to_obj[1] - d[1] * to_obj[0])
-    travel = max(along - np.sqrt(max(4.0 * radius * radius - off * off, 0.0)), 0.0)
-    ghost = cue + d * travel
-    n = geo.unit(obj - ghost)
-    t = np.array([-n[1], n[0]])
+    travel, ghost, n, t = contact_frame(cue, obj, d, radius, clamp=True)
     v = geo.speed_after(speed, travel, physics)
     roll = roll_at_contact(speed, top, travel, physics)
     on, ot, cn, ct = geo.collision(v, roll, float(d @ n), float(d @ t), physics)

@@ -107,18 +107,23 @@ class ShotPlanner:
         plan_kernel(cue, xy, on, index, aims, arrival, self.constants, self.captures, np.empty(6), out)
         return out
 
+    def one_position(self, xy, on, legal) -> tuple:
+        """(xy (1, n, 2), on (1, n), legal (n,), the ball x pocket rows) of one position, as the
+        one-position kernels take them. ValueError for arrays of the wrong shapes."""
+        xy = np.ascontiguousarray(xy, dtype=np.float64)[None]
+        on = np.ascontiguousarray(on, dtype=bool)[None]
+        legal = np.ascontiguousarray(legal, dtype=bool)
+        if xy.shape[2:] != (2,) or on.shape != xy.shape[:2] or legal.shape != xy.shape[1:2]:
+            raise ValueError(f"xy must be (n, 2), on and legal (n,), got {xy.shape[1:]}, {on.shape[1:]}, {legal.shape}")
+        return xy, on, legal, xy.shape[1] * len(self.pockets)
+
     def plan_lie(self, xy, on, legal, arrival: float):
         """One position's pots from where its cue ball lies, in one compiled call
         (`plan_kernels.plan_lie`): xy (n, 2), on (n,) the object balls on the table (the cue
         ball's entry ignored), legal (n,) the balls to pot. Returns (index (N, 3), rows (N,
         PLAN_COLUMNS), the row of the best pot or -1): what `candidates`, `aims` and `plan`
         give for it, and `first_best` of them. ValueError for a position that is not finite."""
-        xy = np.ascontiguousarray(xy, dtype=np.float64)[None]
-        on = np.ascontiguousarray(on, dtype=bool)[None]
-        legal = np.ascontiguousarray(legal, dtype=bool)
-        if xy.shape[2:] != (2,) or on.shape != xy.shape[:2] or legal.shape != xy.shape[1:2]:
-            raise ValueError(f"xy must be (n, 2), on and legal (n,), got {xy.shape[1:]}, {on.shape[1:]}, {legal.shape}")
-        m = xy.shape[1] * len(self.pockets)
+        xy, on, legal, m = self.one_position(xy, on, legal)
         index, rows = np.empty((m, 3), dtype=np.int64), np.empty((m, PLAN_COLUMNS))
         buffers = (index, np.empty((m, 3)), rows, np.empty((m, 2)), np.empty(m), np.empty(6))
         count, best = plan_lie(xy, on, legal, self.tables, float(arrival), buffers)
@@ -130,12 +135,7 @@ class ShotPlanner:
         """One position's (index, aims): `candidates` and `aims` of xy (n, 2), on (n,) the object
         balls on the table, legal (n,) the balls to pot, in one compiled call
         (`plan_kernels.position_windows`). ValueError for a position that is not finite."""
-        xy = np.ascontiguousarray(xy, dtype=np.float64)[None]
-        on = np.ascontiguousarray(on, dtype=bool)[None]
-        legal = np.ascontiguousarray(legal, dtype=bool)
-        if xy.shape[2:] != (2,) or on.shape != xy.shape[:2] or legal.shape != xy.shape[1:2]:
-            raise ValueError(f"xy must be (n, 2), on and legal (n,), got {xy.shape[1:]}, {on.shape[1:]}, {legal.shape}")
-        m = xy.shape[1] * len(self.pockets)
+        xy, on, legal, m = self.one_position(xy, on, legal)
         index, aims = np.empty((m, 3), dtype=np.int64), np.empty((m, 3))
         count = position_windows(xy, on, legal, self.tables, index, aims)
         if count < 0:
