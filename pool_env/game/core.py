@@ -157,10 +157,10 @@ class Game:
     def __init__(self, mode: str = "nine_ball", table: Table | None = None, physics: Physics | None = None,
                  noise=None, seed=None, layout: str | None = None, randomize_cue: bool = False, **rule_options):
         self._mode: Mode = mode_of(mode)
-        self.table = Table.eight_foot() if table is None else table
+        self.table = self._mode.table() if table is None else table
         if not isinstance(self.table, Table):
             raise TypeError(f"table must be pool_env.physics.Table, got {type(self.table).__name__}")
-        self.physics = Physics.standard() if physics is None else physics
+        self.physics = self._mode.physics() if physics is None else physics
         if not isinstance(self.physics, Physics):
             raise TypeError(f"physics must be pool_env.physics.Physics, got {type(self.physics).__name__}")
         self.noise = noise_of(noise)

@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from .. import rules
-from ..physics import rack
+from ..physics import Physics, Table, rack
 
 
 @dataclass(frozen=True)
@@ -20,6 +21,8 @@ class Mode:
     one_shot: bool
     layout: str
     label: str
+    table: Callable[[], Table] = Table.eight_foot  # the table a Game of this mode gets when given none
+    physics: Callable[[], Physics] = Physics.standard  # ... and its physics
 
     def rack(self, table, seed, cue_xy=None):
         """The starting balls, racked with `seed` (WPA racking for the rules' games)."""
