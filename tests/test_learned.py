@@ -8,7 +8,7 @@ import pytest
 import pool_env
 from agents.learned import LearnedPlayer, ValueNet, roll_at_contact, weights_path
 from agents.learned_features import contact, pocket_gap
-from agents.learned_train import padded, play_game
+from agents.learned_train import padded, play_game, rack_means
 from pool_env.game import Game
 from pool_env.physics import Physics
 from pool_env.players import GameGhostBallAgent, geometry
@@ -108,6 +108,15 @@ def test_padded_groups_each_decisions_rows():
 
 
 @pytest.mark.skipif(not weights_path("nine_ball").exists(), reason="no shipped 9-ball network")
+def test_the_break_labels_become_each_candidates_mean_over_the_racks():
+    # three racks of the same two-break menu: break 0 worth 1, 0, 0.5 and break 1 worth -1, 1, 0
+    breaks = {"features": np.zeros((6, 3), dtype=np.float32), "decision": np.array([4, 4, 7, 7, 9, 9]),
+              "values": np.array([1.0, -1.0, 0.0, 1.0, 0.5, 0.0], dtype=np.float32)}
+    assert np.allclose(rack_means(breaks)["values"], [0.5, 0.0] * 3)
+    ragged = {**breaks, "decision": np.array([4, 4, 4, 7, 9, 9])}  # menus of 3, 1, 2: left as they are
+    assert np.array_equal(rack_means(ragged)["values"], breaks["values"])
+
+
 def test_the_shipped_player_makes_one_net_evaluation_per_shot_and_plays_whole_games():
     player = LearnedPlayer("nine_ball")
     calls = []
@@ -191,3 +200,20 @@ def test_learned_is_a_registered_player_name_for_the_envs_and_the_tournament():
     env.reset(seed=1)
     _, _, terminated, truncated, info = env.step(env.action_space.sample())
     assert info["opponent_shots"] >= 0 and isinstance(terminated, bool)
+
+
+def test_the_ranking_diagnosis_counts_the_nets_picks_against_the_best_label():
+    from agents.learned_diagnose import ranking
+
+    # the net scores a candidate by its last column; decision 0 holds two pots, decision 1 two safeties
+    features = np.zeros((4, 12), dtype=np.float32)
+    features[:2, 0], features[2:, 1], features[[0, 2], 11] = 1.0, 1.0, 1.0
+    w = np.zeros((12, 1), dtype=np.float32)
+    w[11, 0] = 1.0
+    net = ValueNet({"mean": np.zeros(12), "std": np.ones(12), "w0": w, "b0": np.zeros(1)})
+    data = {"features": features, "decision": np.array([0, 0, 1, 1]), "values": np.array([0.2, 0.9, 0.5, 0.1])}
+    r = ranking(net, data)  # decision 0: picks 0.2 of a best 0.9; decision 1: picks its best, 0.5
+    assert r["all"]["decisions"] == 2 and r["all"]["top1"] == 0.5
+    assert math.isclose(r["all"]["regret"], 0.35, abs_tol=1e-6)
+    assert math.isclose(r["decision: pot on"]["regret"], 0.7, abs_tol=1e-6)
+    assert r["decision: no pot"]["top1"] == 1.0 and r["best: safety"]["regret"] == 0.0
