@@ -170,7 +170,7 @@ def fit(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, lr: floa
     return value_net(model, mean, std)
 
 
-def fit_player(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, log=print) -> ValueNet:
+def fit_player(data: dict, hidden=(256, 256), epochs: int = 30, seed: int = 0, log=print) -> ValueNet:
     """The learned player's nets: `fit` of the shot net on every decision but the break, and
     of a break net (`ValueNet.breaks`, one layer of BREAK_HIDDEN) on the breaks' candidates that
     reads only their own shot (BREAK_COLUMNS: kind, speed, tip, direction, spot): the rack is the
