@@ -40,7 +40,7 @@ def points_per_inning(player: str, innings: int, noise, seed: int = 0) -> dict:
         game.reset(balls=random_balls(game.table, rng))
         run = 0
         while run < MAX_RUN:
-            record = game.play(agent.act(None))
+            record = game.play(agent.decide(game))
             shots += 1
             if not (record.ruling is not None and record.ruling.point):
                 break

@@ -51,7 +51,8 @@ def test_practice_ends_when_the_inning_passes_and_a_point_scores_one():
     env = gym.make("ThreeCushion-v0", opponent=None).unwrapped
     env.reset(seed=0)
     agent = pool_env.make_player("carom_search", env, seed=0)
-    obs, reward, terminated, truncated, info = env.step(agent.act(None))
+    obs, info = env.reset(seed=0)
+    obs, reward, terminated, truncated, info = env.step(agent.act(obs))
     assert reward == 1.0 and info["points"] == 1 and info["scores"].tolist() == [1, 0] and not terminated
     obs, reward, terminated, truncated, info = env.step(np.array([0.0, -0.02, 0.0, 0.0], np.float32))  # a soft miss
     assert terminated and reward == 0.0 and info["innings"].tolist() == [1, 1]
@@ -74,3 +75,24 @@ def test_the_pettingzoo_api_test_passes():
     with pytest.raises(ValueError, match="only the 'breaker'"):
         three_cushion_v0.env().reset(seed=0, options={"options": 1})
     api_test(WithoutProbe(three_cushion_v0.env(points=2, innings_limit=5)), num_cycles=200)
+
+
+def test_a_saved_game_replays_and_a_changed_one_does_not():
+    from pool_env.players import RandomAgent
+    from pool_env.records.saved import ReplayMismatch
+
+    record = pool_env.record_game(gym.make("ThreeCushion-v0", points=3), RandomAgent(4, seed=1), seed=3)
+    assert record["outcomes"][-1]["terminated"]
+    pool_env.replay(record)
+    record["outcomes"][-1]["reward"] += 1.0
+    with pytest.raises(ReplayMismatch):
+        pool_env.replay(record)
+
+
+def test_the_tournament_plays_three_cushion():
+    from agents.tournament import tournament
+
+    result = tournament("three_cushion", ("random", "carom_search"), games=2, noise="none")
+    pairing = result["results"]["none"]["pairings"][0]
+    assert pairing["wins_b"] == 2  # the search player scores its 15 points before the random one
+    assert {r["end_reason"] for r in result["results"]["none"]["records"]} == {"points_reached"}

@@ -42,8 +42,11 @@ def test_the_search_player_scores_from_the_starting_position_without_noise():
     game = Game("three_cushion", seed=0, points=5)
     agent = make_player("carom_search", game, seed=0)
     assert isinstance(agent, CaromSearchAgent)
-    record = game.play(agent.act(None))
+    obs = carom_observation(game.balls, game.state, 0, 0, 100, game.table)
+    record = game.play(agent.act(obs))  # from the observation, as an env's player
     assert record.ruling.point and record.outcome.first_ball == 2
+    again = Game("three_cushion", seed=0, points=5)
+    assert again.play(agent.decide(again)).ruling.point  # from a Game's position
 
 
 def test_the_search_player_refuses_another_game():

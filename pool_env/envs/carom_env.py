@@ -55,6 +55,19 @@ class ThreeCushionEnv(gym.Env):
         self.opponent, self._seeded_opponent, self.opponent_name = resolve_opponent(opponent, self)
         self.agent_shots, self.step_records = 0, []
 
+    @property
+    def table(self):
+        return self.game.table
+
+    @property
+    def physics(self):
+        return self.game.physics
+
+    @property
+    def balls(self):
+        """The balls now (the saved games and videos read them)."""
+        return self.game.balls
+
     def observe(self, viewer: int = AGENT) -> np.ndarray:
         g = self.game
         return carom_observation(g.balls, g.state, viewer, self.agent_shots, self.max_shots, g.table)
