@@ -35,7 +35,8 @@ class ThreeCushionEnv(gym.Env):
     point in the step. Info (numeric, the same keys every time): `points` and
     `opponent_points` (this step), `scores` and `innings` (agent, opponent), `opponent_shots`,
     `winner` (-1 none, 0 the agent, 1 the opponent), `draw`, `error` (a shot could not be
-    simulated: the episode is truncated). `env.unwrapped.step_records` holds the step's records.
+    simulated: the episode is truncated), `pocketed` (the pool envs' mask, always all False
+    here: generic clients read it from every env). `env.unwrapped.step_records` holds the step's records.
     """
 
     metadata = {"render_modes": [], "render_fps": 30}
@@ -128,4 +129,4 @@ class ThreeCushionEnv(gym.Env):
                 "innings": np.array(state.innings),
                 "opponent_shots": sum(r.shooter == OPPONENT for r in self.step_records),
                 "winner": WINNERS[state.winner], "draw": bool(state.ended and state.winner is None),
-                "error": bool(error)}
+                "error": bool(error), "pocketed": np.zeros(len(self.game.balls), dtype=bool)}
