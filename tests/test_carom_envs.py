@@ -96,3 +96,11 @@ def test_the_tournament_plays_three_cushion():
     pairing = result["results"]["none"]["pairings"][0]
     assert pairing["wins_b"] == 2  # the search player scores its 15 points before the random one
     assert {r["end_reason"] for r in result["results"]["none"]["records"]} == {"points_reached"}
+
+
+def test_elevation_adds_the_last_action_entry_and_the_opponent_plays_it_too():
+    env = gym.make("ThreeCushion-v0", elevation=True, points=2)
+    assert env.action_space.shape == (5,)
+    env.reset(seed=0)
+    *_, terminated, truncated, info = env.step(np.zeros(5, np.float32))
+    assert terminated and info["scores"].tolist() == [0, 2] and info["winner"] == 1  # the search runs out

@@ -6,7 +6,7 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
-from ..game import CAROM_OBSERVATION_SIZE, Game, carom_observation, simulate_struck
+from ..game import CAROM_OBSERVATION_SIZE, ELEVATED, Game, carom_observation, simulate_struck
 from .game_env import resolve_opponent
 
 AGENT, OPPONENT = 0, 1
@@ -26,9 +26,10 @@ class ThreeCushionEnv(gym.Env):
     | `points`, `innings_limit`, `equalizing` | 15, None, True | the rules' options (`ThreeCushion`) |
     | `agent_breaks` | True | False: the opponent plays the first inning, inside `reset` |
     | `max_shots` | 200 | truncate after this many agent shots |
+    | `elevation` | False | add the cue's elevation as the action's last entry (as the pool envs': masse, jumps) |
     | `table`, `physics` | the carom presets | |
 
-    Action `Box(-1, 1, (4,))`: the "cue_spin" layout (force as a fraction of MAX_FORCE, tip
+    Action `Box(-1, 1, (4,))` (5 with `elevation`): the "cue_spin" layout (force as a fraction of MAX_FORCE, tip
     side and top as fractions of the miscue limit), striking the agent's own cue ball.
     Observation `Box(-1, 1, (15,))`: `pool_env.game.carom_observation` from the agent's side
     (the balls, whose cue ball, score and innings). Reward: +1 per agent point, -1 per opponent
@@ -43,13 +44,14 @@ class ThreeCushionEnv(gym.Env):
 
     def __init__(self, opponent="carom_search", noise=None, points: int | None = 15, innings_limit: int | None = None,
                  equalizing: bool = True, agent_breaks: bool = True, max_shots: int = 200, table=None, physics=None,
-                 render_mode=None):
+                 render_mode=None, elevation: bool = False):
         if render_mode is not None:
             raise ValueError(f"ThreeCushion-v0 has no render mode yet, got {render_mode!r}")
         if isinstance(max_shots, bool) or not isinstance(max_shots, int) or max_shots < 1:
             raise ValueError(f"max_shots must be an integer >= 1, got {max_shots!r}")
         self.game = Game("three_cushion", table=table, physics=physics, noise=noise, points=points,
-                         innings_limit=innings_limit, equalizing=equalizing)
+                         innings_limit=innings_limit, equalizing=equalizing,
+                         layout="cue_spin" + (ELEVATED if elevation else ""))
         self.agent_breaks, self.max_shots, self.render_mode = bool(agent_breaks), max_shots, None
         self.observation_space = spaces.Box(-1.0, 1.0, (CAROM_OBSERVATION_SIZE,), np.float32)
         self.action_space = spaces.Box(-1.0, 1.0, (self.game.layout.size,), np.float32)

@@ -47,7 +47,7 @@ class CaromSearchAgent(Agent):
         if directions < 1 or shortlist < 1 or draws < 1:
             raise ValueError("directions, shortlist and draws must be >= 1")
         self.planner = Game("three_cushion", table=game.table, physics=game.physics, noise=game.noise,
-                            **game.rule_options)
+                            layout=game.layout.name, **game.rule_options)
         self.radius, self.mass = game.balls.radius, game.balls.mass
         self.directions, self.speeds, self.tips = int(directions), tuple(speeds), tuple(tips)
         self.shortlist, self.draws = int(shortlist), int(draws)
