@@ -1,4 +1,4 @@
-"""`python -m agents.tournament`: a round-robin of named players at 9-ball or 8-ball: win rates, Elo, statistics."""
+"""`python -m agents.tournament`: a round-robin of named players at 9-ball, 8-ball or three-cushion: win rates, Elo."""
 
 from __future__ import annotations
 
@@ -13,8 +13,8 @@ from pathlib import Path
 
 import numpy as np
 
+from pool_env.envs.carom_env import ThreeCushionEnv
 from pool_env.envs.game_env import PoolGameEnv
-from pool_env.game import GAME_BALLS
 from pool_env.players import make_player as registry_player
 from pool_env.records.saved import RECORDED, GameRecorder, save_game
 from pool_env.rules import codes
@@ -29,6 +29,15 @@ ELO_METHOD = ("Bradley-Terry maximum likelihood on the Elo scale (P(i beats j) =
 NOISES = {"none": None, "olympiad": "olympiad"}
 BUILTIN = ("random", "ghost_ball", "search", "learned", "search+value")  # the registry's players, by name
 TIMING_KEYS = ("seconds", "seconds_per_decision", "wall_seconds")  # the only entries that differ between runs
+
+
+ENV_IDS = {"nine_ball": "PoolNineBall-v0", "eight_ball": "PoolEightBall-v0", "three_cushion": "ThreeCushion-v0"}
+
+
+def game_env(game: str, **kwargs):
+    """The env a tournament game of `game` is played in: PoolGameEnv, or ThreeCushionEnv (to its
+    default distance, 15 points) for three-cushion."""
+    return ThreeCushionEnv(**kwargs) if game == "three_cushion" else PoolGameEnv(game, **kwargs)
 
 
 class PlayerError(Exception):
@@ -147,7 +156,7 @@ def make_players(specs: list[str], game: str, noise) -> tuple[dict, dict]:
     """({name: agent}, {name: why it was skipped}) for one game and noise setting. A name no
     player answers to is an error (ValueError naming the choices); a player that is built but
     fails its warm-up is skipped, saying why."""
-    env = PoolGameEnv(game, opponent=None, noise=noise)
+    env = game_env(game, opponent=None, noise=noise)
     players, skipped = {}, {}
     for spec in specs:
         name = display_name(spec)
@@ -177,7 +186,7 @@ def play_game(game: str, breaker: str, other: str, players: dict, timers: dict, 
     for slot, name in enumerate((breaker, other)):
         if hasattr(players[name], "reset"):
             players[name].reset(seed=player_seed(seed, slot))
-    env = PoolGameEnv(game, opponent=timers[other], noise=noise, agent_breaks=True, max_shots=max_shots)
+    env = game_env(game, opponent=timers[other], noise=noise, agent_breaks=True, max_shots=max_shots)
     recorder = None if save_to is None else game_recorder(env, seed, noise, max_shots)
     obs, _ = env.reset(seed=seed)
     shots, done, info, forfeit = [], False, {}, None
@@ -201,8 +210,11 @@ def play_game(game: str, breaker: str, other: str, players: dict, timers: dict, 
         return {"seed": int(seed), "players": [breaker, other], "breaker": breaker, "winner": winner,
                 "end_reason": reason, "forfeit": forfeit.name, "shots": shots}
     winner = {0: breaker, 1: other}.get(info.get("winner"))  # the agent is player 0; -1: no winner
-    reason = codes.decode("end_reason", info["end_reason"]) if winner is not None \
-        else ("error" if info.get("error") else "max_shots")
+    if winner is not None:  # three-cushion's infos carry no end-reason code: its last ruling says
+        reason = codes.decode("end_reason", info["end_reason"]) if "end_reason" in info \
+            else env.step_records[-1].ruling.end_reason
+    else:
+        reason = "error" if info.get("error") else ("draw" if info.get("draw") else "max_shots")
     return {"seed": int(seed), "players": [breaker, other], "breaker": breaker, "winner": winner,
             "end_reason": reason, "shots": shots}
 
@@ -221,8 +233,10 @@ def game_recorder(env, seed: int, noise, max_shots: int):
     """A `pool_env.records.saved.GameRecorder` for a tournament game: the breaker's actions and the other
     player's (as the recorded opponent), under the env id and kwargs that replay it exactly
     (`pool_env.records.replay`, `python -m pool_env.records.replay`: the breaker is the agent)."""
-    env_id = {"nine_ball": "PoolNineBall-v0", "eight_ball": "PoolEightBall-v0"}[env.game.mode]
+    env_id = ENV_IDS[env.game.mode]
     kwargs = {"game": env.game.mode, "opponent": RECORDED, "noise": noise, "agent_breaks": True, "max_shots": max_shots}
+    if env.game.mode == "three_cushion":  # ThreeCushion-v0 plays one game
+        del kwargs["game"]
     return GameRecorder(env, seed, record_opponent=True, env_id=env_id, env_kwargs=kwargs)
 
 
@@ -268,8 +282,8 @@ def tournament(game: str = "nine_ball", players=("random", "ghost_ball"), games:
     """The whole tournament (the content of tournament.json): one round-robin per noise setting
     (`noise`: "none", "olympiad" or "both"), every pairing on seeds seed .. seed + games - 1.
     `save_games`: a folder; every game is saved in <folder>/<game>/<noise>/ (`play_pairing`)."""
-    if game not in GAME_BALLS:
-        raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
+    if game not in ENV_IDS:
+        raise ValueError(f"unknown game {game!r}; choose one of {', '.join(ENV_IDS)}")
     settings = list(NOISES) if noise == "both" else [noise]
     if any(s not in NOISES for s in settings):
         raise ValueError(f"noise must be 'none', 'olympiad' or 'both', got {noise!r}")
@@ -345,10 +359,10 @@ def main(argv=None) -> dict:
     """The command: the options checked before any game (a bad one, or an error later, ends in one
     line on stderr and exit status 2; --debug or POOL_ENV_DEBUG=1: the traceback); returns the result."""
     parser = argparse.ArgumentParser(prog=PROG, description=__doc__)
-    parser.add_argument("--game", default="nine_ball", choices=("nine_ball", "eight_ball"))
+    parser.add_argument("--game", default="nine_ball", choices=tuple(ENV_IDS))
     parser.add_argument("--players", default="random,ghost_ball,search,learned,search+value",
-                        help="comma list: random, ghost_ball, search, learned, search+value (9-ball), or an SB3 "
-                        "model's path (runs/<name>/model.zip)")
+                        help="comma list: random, ghost_ball, search, learned, search+value (9-ball), carom_search "
+                        "(three-cushion), or an SB3 model's path (runs/<name>/model.zip)")
     parser.add_argument("--games", type=int, default=20, help="games per pairing (breaks alternate)")
     parser.add_argument("--noise", default="both", choices=("none", "olympiad", "both"))
     parser.add_argument("--seed", type=int, default=0, help="game k of every pairing is played on seed + k")
@@ -386,7 +400,7 @@ def check_args(args, specs: list[str]) -> None:
         raise ValueError(f"--players names {', '.join(twice)} more than once")
     if len(names) < 2:
         raise ValueError(f"--players needs at least two players, got {', '.join(names) or 'none'}")
-    env = PoolGameEnv(args.game, opponent=None)
+    env = game_env(args.game, opponent=None)
     for spec in specs:
         try:
             make_player(spec, env)  # the name resolved and the player built; its warm-up (a compile) waits

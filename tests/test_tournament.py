@@ -109,7 +109,8 @@ def test_deterministic_apart_from_timings(run):
 def test_an_unknown_player_is_an_error_naming_the_choices():
     with pytest.raises(ValueError, match="unknown player 'no/such/model.zip'"):
         tour.make_players(["random", "no/such/model.zip"], "nine_ball", None)
-    with pytest.raises(ValueError, match="unknown player 'serch'; choose one of ghost_ball, learned, random, search"):
+    choices = "carom_search, ghost_ball, learned, random, search"
+    with pytest.raises(ValueError, match=f"unknown player 'serch'; choose one of {choices}"):
         tour.tournament("nine_ball", ["random", "serch"], games=1, noise="none")
 
 

@@ -11,6 +11,7 @@ from .actions import (
     encode_action,
     encoded_entries,
 )
+from .carom_observation import CAROM_OBSERVATION_SIZE, CaromView, carom_observation, decode_carom_observation
 from .core import Game, GameSnapshot, ShotRecord, StruckShot, play_batch, simulate_struck, simulate_struck_batch
 from .modes import MODES, RULES_MODES, Mode, mode_of
 from .observation import (
@@ -36,4 +37,5 @@ __all__ = [
     "decode_observation", "game_observation", "decode_game_observation", "game_observation_size",
     "place_cue_ball", "placement_area", "CONTACT_TIME", "MAX_FORCE", "MAX_SPEED", "MAX_TIP_OFFSET",
     "NOISE_PRESETS", "noise_of", "noisy_shot",
+    "CAROM_OBSERVATION_SIZE", "CaromView", "carom_observation", "decode_carom_observation",
 ]

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import copy
-import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -78,7 +77,7 @@ class ShotRecord:
     def outcome(self) -> rules.ShotOutcome | None:
         """What the rules see of the shot (`rules.ShotOutcome`, read once); None for a failed shot."""
         if self.judged is None and self.result is not None:
-            self.judged = rules.outcome_from_result(self.result)
+            self.judged = rules.read_outcome(self.state_before, self.result)
         return self.judged
 
     @property
@@ -168,7 +167,7 @@ class Game:
         if layout not in LAYOUTS:
             raise ValueError(f"unknown action layout {layout!r}; choose one of {', '.join(LAYOUTS)}")
         self.layout: ActionLayout = LAYOUTS[layout]
-        if self.layout.placement != (self._mode.rules is not None):
+        if self.layout.placement != self._mode.placement:
             raise ValueError(f"layout {layout!r} does not fit the {mode} mode")
         if randomize_cue and self._mode.rules is not None:
             raise ValueError("randomize_cue is for the break and run modes (the rules place the cue ball)")
@@ -331,16 +330,14 @@ class Game:
     def _check_state(self, state, balls):
         if not self.has_rules:
             raise ValueError(f"the {self.mode} mode has no rules' state")
-        if not isinstance(state, rules.GameState) or state.kind != self._mode.rules:
+        if not isinstance(state, rules.STATES) or state.kind != self._mode.rules:
             raise ValueError(f"state must be a {self._mode.rules} rules.GameState, got {state!r}")
         on_table = self._objects_on(balls)
         if state.on_table != on_table:
             raise ValueError(f"state.on_table {sorted(state.on_table)} is not the layout's {sorted(on_table)}")
 
     def _open_table(self, balls, shooter, ball_in_hand):
-        state = rules.new_game(self._mode.rules, breaker=0, **self.rule_options)
-        return dataclasses.replace(state, on_table=self._objects_on(balls), is_break=False, shooter=shooter,
-                                   ball_in_hand="anywhere" if ball_in_hand else None)
+        return rules.open_table(self._mode.rules, self._objects_on(balls), shooter, ball_in_hand, **self.rule_options)
 
     def _cue_start(self):
         (x0, x1), (y0, y1) = CUE_AREA
@@ -413,7 +410,8 @@ class Game:
         if self.noise is not None:
             force, tip, elevation = noisy_shot(force, tip, self.noise, self.rng if rng is None else rng, elevation)
         try:  # the physics for an elevated cue: the slate's e_t and mu_t
-            struck = strike(placed, force, tip, CONTACT_TIME, elevation=elevation, physics=self.physics)
+            struck = strike(placed, force, tip, CONTACT_TIME, ball=rules.cue_ball(self._state), elevation=elevation,
+                            physics=self.physics)
         except ValueError as exc:
             struck = exc
         return StruckShot(shot, self.shooter, hand, called, placed, force, tip, struck, action, elevation, ball)
@@ -445,7 +443,7 @@ class Game:
             cleared = self.table.pockets.shape[0] > 0 and bool(final.pocketed[1:].all())
             over = self._mode.one_shot or bool(final.pocketed[0]) or cleared
             return ShotRecord(*head, final, result, None, None, over, elevation=struck.elevation)
-        outcome = rules.outcome_from_result(result)
+        outcome = rules.read_outcome(self._state, result)
         key = (outcome, struck.called_pocket, struck.called_ball)
         judged = None if rulings is None else rulings.get(key)
         if judged is None:
@@ -453,8 +451,8 @@ class Game:
             if rulings is not None:
                 rulings[key] = judged
         state, ruling = judged
-        balls = rules.spot_balls(final, self.table, ruling.balls_to_spot) if ruling.balls_to_spot else final
-        return ShotRecord(*head, balls, result, ruling, state, state.winner is not None, judged=outcome,
+        balls = rules.respot(state, final, self.table, ruling) if ruling.balls_to_spot else final
+        return ShotRecord(*head, balls, result, ruling, state, state.over, judged=outcome,
                           elevation=struck.elevation, called_ball=struck.called_ball)
 
     # --- branching ------------------------------------------------------------------------------

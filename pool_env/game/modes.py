@@ -23,6 +23,12 @@ class Mode:
     label: str
     table: Callable[[], Table] = Table.eight_foot  # the table a Game of this mode gets when given none
     physics: Callable[[], Physics] = Physics.standard  # ... and its physics
+    cue_in_hand: bool = True  # the rules give ball in hand (the layout has placement entries); False: carom
+
+    @property
+    def placement(self) -> bool:
+        """The mode's action layouts carry the ball-in-hand entries: a rules game with ball in hand."""
+        return self.rules is not None and self.cue_in_hand
 
     def rack(self, table, seed, cue_xy=None):
         """The starting balls, racked with `seed` (WPA racking for the rules' games)."""
@@ -30,6 +36,8 @@ class Mode:
             return rules.nine_ball_rack(table, seed=seed)
         if self.rules == "eight_ball":
             return rules.eight_ball_rack(table, seed=seed)
+        if self.rules == "three_cushion":  # the breaker plays the white (UMB 3.3): one starting position
+            return rules.starting_position(table)
         return rack(table, seed=seed, cue_xy=cue_xy)
 
 
@@ -38,6 +46,8 @@ MODES = {
     "run": Mode("run", 16, None, one_shot=False, layout="cue", label="break and run"),
     "nine_ball": Mode("nine_ball", 10, "nine_ball", one_shot=False, layout="nine_ball", label="9-ball"),
     "eight_ball": Mode("eight_ball", 16, "eight_ball", one_shot=False, layout="eight_ball", label="8-ball"),
+    "three_cushion": Mode("three_cushion", 3, "three_cushion", one_shot=False, layout="cue_spin", label="three-cushion",
+                          table=Table.carom, physics=Physics.carom, cue_in_hand=False),
 }
 RULES_MODES = tuple(name for name, mode in MODES.items() if mode.rules is not None)
 

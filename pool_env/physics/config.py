@@ -105,6 +105,19 @@ class Physics:
         "Illustrated Principles of Pool and Billiards", appendix)."""
         return cls()
 
+    @classmethod
+    def carom(cls) -> Physics:
+        """Carom cloth and cushions (three-cushion): pooltool's published three-cushion ball
+        parameters (pooltool.objects.ball.params, BILLIARD_GENERIC, the default of its
+        THREECUSHION game) for the cushion, e_c = 0.85 and f_c = 0.5 (a carom cushion grips the
+        ball harder than a pool cushion's 0.2: running English off a rail is the game's tool);
+        the cloth as the standard preset (Alciatore, "Illustrated Principles of Pool and
+        Billiards", appendix: mu_s 0.2, mu_r 0.01; pooltool lists u_s = 0.5 there, which its
+        source calls not well researched, and a sliding friction that high would stop draw
+        and follow almost at once); e_b 0.95 as the standard (phenolic balls alike)."""
+        return cls(ball_ball="frictional", cushion="han2005", mu_s=0.2, mu_r=0.01, mu_sp=0.01, e_b=0.95,
+                   e_c=0.85, f_c=0.5)
+
     def can_create_spin(self) -> bool:
         """True when a collision model can give a ball z-spin it did not have."""
         return self.ball_ball == "frictional" or self.cushion in ("han2005", "mathavan2010")

@@ -18,6 +18,16 @@ BALL_MASS = 0.170097
 # The seed report's ball (its table 3.1).
 SEED_RADIUS = 0.025
 SEED_MASS = 0.15
+# Carom ball (UMB Sports Rules 2.2, "Balls": 61-61.5 mm in diameter, 205-220 g): the 61.5 mm
+# diameter of tournament sets and the 210 g typical weight (also pooltool's BILLIARD_GENERIC
+# ball mass, pooltool.objects.ball.params; its radius there, 30.48 mm, is 2.4 in, below the
+# UMB range, so we keep the UMB figure).
+CAROM_RADIUS = 0.03075
+CAROM_MASS = 0.210
+# The carom table (UMB Sports Rules 2.1, "Billiard, cushion, cloth"): a free playing surface of
+# 2.84 x 1.42 m (+-5 mm), cushions 37 mm (+-1 mm) high at their frontmost point (the nose).
+CAROM_LENGTH, CAROM_WIDTH = 2.84, 1.42
+CAROM_CUSHION_HEIGHT = 0.037
 
 
 
@@ -353,6 +363,13 @@ class Table:
         pockets = [(0.0, 0.0, corner), (L, 0.0, corner), (0.0, W, corner), (L, W, corner),
                    (L / 2, 0.0, side), (L / 2, W, side)]
         return cls(L, W, pockets, cushion_height=0.635 * 2 * BALL_RADIUS)
+
+    @classmethod
+    def carom(cls) -> Table:
+        """The match carom table (UMB Sports Rules 2.1): a 2.84 x 1.42 m playing surface inside
+        the cushion noses, no pockets, the nose 37 mm above the cloth (60 % of a 61.5 mm carom
+        ball's diameter: the ball meets it above its equator, as the han2005 model needs)."""
+        return cls(CAROM_LENGTH, CAROM_WIDTH, (), cushion_height=CAROM_CUSHION_HEIGHT)
 
 
 def _place_pocket(number, pocket, sides, cuts, shapes, size):

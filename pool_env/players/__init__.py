@@ -6,6 +6,7 @@ from importlib.metadata import entry_points
 from pathlib import Path
 
 from .base import Agent, RandomAgent, game_of
+from .carom_search import CaromSearchAgent
 from .game_ghost_ball import GameGhostBallAgent
 from .ghost_ball import BreakAgent, GhostBallAgent, Pot, cue_action
 
@@ -83,6 +84,8 @@ def _ghost_ball(env, seed=None):
 
 register_player("random", _random)
 register_player("ghost_ball", _ghost_ball)
+register_player("carom_search", CaromSearchAgent.from_env)
 
-__all__ = ["Agent", "RandomAgent", "BreakAgent", "GhostBallAgent", "GameGhostBallAgent", "Pot", "cue_action",
+__all__ = ["Agent", "RandomAgent", "CaromSearchAgent",
+           "BreakAgent", "GhostBallAgent", "GameGhostBallAgent", "Pot", "cue_action",
            "game_of", "make_player", "register_player", "player_names", "is_model_path"]

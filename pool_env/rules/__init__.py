@@ -1,20 +1,27 @@
-"""pool_env.rules: 9-ball and 8-ball by the WPA World Standardized Rules, pure Python (docs/rules.md)."""
+"""pool_env.rules: 9-ball and 8-ball (WPA World Standardized Rules), three-cushion (UMB), pure Python."""
 
 from __future__ import annotations
 
+import dataclasses
+
 from . import codes
+from .carom_outcome import CaromOutcome, carom_outcome
 from .eight_ball import EightBall
 from .nine_ball import NineBall
 from .outcome import ShotOutcome, outcome_from_result
 from .racks import eight_ball_rack, foot_spot, head_spot, head_string_x, nine_ball_rack, spot_balls
 from .state import BALL_IN_HAND, END_REASONS, FOULS, GROUPS, GameState, Ruling
+from .three_cushion import CaromRuling, ThreeCushion, ThreeCushionState, carom_spots, starting_position
 
-KINDS = {"nine_ball": NineBall, "eight_ball": EightBall}
+KINDS = {"nine_ball": NineBall, "eight_ball": EightBall, "three_cushion": ThreeCushion}
+STATES = (GameState, ThreeCushionState)  # the rules' state classes: judge, legal_targets and the game take either
 
 __all__ = [
     "new_game", "judge", "legal_targets", "GameState", "Ruling", "ShotOutcome", "outcome_from_result",
     "NineBall", "EightBall", "FOULS", "END_REASONS", "BALL_IN_HAND", "GROUPS", "KINDS",
     "nine_ball_rack", "eight_ball_rack", "spot_balls", "head_string_x", "foot_spot", "head_spot", "codes",
+    "ThreeCushion", "ThreeCushionState", "CaromOutcome", "CaromRuling", "carom_outcome", "carom_spots",
+    "starting_position", "STATES", "read_outcome", "cue_ball", "respot", "open_table",
 ]
 
 
@@ -22,7 +29,7 @@ def new_game(kind, breaker: int = 0, **options) -> GameState:
     """A new game: `kind` "nine_ball" or "eight_ball" (with the rule set's options, e.g.
     `three_foul_rule=False`, `illegal_break="table_in_position"`), or a rule set instance;
     `breaker` (0 or 1) breaks with the cue ball in hand behind the head string."""
-    if isinstance(kind, (NineBall, EightBall)):
+    if isinstance(kind, (NineBall, EightBall, ThreeCushion)):
         if options:
             raise TypeError(f"options go to the rule set's constructor, not with an instance: {sorted(options)}")
         rules = kind
@@ -35,21 +42,56 @@ def new_game(kind, breaker: int = 0, **options) -> GameState:
     return rules.new_game(breaker)
 
 
-def judge(state: GameState, outcome: ShotOutcome, called_pocket: int | None = None,
+def judge(state: GameState | ThreeCushionState, outcome: ShotOutcome | CaromOutcome, called_pocket: int | None = None,
           called_ball: int | None = None) -> tuple[GameState, Ruling]:
     """(the next GameState, the Ruling) after the shot `outcome` played from `state`, by
     `state.rules`. 8-ball only: `called_pocket` names the pocket, `called_ball` the ball
     (read by `EightBall(calling="ball_and_pocket")`; the default "eight_only" calls only the
     8's pocket). Raises ValueError for a finished game, a shot naming balls not on the
     table, or a bad called pocket or ball."""
-    if not isinstance(state, GameState):
-        raise TypeError(f"state must be a pool_env.rules.GameState, got {type(state).__name__}")
+    if not isinstance(state, STATES):
+        raise TypeError(f"state must be a pool_env.rules.GameState or ThreeCushionState, got {type(state).__name__}")
     return state.rules.judge(state, outcome, called_pocket, called_ball)
 
 
 def legal_targets(state: GameState) -> frozenset:
     """The object balls the shooter may hit first now (9-ball: the lowest on the table; 8-ball:
     any on the break, any but the 8 on an open table, his group, then the 8)."""
-    if not isinstance(state, GameState):
-        raise TypeError(f"state must be a pool_env.rules.GameState, got {type(state).__name__}")
+    if not isinstance(state, STATES):
+        raise TypeError(f"state must be a pool_env.rules.GameState or ThreeCushionState, got {type(state).__name__}")
     return state.rules.legal_targets(state)
+
+
+def read_outcome(state, result):
+    """What `state`'s rules read of a simulated shot: a `CaromOutcome` (the shooter's cue ball's
+    contacts) for three-cushion, else the `ShotOutcome` (`outcome_from_result`)."""
+    if isinstance(state, ThreeCushionState):
+        return carom_outcome(result, state.cue_ball)
+    return outcome_from_result(result)
+
+
+def cue_ball(state) -> int:
+    """The index of the ball the shooter strikes: his own in three-cushion, else 0 (also without rules)."""
+    return state.cue_ball if isinstance(state, ThreeCushionState) else 0
+
+
+def respot(state, balls, table, ruling):
+    """The balls after a shot ruled `ruling` from which `state` (the next state) follows, with
+    the balls the ruling puts back: the starting position in three-cushion, else `spot_balls`."""
+    if isinstance(state, ThreeCushionState):
+        return state.rules.respot(state, balls, table)
+    return spot_balls(balls, table, ruling.balls_to_spot)
+
+
+def open_table(kind, on_table, shooter: int, ball_in_hand: bool, **options):
+    """A game of `kind` under way from a layout: player `shooter` to shoot, no break (the
+    pool games: an open table with `on_table` on it, ball in hand anywhere if asked; three-
+    cushion: scores 0-0 in the first inning, no starting stroke)."""
+    state = new_game(kind, breaker=0, **options)
+    if isinstance(state, ThreeCushionState):
+        if ball_in_hand:
+            raise ValueError("three-cushion has no ball in hand")
+        return ThreeCushionState(state.rules, shooter=shooter, starter=shooter,
+                                 innings=(1, 0) if shooter == 0 else (0, 1), is_break=False)
+    return dataclasses.replace(state, on_table=on_table, is_break=False, shooter=shooter,
+                               ball_in_hand="anywhere" if ball_in_hand else None)

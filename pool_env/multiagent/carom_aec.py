@@ -1,0 +1,106 @@
+"""`ThreeCushionAEC`: three-cushion (UMB rules) between two agents as a PettingZoo AEC env (three_cushion_v0)."""
+
+from __future__ import annotations
+
+import gymnasium as gym
+import numpy as np
+from gymnasium.utils import seeding
+from pettingzoo import AECEnv
+
+from ..game import CAROM_OBSERVATION_SIZE, Game, carom_observation
+
+AGENTS = ("player_0", "player_1")
+
+
+class ThreeCushionAEC(AECEnv):
+    """Three-cushion between `player_0` and `player_1` in PettingZoo's AEC API: one `step` is one
+    shot of `agent_selection`, who keeps the table while he scores (the rules pass the inning
+    on a miss). `player_0` plays the first inning, with the white (`reset(options={"breaker": 1})`
+    for the other).
+
+    Arguments: `noise`, `points` (15), `innings_limit`, `equalizing`, `max_shots` (400 in all),
+    `table`, `physics`. Actions `Box(-1, 1, (4,))` (the "cue_spin" layout, striking the
+    shooter's own cue ball); observations `pool_env.game.carom_observation` from each agent's
+    side. Rewards: +1 to the shooter per point, -1 to the other. The game's end terminates
+    both agents; the shot limit or a shot that could not be simulated truncates them. Infos
+    (both agents): `shooter`, `point`, `scores`, `innings`, `winner` (-1 none, else k of
+    `player_k`), `draw`, `error`."""
+
+    metadata = {"name": "three_cushion_v0", "render_modes": [], "is_parallelizable": False, "render_fps": 30}
+
+    def __init__(self, noise=None, points: int | None = 15, innings_limit: int | None = None, equalizing: bool = True,
+                 max_shots: int = 400, table=None, physics=None, render_mode=None):
+        super().__init__()
+        if render_mode is not None:
+            raise ValueError(f"three_cushion_v0 has no render mode yet, got {render_mode!r}")
+        if isinstance(max_shots, bool) or not isinstance(max_shots, int) or max_shots < 1:
+            raise ValueError(f"max_shots must be an integer >= 1, got {max_shots!r}")
+        self.game = Game("three_cushion", table=table, physics=physics, noise=noise, points=points,
+                         innings_limit=innings_limit, equalizing=equalizing)
+        self.max_shots, self.render_mode = max_shots, None
+        self.possible_agents = list(AGENTS)
+        self.observation_spaces = {a: gym.spaces.Box(-1.0, 1.0, (CAROM_OBSERVATION_SIZE,), np.float32) for a in AGENTS}
+        self.action_spaces = {a: gym.spaces.Box(-1.0, 1.0, (self.game.layout.size,), np.float32) for a in AGENTS}
+        self.np_random, self.shots, self._started, self.agents = None, 0, False, []
+
+    def observation_space(self, agent):
+        return self.observation_spaces[agent]
+
+    def action_space(self, agent):
+        return self.action_spaces[agent]
+
+    def reset(self, seed=None, options=None):
+        options = dict(options or {})
+        if set(options) - {"breaker"}:
+            raise ValueError(f"three_cushion_v0's reset takes only the 'breaker' option, got {sorted(options)}")
+        if seed is not None or self.np_random is None:
+            self.np_random, _ = seeding.np_random(seed)
+        self.game.reset(rng=self.np_random, breaker=int(options.get("breaker", 0)))
+        self.shots, self._started, self.agents = 0, True, list(AGENTS)
+        self.rewards = dict.fromkeys(AGENTS, 0.0)
+        self._cumulative_rewards = dict.fromkeys(AGENTS, 0.0)
+        self.terminations = dict.fromkeys(AGENTS, False)
+        self.truncations = dict.fromkeys(AGENTS, False)
+        self.infos = {a: self._info(self.game.shooter, False, False) for a in AGENTS}
+        self.agent_selection = AGENTS[self.game.shooter]
+
+    def step(self, action):
+        if not self.agents:
+            raise RuntimeError("call reset() before step()" if not self._started else "every agent is done; reset()")
+        agent = self.agent_selection
+        if self.terminations[agent] or self.truncations[agent]:
+            self._was_dead_step(action)
+            return
+        record = self.game.play(action)
+        self.shots += 1
+        self._cumulative_rewards[agent] = 0.0
+        self.rewards = dict.fromkeys(AGENTS, 0.0)
+        point = record.error is None and bool(record.ruling.point)
+        if point:
+            for other in AGENTS:
+                self.rewards[other] = 1.0 if other == agent else -1.0
+        if self.game.over:
+            self.terminations = dict.fromkeys(AGENTS, True)
+        elif record.error is not None or self.shots >= self.max_shots:
+            self.truncations = dict.fromkeys(AGENTS, True)
+        self.infos = {a: self._info(record.shooter, point, record.error is not None) for a in AGENTS}
+        self.agent_selection = AGENTS[self.game.shooter]
+        self._accumulate_rewards()
+
+    def _info(self, shooter, point, error) -> dict:
+        state = self.game.state
+        return {"shooter": int(shooter), "point": bool(point), "scores": np.array(state.scores),
+                "innings": np.array(state.innings), "winner": -1 if state.winner is None else int(state.winner),
+                "draw": bool(state.ended and state.winner is None), "error": bool(error)}
+
+    def observe(self, agent):
+        if not self._started:
+            raise RuntimeError("call reset() before observe()")
+        g = self.game
+        return carom_observation(g.balls, g.state, AGENTS.index(agent), self.shots, self.max_shots, g.table)
+
+    def render(self):
+        gym.logger.warn("three_cushion_v0 has no render mode yet")
+
+    def close(self):
+        pass
