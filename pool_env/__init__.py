@@ -20,6 +20,8 @@ ENV_IDS = {
                          {"game": "eight_ball"}),
     "ThreeCushion-v0": ("pool_env.envs.carom_env:ThreeCushionEnv", "pool_env.envs.carom_vector:ThreeCushionVectorEnv",
                         {}),
+    "Snooker-v0": ("pool_env.envs.game_env:PoolGameEnv", "pool_env.envs.vector:PoolGameVectorEnv",
+                   {"game": "snooker", "opponent": "snooker", "max_shots": 300}),
 }
 for _id, (_entry, _vector, _kwargs) in ENV_IDS.items():
     if _id not in gymnasium.registry:

@@ -193,7 +193,7 @@ def test_native_vector_env_equals_the_sync_one(env_id, opponent, mode):
 
 
 @pytest.mark.parametrize("kwargs, match", [
-    (dict(game="snooker"), "unknown game 'snooker'"),
+    (dict(game="straight_pool"), "unknown game 'straight_pool'"),
     (dict(opponent="shark"), "unknown opponent 'shark'"),
     (dict(noise="loud"), "unknown noise preset 'loud'"),
     (dict(noise={"angle": -1.0}), "finite and >= 0"),

@@ -10,6 +10,7 @@ import pytest
 import pool_env
 from pool_env import rules
 from pool_env.rules import codes
+from pool_env.rules.snooker import SNOOKER_END_REASONS, SNOOKER_FOULS
 
 BREAK_KEYS = {"pocketed", "first_contact", "cushion_hits", "scratch", "events", "shot_duration", "balls_left",
               "error"}
@@ -26,7 +27,7 @@ def signature(info: dict) -> dict:
     return out
 
 
-GAME_IDS = ("PoolNineBall-v0", "PoolEightBall-v0")
+GAME_IDS = ("PoolNineBall-v0", "PoolEightBall-v0", "Snooker-v0")
 CAROM_KEYS = {"points", "opponent_points", "scores", "innings", "opponent_shots", "winner", "draw", "error",
               "pocketed"}  # ThreeCushion-v0's
 
@@ -74,8 +75,10 @@ def test_reset_info_describes_no_shot():
 
 
 def test_code_tables_follow_the_rules_names_with_none_first():
-    assert codes.FOUL_CODES == (None, *rules.FOULS)
-    assert codes.END_REASON_CODES == (None, *rules.END_REASONS)
+    # the pool games' names keep their codes; snooker's own names follow them, each name once
+    snooker_fouls = tuple(f for f in SNOOKER_FOULS if f not in rules.FOULS)
+    assert codes.FOUL_CODES == (None, *rules.FOULS, *snooker_fouls) and "wrong_ball_potted" in snooker_fouls
+    assert codes.END_REASON_CODES == (None, *rules.END_REASONS, *SNOOKER_END_REASONS)
     assert codes.BALL_IN_HAND_CODES == (None, "anywhere", "behind_head_string")
     assert codes.TRUNCATION_CODES == (None, "shot_limit", "opponent_shot_limit", "shot_error")
     for key, table in codes.CODE_TABLES.items():

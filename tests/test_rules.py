@@ -373,7 +373,7 @@ def test_bad_inputs_raise():
     with pytest.raises(ValueError, match="not on the table"):
         judge(nine(range(3, 10)), shot(1))
     with pytest.raises(ValueError, match="unknown game"):
-        new_game("snooker")
+        new_game("straight_pool")
     with pytest.raises(ValueError, match="breaker"):
         new_game("nine_ball", breaker=2)
     with pytest.raises(ValueError, match="illegal_break"):

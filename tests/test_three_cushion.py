@@ -72,7 +72,8 @@ def test_a_ball_off_the_table_is_a_foul_and_the_balls_are_set_up_again():
     after, ruling = R.judge(s, hit(2, 1, before=3, off=(2,)))
     assert ruling.foul == "ball_off_table" and not ruling.point and after.scores == (1, 0)
     assert ruling.turn_passed and ruling.balls_to_spot == (0, 1, 2)
-    balls = R.respot(after, R.starting_position(Table.carom()), Table.carom(), ruling)
+    balls, settled = R.settle(after, ruling, R.starting_position(Table.carom()), Table.carom())
+    assert settled == after
     assert tuple(balls.xy[1]) == R.carom_spots(Table.carom())["start_right"]  # the incoming player's yellow
 
 

@@ -34,6 +34,7 @@ _LEVEL = {
     "cue": ActionLayout("cue", 2, spin=False),
     "cue_spin": ActionLayout("cue_spin", 4, spin=True),
     "nine_ball": ActionLayout("nine_ball", 6, spin=True, placement=True),
+    "snooker": ActionLayout("snooker", 6, spin=True, placement=True),  # entries 4-5 map onto the D
     "eight_ball": ActionLayout("eight_ball", 7, spin=True, placement=True, called_pocket=True),
     # `Game("eight_ball", layout="eight_ball_call", calling="ball_and_pocket")`: a ball and a pocket every shot.
     "eight_ball_call": ActionLayout("eight_ball_call", 8, spin=True, placement=True, called_pocket=True,
@@ -118,8 +119,11 @@ def decode_entries(layout: ActionLayout, values, area=None, n_pockets: int = 6, 
     elevation = elevation_entry(a[-1]) if layout.elevation else 0.0
     place = None
     if layout.placement and area is not None:
-        x_lo, x_hi, y_lo, y_hi = area
-        place = (x_lo + 0.5 * (a[4] + 1.0) * (x_hi - x_lo), y_lo + 0.5 * (a[5] + 1.0) * (y_hi - y_lo))
+        if hasattr(area, "point"):  # a half circle (snooker's D: placement.HalfDisc)
+            place = area.point(a[4], a[5])
+        else:
+            x_lo, x_hi, y_lo, y_hi = area
+            place = (x_lo + 0.5 * (a[4] + 1.0) * (x_hi - x_lo), y_lo + 0.5 * (a[5] + 1.0) * (y_hi - y_lo))
     pocket = min(int((a[6] + 1.0) * 0.5 * n_pockets), n_pockets - 1) if layout.called_pocket else None
     ball = None
     if layout.called_ball and len(targets):
@@ -156,7 +160,9 @@ def action_entries(layout: ActionLayout, shot: Shot, area=None, n_pockets: int =
         entries += [shot.tip[0] / MAX_TIP_OFFSET, shot.tip[1] / MAX_TIP_OFFSET]
     if layout.placement:
         place = (0.0, 0.0)
-        if area is not None and shot.place is not None:
+        if area is not None and shot.place is not None and hasattr(area, "entries"):
+            place = area.entries(shot.place)
+        elif area is not None and shot.place is not None:
             x_lo, x_hi, y_lo, y_hi = area
             place = ((shot.place[0] - x_lo) / (x_hi - x_lo) * 2.0 - 1.0,
                      (shot.place[1] - y_lo) / (y_hi - y_lo) * 2.0 - 1.0)

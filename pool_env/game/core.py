@@ -12,7 +12,7 @@ from ..physics import BALL_RADIUS, Balls, Physics, Result, SimulationError, Tabl
 from ..physics.simulate import check_on_table
 from .actions import LAYOUTS, ActionLayout, decode_action, decode_entries, encode_action, encoded_entries
 from .modes import Mode, mode_of
-from .placement import place_cue_ball, placement_area
+from .placement import area_centre, place_cue_ball, placement_area
 from .shot import CONTACT_TIME, Shot, noise_of, noisy_shot
 
 SHOT_ERRORS = (SimulationError, ValueError)  # a shot that cannot be struck or simulated: recorded, not raised
@@ -316,7 +316,7 @@ class Game:
             return balls
         if balls.pocketed[0]:
             raise ValueError("balls: the cue ball (ball 0) must be on the table")
-        last = {"nine_ball": 9, "eight_ball": 8}.get(self._mode.rules)
+        last = {"nine_ball": 9, "eight_ball": 8, "snooker": 21}.get(self._mode.rules)
         if last is not None and balls.pocketed[last]:
             raise ValueError(f"balls: the {last} must be on the table (the game would be over)")
         check_on_table(balls, self.table, self.physics)
@@ -391,8 +391,7 @@ class Game:
         if hand is not None:
             wanted = shot.place
             if wanted is None:
-                x_lo, x_hi, y_lo, y_hi = self.placement_area()
-                wanted = placed.xy[0] if not placed.pocketed[0] else (0.5 * (x_lo + x_hi), 0.5 * (y_lo + y_hi))
+                wanted = placed.xy[0] if not placed.pocketed[0] else area_centre(self.placement_area())
             key = (float(wanted[0]), float(wanted[1]))
             found = None if placements is None else placements.get(key)
             if found is None:
@@ -451,7 +450,7 @@ class Game:
             if rulings is not None:
                 rulings[key] = judged
         state, ruling = judged
-        balls = rules.respot(state, final, self.table, ruling) if ruling.balls_to_spot else final
+        balls, state = rules.settle(state, ruling, final, self.table)
         return ShotRecord(*head, balls, result, ruling, state, state.over, judged=outcome,
                           elevation=struck.elevation, called_ball=struck.called_ball)
 

@@ -38,6 +38,8 @@ class Mode:
             return rules.eight_ball_rack(table, seed=seed)
         if self.rules == "three_cushion":  # the breaker plays the white (UMB 3.3): one starting position
             return rules.starting_position(table)
+        if self.rules == "snooker":
+            return rules.snooker_rack(table, seed=seed)
         return rack(table, seed=seed, cue_xy=cue_xy)
 
 
@@ -48,6 +50,8 @@ MODES = {
     "eight_ball": Mode("eight_ball", 16, "eight_ball", one_shot=False, layout="eight_ball", label="8-ball"),
     "three_cushion": Mode("three_cushion", 3, "three_cushion", one_shot=False, layout="cue_spin", label="three-cushion",
                           table=Table.carom, physics=Physics.carom, cue_in_hand=False),
+    # 0 the cue ball, 1-15 the reds, 16-21 yellow, green, brown, blue, pink, black (rules.snooker_spots).
+    "snooker": Mode("snooker", 22, "snooker", one_shot=False, layout="snooker", label="snooker", table=Table.snooker),
 }
 RULES_MODES = tuple(name for name, mode in MODES.items() if mode.rules is not None)
 

@@ -9,9 +9,10 @@ import numpy as np
 from .. import rules
 from ..physics import Balls, Table
 from ..physics.jit import helper, kernel
+from .snooker_observation import SNOOKER_OBS_SIZE, decode_snooker_observation, snooker_observation
 
 N_BALLS = 16  # the break envs' balls: the cue ball and 15 object balls
-GAME_BALLS = {"nine_ball": 10, "eight_ball": 16}  # balls in play, the cue ball included
+GAME_BALLS = {"nine_ball": 10, "eight_ball": 16, "snooker": 22}  # balls in play, the cue ball included
 
 
 # --- the break envs (PoolBreak-v0, PoolBreakRun-v0) ---------------------------------------------
@@ -54,6 +55,8 @@ def decode_observation(obs, table: Table):
 
 # --- the games (PoolNineBall-v0, PoolEightBall-v0, the two-player envs) -------------------------
 def game_observation_size(game: str) -> int:
+    if game == "snooker":
+        return SNOOKER_OBS_SIZE
     n = GAME_BALLS[game]
     return 3 * n + (n - 1) + 4 + (3 if game == "eight_ball" else 0) + 1
 
@@ -91,6 +94,8 @@ def viewed_balls(xy, pocketed, length, width, out):
 
 def game_observation(balls: Balls, state, viewer: int, shots: int, max_shots: int, table: Table) -> np.ndarray:
     """The observation of `viewer` (0 or 1) as PoolGameEnv documents it, float32 in [-1, 1]."""
+    if state.kind == "snooker":
+        return snooker_observation(balls, state, viewer, shots, max_shots, table)
     n = len(balls)
     out = np.empty(game_observation_size(state.kind), dtype=np.float32)
     observed_balls(balls.xy, balls.pocketed, table.length, table.width, out[: 3 * n].reshape(n, 3))
@@ -136,7 +141,9 @@ class GameView:
 
 
 def decode_game_observation(obs, game: str, table: Table) -> GameView:
-    """The `GameView` of a game observation of `game` ("nine_ball", "eight_ball")."""
+    """The `GameView` of a game observation of `game` ("nine_ball", "eight_ball"; "snooker": a `SnookerView`)."""
+    if game == "snooker":
+        return decode_snooker_observation(obs, table)
     n = GAME_BALLS[game]
     obs = np.asarray(obs, dtype=np.float64)
     if obs.shape != (game_observation_size(game),):

@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 
+from . import snooker  # the snooker table's figures
 from .bundles import bounds_of
 from .placement import first_misplaced
 from .pocket_shape import PocketShape, as_rows, build_pocket
@@ -370,6 +371,17 @@ class Table:
         the cushion noses, no pockets, the nose 37 mm above the cloth (60 % of a 61.5 mm carom
         ball's diameter: the ball meets it above its equator, as the han2005 model needs)."""
         return cls(CAROM_LENGTH, CAROM_WIDTH, (), cushion_height=CAROM_CUSHION_HEIGHT)
+
+    @classmethod
+    def snooker(cls) -> Table:
+        """The WPBSA 12 ft snooker table, 3569 x 1778 mm, with snooker pockets (`physics.snooker`: the
+        figures and their sources); x runs from the baulk (bottom) cushion at x = 0 to the top cushion."""
+        L, W = snooker.SNOOKER_LENGTH, snooker.SNOOKER_WIDTH
+        corner, middle = snooker.CORNER_MOUTH, snooker.MIDDLE_MOUTH
+        pockets = [(0.0, 0.0, corner), (L, 0.0, corner), (0.0, W, corner), (L, W, corner),
+                   (L / 2, 0.0, middle), (L / 2, W, middle)]
+        return cls(L, W, pockets, cushion_height=snooker.CUSHION_HEIGHT, corner_pocket=snooker.CORNER_POCKET,
+                   side_pocket=snooker.MIDDLE_POCKET)
 
 
 def _place_pocket(number, pocket, sides, cuts, shapes, size):

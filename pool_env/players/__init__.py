@@ -9,6 +9,7 @@ from .base import Agent, RandomAgent, game_of
 from .carom_search import CaromSearchAgent
 from .game_ghost_ball import GameGhostBallAgent
 from .ghost_ball import BreakAgent, GhostBallAgent, Pot, cue_action
+from .snooker import SnookerPlayer
 
 ENTRY_POINT_GROUP = "pool_env.players"  # other packages register players here (agents: search, model)
 MODEL_LOADER = "model"  # the registered name that loads a saved model's path
@@ -75,8 +76,14 @@ def _random(env, seed=None):
     return RandomAgent(game_of(env).layout.size, seed=seed)
 
 
+def _snooker(env, seed=None):
+    return SnookerPlayer.from_env(env, seed=seed)
+
+
 def _ghost_ball(env, seed=None):
     game = game_of(env)
+    if game.mode == "snooker":  # the ghost-ball player of snooker
+        return SnookerPlayer.from_env(game, seed=seed)
     if game.has_rules:
         return GameGhostBallAgent.from_env(game)
     return GhostBallAgent(game.table, game.physics, spin=game.layout.spin)
@@ -85,7 +92,8 @@ def _ghost_ball(env, seed=None):
 register_player("random", _random)
 register_player("ghost_ball", _ghost_ball)
 register_player("carom_search", CaromSearchAgent.from_env)
+register_player("snooker", _snooker)
 
-__all__ = ["Agent", "RandomAgent", "CaromSearchAgent",
+__all__ = ["Agent", "RandomAgent", "CaromSearchAgent", "SnookerPlayer",
            "BreakAgent", "GhostBallAgent", "GameGhostBallAgent", "Pot", "cue_action",
            "game_of", "make_player", "register_player", "player_names", "is_model_path"]

@@ -38,7 +38,7 @@ class GameGhostBallAgent(Agent):
 
     def __init__(self, game: str = "nine_ball", table: Table | None = None, physics: Physics | None = None,
                  radius: float = BALL_RADIUS):
-        if game not in GAME_BALLS:
+        if game not in GAME_BALLS or game == "snooker":  # snooker's ghost-ball player: players.snooker
             raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
         self.game, self.n_balls = game, GAME_BALLS[game]
         self.table = Table.eight_foot() if table is None else table

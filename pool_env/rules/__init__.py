@@ -10,18 +10,22 @@ from .eight_ball import EightBall
 from .nine_ball import NineBall
 from .outcome import ShotOutcome, outcome_from_result
 from .racks import eight_ball_rack, foot_spot, head_spot, head_string_x, nine_ball_rack, spot_balls
+from .snooker import Snooker, SnookerRuling, SnookerState
+from .snooker_free_ball import settle as settle_snooker
+from .snooker_spots import snooker_rack, spot_colours
 from .state import BALL_IN_HAND, END_REASONS, FOULS, GROUPS, GameState, Ruling
 from .three_cushion import CaromRuling, ThreeCushion, ThreeCushionState, carom_spots, starting_position
 
-KINDS = {"nine_ball": NineBall, "eight_ball": EightBall, "three_cushion": ThreeCushion}
-STATES = (GameState, ThreeCushionState)  # the rules' state classes: judge, legal_targets and the game take either
+KINDS = {"nine_ball": NineBall, "eight_ball": EightBall, "three_cushion": ThreeCushion, "snooker": Snooker}
+STATES = (GameState, ThreeCushionState, SnookerState)  # every rule set's state class (judge, legal_targets, Game)
 
 __all__ = [
     "new_game", "judge", "legal_targets", "GameState", "Ruling", "ShotOutcome", "outcome_from_result",
     "NineBall", "EightBall", "FOULS", "END_REASONS", "BALL_IN_HAND", "GROUPS", "KINDS",
     "nine_ball_rack", "eight_ball_rack", "spot_balls", "head_string_x", "foot_spot", "head_spot", "codes",
     "ThreeCushion", "ThreeCushionState", "CaromOutcome", "CaromRuling", "carom_outcome", "carom_spots",
-    "starting_position", "STATES", "read_outcome", "cue_ball", "respot", "open_table",
+    "starting_position", "STATES", "read_outcome", "cue_ball", "settle", "open_table",
+    "Snooker", "SnookerState", "SnookerRuling", "snooker_rack", "spot_colours",
 ]
 
 
@@ -29,7 +33,7 @@ def new_game(kind, breaker: int = 0, **options) -> GameState:
     """A new game: `kind` "nine_ball" or "eight_ball" (with the rule set's options, e.g.
     `three_foul_rule=False`, `illegal_break="table_in_position"`), or a rule set instance;
     `breaker` (0 or 1) breaks with the cue ball in hand behind the head string."""
-    if isinstance(kind, (NineBall, EightBall, ThreeCushion)):
+    if isinstance(kind, tuple(KINDS.values())):
         if options:
             raise TypeError(f"options go to the rule set's constructor, not with an instance: {sorted(options)}")
         rules = kind
@@ -50,7 +54,8 @@ def judge(state: GameState | ThreeCushionState, outcome: ShotOutcome | CaromOutc
     8's pocket). Raises ValueError for a finished game, a shot naming balls not on the
     table, or a bad called pocket or ball."""
     if not isinstance(state, STATES):
-        raise TypeError(f"state must be a pool_env.rules.GameState or ThreeCushionState, got {type(state).__name__}")
+        raise TypeError(f"state must be one of pool_env.rules.STATES (GameState, ThreeCushionState, SnookerState), "
+                        f"got {type(state).__name__}")
     return state.rules.judge(state, outcome, called_pocket, called_ball)
 
 
@@ -58,7 +63,8 @@ def legal_targets(state: GameState) -> frozenset:
     """The object balls the shooter may hit first now (9-ball: the lowest on the table; 8-ball:
     any on the break, any but the 8 on an open table, his group, then the 8)."""
     if not isinstance(state, STATES):
-        raise TypeError(f"state must be a pool_env.rules.GameState or ThreeCushionState, got {type(state).__name__}")
+        raise TypeError(f"state must be one of pool_env.rules.STATES (GameState, ThreeCushionState, SnookerState), "
+                        f"got {type(state).__name__}")
     return state.rules.legal_targets(state)
 
 
@@ -75,19 +81,27 @@ def cue_ball(state) -> int:
     return state.cue_ball if isinstance(state, ThreeCushionState) else 0
 
 
-def respot(state, balls, table, ruling):
-    """The balls after a shot ruled `ruling` from which `state` (the next state) follows, with
-    the balls the ruling puts back: the starting position in three-cushion, else `spot_balls`."""
+def settle(state, ruling, balls, table):
+    """(the balls, the state) after `judge`'s ruling is applied to the balls at rest, `state` the
+    state it ruled next: the balls it puts back (pool: `spot_balls`; three-cushion: the starting
+    position; snooker: `spot_colours`, the re-spotted black and the free ball)."""
+    if isinstance(state, SnookerState):
+        return settle_snooker(state, ruling, balls, table)
+    if not ruling.balls_to_spot:
+        return balls, state
     if isinstance(state, ThreeCushionState):
-        return state.rules.respot(state, balls, table)
-    return spot_balls(balls, table, ruling.balls_to_spot)
+        return state.rules.respot(state, balls, table), state
+    return spot_balls(balls, table, ruling.balls_to_spot), state
 
 
 def open_table(kind, on_table, shooter: int, ball_in_hand: bool, **options):
     """A game of `kind` under way from a layout: player `shooter` to shoot, no break (the
     pool games: an open table with `on_table` on it, ball in hand anywhere if asked; three-
-    cushion: scores 0-0 in the first inning, no starting stroke)."""
+    cushion: scores 0-0 in the first inning, no starting stroke; snooker: scores 0-0, the ball on
+    that a visit starts with, ball in hand in the D if asked)."""
     state = new_game(kind, breaker=0, **options)
+    if isinstance(state, SnookerState):
+        return state.rules.position(on_table, shooter, ball_in_hand)
     if isinstance(state, ThreeCushionState):
         if ball_in_hand:
             raise ValueError("three-cushion has no ball in hand")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from .snooker import SNOOKER_END_REASONS, SNOOKER_FOULS, SNOOKER_IN_HAND
 from .state import BALL_IN_HAND, END_REASONS, FOULS
 
 # Why a game env's episode stopped without a winner (its `truncation` info): the agent's shot
@@ -11,9 +12,10 @@ TRUNCATIONS = ("shot_limit", "opponent_shot_limit", "shot_error")
 
 # Code k names entry k; code 0 is None (no foul, the game goes on, no ball in hand, not
 # truncated), so a code is falsy exactly when its name is None.
-FOUL_CODES = (None, *FOULS)
-END_REASON_CODES = (None, *END_REASONS)
-BALL_IN_HAND_CODES = BALL_IN_HAND
+# Snooker's names follow the pool ones (codes of the pool names stay as they were).
+FOUL_CODES = (None, *FOULS, *(f for f in SNOOKER_FOULS if f not in FOULS))
+END_REASON_CODES = (None, *END_REASONS, *SNOOKER_END_REASONS)
+BALL_IN_HAND_CODES = (*BALL_IN_HAND, *(h for h in SNOOKER_IN_HAND if h not in BALL_IN_HAND))
 TRUNCATION_CODES = (None, *TRUNCATIONS)
 CODE_TABLES = {"foul": FOUL_CODES, "end_reason": END_REASON_CODES, "ball_in_hand": BALL_IN_HAND_CODES,
                "truncation": TRUNCATION_CODES}
