@@ -31,7 +31,9 @@ BUILTIN = ("random", "ghost_ball", "search", "learned", "search+value")  # the r
 TIMING_KEYS = ("seconds", "seconds_per_decision", "wall_seconds")  # the only entries that differ between runs
 
 
-ENV_IDS = {"nine_ball": "PoolNineBall-v0", "eight_ball": "PoolEightBall-v0", "three_cushion": "ThreeCushion-v0"}
+ENV_IDS = {"nine_ball": "PoolNineBall-v0", "eight_ball": "PoolEightBall-v0", "three_cushion": "ThreeCushion-v0",
+           "snooker": "Snooker-v0"}
+MAX_SHOTS = {"snooker": 300}  # the agent's shots before a game is stopped unfinished; else 100 (a frame is long)
 
 
 def game_env(game: str, **kwargs):
@@ -178,11 +180,13 @@ def player_seed(seed: int, slot: int) -> int:
 
 
 def play_game(game: str, breaker: str, other: str, players: dict, timers: dict, seed: int, noise,
-              max_shots: int = 100, save_to=None) -> dict:
+              max_shots: int | None = None, save_to=None) -> dict:
     """One game on `seed`: the breaker is the env's agent (it breaks), the other its opponent, so each
     sees the observation from its own side (so the breaker never plays inside the env's reset:
     its break-and-runs all count).
-    `save_to`: also save the game there (`game_recorder`)."""
+    `save_to`: also save the game there (`game_recorder`). `max_shots`: the agent's shot limit
+    (default `MAX_SHOTS` of the game, else 100)."""
+    max_shots = MAX_SHOTS.get(game, 100) if max_shots is None else max_shots
     for slot, name in enumerate((breaker, other)):
         if hasattr(players[name], "reset"):
             players[name].reset(seed=player_seed(seed, slot))

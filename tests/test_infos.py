@@ -50,7 +50,8 @@ def test_every_info_is_numeric_with_the_same_keys_and_shapes(env_id, opponent_br
             if terminated or truncated:
                 break
     first = signature(infos[0])
-    assert set(first) == (CAROM_KEYS if env_id == "ThreeCushion-v0" else GAME_KEYS if game else BREAK_KEYS)
+    keys = CAROM_KEYS if env_id == "ThreeCushion-v0" else GAME_KEYS if game else BREAK_KEYS
+    assert set(first) == (keys | {"scores"} if env_id == "Snooker-v0" else keys)  # snooker keeps a score
     assert first["pocketed"] == (np.ndarray, np.dtype(bool), (n,))
     for info in infos[1:]:
         assert signature(info) == first
@@ -79,7 +80,7 @@ def test_code_tables_follow_the_rules_names_with_none_first():
     snooker_fouls = tuple(f for f in SNOOKER_FOULS if f not in rules.FOULS)
     assert codes.FOUL_CODES == (None, *rules.FOULS, *snooker_fouls) and "wrong_ball_potted" in snooker_fouls
     assert codes.END_REASON_CODES == (None, *rules.END_REASONS, *SNOOKER_END_REASONS)
-    assert codes.BALL_IN_HAND_CODES == (None, "anywhere", "behind_head_string")
+    assert codes.BALL_IN_HAND_CODES == (None, "anywhere", "behind_head_string", "in_d")  # snooker: in the D
     assert codes.TRUNCATION_CODES == (None, "shot_limit", "opponent_shot_limit", "shot_error")
     for key, table in codes.CODE_TABLES.items():
         for code, name in enumerate(table):

@@ -262,7 +262,7 @@ def test_bad_input():
     with pytest.raises(TypeError, match="plays nine_ball"):
         nine_ball_v0.env(game="eight_ball")
     with pytest.raises(ValueError, match="unknown game"):
-        PoolGameAEC(game="snooker")
+        PoolGameAEC(game="three_cushion")  # a game of its own AEC env (ThreeCushionAEC)
     with pytest.raises(ValueError, match="max_shots"):
         eight_ball_v0.env(max_shots=0)
     with pytest.raises(ValueError, match="unknown reset option 'bogus'; the accepted options are 'balls'"):

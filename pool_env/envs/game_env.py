@@ -17,7 +17,7 @@ from ..render.playback import ShotPlayback
 from ..render.window import HumanWindow
 from ..rules import codes
 from .break_env import StepsShots, can_render, check_env_options, check_reset_options, run_step
-from .infos import check_info_mode, no_shot_info, record_info, rich_info, winner_code
+from .infos import check_info_mode, no_shot_info, record_info, rich_info, score_info, winner_code
 
 SHAPING_BALL, SHAPING_FOUL = 0.1, 0.1  # shaping: + per ball the agent pockets legally, - per foul
 RESET_OPTIONS = ("balls", "ball_in_hand", "agent_breaks")
@@ -466,5 +466,6 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         game = self.game
         info = {**shot, "opponent_shots": self._opponent_shots, "winner": winner_code(game.winner),
                 "end_reason": codes.encode("end_reason", self._end_reason if game.winner is not None else None),
-                "error": self._error is not None, "truncation": codes.encode("truncation", self._truncation)}
+                "error": self._error is not None, "truncation": codes.encode("truncation", self._truncation),
+                **score_info(game.state)}
         return rich_info(info, records, self._error) if self.info_mode == "rich" else info

@@ -82,3 +82,10 @@ def no_shot_info(balls: Balls, ball_in_hand: str | None, error: str | None = Non
 def winner_code(winner: int | None) -> int:
     """`winner` as the infos give it: the player number, `NO_WINNER` (-1) while the game goes on."""
     return NO_WINNER if winner is None else int(winner)
+
+
+def score_info(state) -> dict:
+    """The frame's score for a game that keeps one (snooker: `scores`, int64 (2,), player 0's
+    points first, the fouls' penalty points included); empty for the pool games, which have none."""
+    scores = getattr(state, "scores", None)
+    return {} if scores is None else {"scores": np.array(scores, dtype=np.int64)}

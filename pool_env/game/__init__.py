@@ -28,6 +28,7 @@ from .observation import (
 )
 from .placement import place_cue_ball, placement_area
 from .shot import CONTACT_TIME, MAX_FORCE, MAX_SPEED, MAX_TIP_OFFSET, NOISE_PRESETS, Shot, noise_of, noisy_shot
+from .snooker_observation import SnookerView, decode_snooker_observation, snooker_observation
 
 __all__ = [
     "Game", "Shot", "ShotRecord", "GameSnapshot", "StruckShot", "play_batch", "simulate_struck",
@@ -38,4 +39,5 @@ __all__ = [
     "place_cue_ball", "placement_area", "CONTACT_TIME", "MAX_FORCE", "MAX_SPEED", "MAX_TIP_OFFSET",
     "NOISE_PRESETS", "noise_of", "noisy_shot",
     "CAROM_OBSERVATION_SIZE", "CaromView", "carom_observation", "decode_carom_observation",
+    "SnookerView", "decode_snooker_observation", "snooker_observation",
 ]

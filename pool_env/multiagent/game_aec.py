@@ -1,4 +1,4 @@
-"""`PoolGameAEC`: 9-ball or 8-ball between two agents as a PettingZoo AEC env (nine_ball_v0, eight_ball_v0)."""
+"""`PoolGameAEC`: 9-ball, 8-ball or snooker for two agents as a PettingZoo AEC env (the *_v0 modules)."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from pettingzoo.utils import wrappers
 
 from ..envs.break_env import can_render, check_env_options, check_reset_options
 from ..envs.game_env import SHAPING_BALL, SHAPING_FOUL, PoolGameEnv, captioned, shot_caption
-from ..envs.infos import check_info_mode, no_shot_info, record_info, rich_info, winner_code
+from ..envs.infos import check_info_mode, no_shot_info, record_info, rich_info, score_info, winner_code
 from ..game import ELEVATED, GAME_BALLS, Game, game_observation, game_observation_size
 from ..render.overlay import overlay
 from ..render.playback import ShotPlayback
@@ -43,7 +43,7 @@ class PoolGameAEC(AECEnv):
 
     | argument | default | meaning |
     | --- | --- | --- |
-    | `game` | `"nine_ball"` | `"nine_ball"` or `"eight_ball"` (`nine_ball_v0` and `eight_ball_v0` fix it) |
+    | `game` | `"nine_ball"` | `"nine_ball"`, `"eight_ball"` or `"snooker"` (the `*_v0` modules fix it) |
     | `noise` | None | None, `"olympiad"` or a dict of standard deviations, on both players' shots |
     | `shaping` | False | add +0.1 to the shooter per ball he pockets legally and -0.1 per foul |
     | `max_shots` | 200 | truncate both agents after this many shots in all |
@@ -70,7 +70,8 @@ class PoolGameAEC(AECEnv):
       code), `shots` (so far), `error` (the shot could not be simulated), `truncation` (0, or
       a code of `TRUNCATION_CODES` on the shot that truncates), and PoolBreakEnv's
       per-shot entries (`first_contact`, `cushion_hits`, `scratch`, `events`, `shot_duration`,
-      `balls_left`). After `reset` they describe no shot (`shooter` is the breaker). With
+      `balls_left`); snooker's also `scores` (int64 (2,), player_0's points first).
+      After `reset` they describe no shot (`shooter` is the breaker). With
       `info_mode="rich"` they also hold `records` (the shot's `ShotRecord`, a one-tuple) and
       `error_message`; `last_record` always has it.
     - **reset(seed, options)**: a fresh rack (WPA racking, seeded) with `player_0` to break,
@@ -191,7 +192,7 @@ class PoolGameAEC(AECEnv):
         end_reason = record.ruling.end_reason if ended else None
         info = {**shot, "shooter": int(shooter), "winner": winner_code(game.winner),
                 "end_reason": codes.encode("end_reason", end_reason), "shots": self.shots,
-                "truncation": codes.encode("truncation", truncation)}
+                "truncation": codes.encode("truncation", truncation), **score_info(game.state)}
         if self.info_mode == "rich":
             info = rich_info(info, () if record is None else (record,), None if record is None else record.error)
         return info

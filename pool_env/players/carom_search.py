@@ -10,6 +10,7 @@ from ..game import CONTACT_TIME, Game, Shot, decode_carom_observation
 from ..physics import Balls
 from ..rules import ThreeCushionState
 from .base import Agent, game_of
+from .geometry import separated
 
 DIRECTIONS = 90  # cue directions, evenly spaced around the cue ball (4 degrees apart)
 SPEEDS = (2.5, 3.5, 5.0)  # m/s off the tip: a carom ball's three-cushion speeds (a table's length and more)
@@ -90,7 +91,8 @@ class CaromSearchAgent(Agent):
 
     def act(self, observation) -> np.ndarray:
         view = decode_carom_observation(observation, self.planner.table, self.planner.state.rules)
-        balls = Balls(apart(view.xy, float(np.max(self.planner.balls.radii))), radius=self.radius, mass=self.mass)
+        radius = float(np.max(self.planner.balls.radii))
+        balls = Balls(separated(view.xy, (False,) * 3, radius), radius=self.radius, mass=self.mass)
         # The viewer is player 0 of the planning game; the score does not change what a point is.
         starter = 0 if view.own_ball == 0 else 1
         state = ThreeCushionState(self.planner.state.rules, shooter=0, starter=starter,
@@ -98,18 +100,3 @@ class CaromSearchAgent(Agent):
                                   equalizing=view.equalizing)
         self.planner.reset(balls=balls, state=state)
         return self.planner.encode(self.decide(self.planner))
-
-
-def apart(xy, radius: float) -> np.ndarray:
-    """Positions (3, 2) with any two balls that the observation's float32 rounding made overlap
-    moved apart along their line of centres until they just touch."""
-    xy = np.array(xy, dtype=np.float64)
-    for i in range(3):
-        for j in range(i + 1, 3):
-            d = xy[j] - xy[i]
-            gap = float(np.hypot(*d)) - 2.0 * radius
-            if gap < 0.0:
-                push = (-gap / 2.0 + 1e-9) * d / max(float(np.hypot(*d)), 1e-12)
-                xy[i] -= push
-                xy[j] += push
-    return xy

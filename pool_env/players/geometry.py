@@ -55,6 +55,23 @@ def segments_distance(a, b, c, d) -> np.ndarray:
     return np.where(crossing, 0.0, ends)
 
 
+def separated(xy, pocketed, radius: float) -> np.ndarray:
+    """Positions (n, 2) with any two balls on the table that an observation's float32 rounding
+    made overlap moved apart along their line of centres until they just touch (each pair once,
+    in index order: rounding moves a centre by micrometres, so one pass suffices)."""
+    xy = np.array(xy, dtype=np.float64)
+    on = [i for i in range(len(xy)) if not pocketed[i]]
+    for a, i in enumerate(on):
+        for j in on[a + 1:]:
+            d = xy[j] - xy[i]
+            gap = float(np.hypot(*d)) - 2.0 * radius
+            if gap < 0.0:
+                push = (-gap / 2.0 + 1e-9) * d / max(float(np.hypot(*d)), 1e-12)
+                xy[i] -= push
+                xy[j] += push
+    return xy
+
+
 def path_clear(a, b, obstacles, clearance: float) -> bool:
     """True if a ball centre moving from a to b stays `clearance` away from every obstacle centre."""
     obstacles = np.asarray(obstacles, dtype=np.float64).reshape(-1, 2)

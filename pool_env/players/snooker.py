@@ -6,12 +6,12 @@ import math
 
 import numpy as np
 
-from ..game import Game, Shot
-from ..physics import BALL_MASS
-from ..rules.snooker import next_ball_on
+from ..game import Game, Shot, decode_snooker_observation
+from ..physics import BALL_MASS, Balls
+from ..rules.snooker import SnookerState, next_ball_on
 from ..rules.snooker_spots import REDS, baulk_x, d_radius
 from .base import Agent, game_of
-from .geometry import path_clear, pocket_aim, pockets_of, start_speed, unit
+from .geometry import path_clear, pocket_aim, pockets_of, separated, start_speed, unit
 
 MAX_CUT = math.radians(70.0)  # thinner cuts are not tried
 ARRIVAL = 0.5  # m/s: the object ball's speed as it reaches the pocket's mouth
@@ -39,6 +39,8 @@ class SnookerPlayer(Agent):
         if not isinstance(game, Game) or game.mode != "snooker":
             raise ValueError(f"SnookerPlayer plays a snooker Game, got {game!r}")
         self.game = game
+        self.planner = Game("snooker", table=game.table, physics=game.physics, noise=game.noise,
+                            layout=game.layout.name, **game.rule_options)
         self.pockets = pockets_of(game.table)
         self.rng = np.random.default_rng(seed)
 
@@ -51,39 +53,61 @@ class SnookerPlayer(Agent):
             self.rng = np.random.default_rng(seed)
 
     def act(self, observation=None) -> np.ndarray:
-        """The action (the game's layout) of `decide()`; the observation is not read: the player reads the game."""
-        return self.game.encode(self.decide())
+        """The action (the game's layout) of the shot to play: from the position `observation`
+        shows (a snooker observation of the game's table, from the shooter's side), set up in a
+        planning game of the player's own; without one, from its game's position now."""
+        if observation is None:
+            return self.game.encode(self.decide())
+        self.planner.reset(balls=self.balls_seen(observation), state=self.state_seen(observation))
+        return self.planner.encode(self.decide(self.planner))
 
-    def decide(self) -> Shot:
-        game = self.game
-        candidates = self.candidates()
+    def decide(self, game: Game | None = None) -> Shot:
+        """The shot to play from `game`'s position now (default: the player's game; it does not change)."""
+        game = self.game if game is None else game
+        candidates = self.candidates(game)
         records = game.evaluate(candidates, draws=1, seed=int(self.rng.integers(2**63 - 1)))
-        values = [self.value(record) for record in records]
+        values = [self.value(game, record) for record in records]
         return candidates[int(np.argmax(values))]
 
+    def balls_seen(self, observation) -> Balls:
+        """The balls an observation shows, its float32 rounding undone where two balls would overlap."""
+        view = decode_snooker_observation(observation, self.game.table)
+        radius = float(np.max(self.game.balls.radii))
+        xy = separated(view.xy, ~view.on_table, radius)
+        return Balls(xy, pocketed=~view.on_table, radius=radius, mass=float(self.game.balls.masses[0]))
+
+    def state_seen(self, observation) -> SnookerState:
+        """The frame an observation shows, the viewer as player 0 to shoot (the score as the
+        observation gives it; a break-off when all 21 balls stand, 0-0, the cue ball in the D)."""
+        view = decode_snooker_observation(observation, self.game.table)
+        on_table = frozenset(int(b) for b in np.flatnonzero(view.on_table[1:]) + 1)
+        is_break = view.in_hand and len(on_table) == 21 and view.scores == (0, 0)
+        return SnookerState(self.game.state.rules, on_table, shooter=0, scores=view.scores, ball_on=view.ball_on,
+                            ball_in_hand="in_d" if view.in_hand else None, free_ball=view.free_ball,
+                            is_break=is_break, visit=view.visit)
+
     # --- candidates -------------------------------------------------------------------------
-    def cue_spots(self) -> list:
-        game, balls = self.game, self.game.balls
+    def cue_spots(self, game: Game) -> list:
+        balls = game.balls
         if game.ball_in_hand is None:
             return [balls.xy[0].copy()]
         cx, cy, r = baulk_x(game.table), 0.5 * game.table.width, d_radius(game.table) * 0.9
         return [np.array([cx - r * math.cos(a), cy + r * math.sin(a)]) for a in (-1.2, -0.6, 0.0, 0.6, 1.2)] \
             + [np.array([cx - 0.01, cy])]
 
-    def candidates(self) -> list:
-        game = self.game
+    def candidates(self, game: Game) -> list:
         place = game.ball_in_hand is not None
         pots, safeties = [], []
-        for cue in self.cue_spots():
-            pots += self.pots(cue, place)
-            safeties += self.safeties(cue, place)
+        for cue in self.cue_spots(game):
+            pots += self.pots(game, cue, place)
+            safeties += self.safeties(game, cue, place)
         pots.sort(key=lambda p: p[0])
         shots = [shot for _, shots in pots[:POTS_KEPT] for shot in shots]
         return shots + safeties
 
-    def pots(self, cue, place) -> list:
+    def pots(self, game: Game, cue, place) -> list:
         """(difficulty, shots) of each open pot of a ball on from `cue`."""
-        balls, game = self.game.balls, self.game
+        balls = game.balls
         r = float(balls.radii[0])
         on = ~balls.pocketed
         on[0] = False
@@ -108,30 +132,30 @@ class SnookerPlayer(Agent):
                 v_obj = start_speed(ARRIVAL, d2, game.physics)
                 v_contact = v_obj / max(math.cos(cut), 0.3) / 0.98
                 v0 = min(start_speed(v_contact, d1, game.physics), MAX_SPEED)
-                shots = [self.shot(line, v, tip, cue if place else None)
+                shots = [self.shot(game, line, v, tip, cue if place else None)
                          for v in (v0, min(1.4 * v0, MAX_SPEED)) for tip in TIPS]
                 out.append(((d1 + d2) * (1.0 + 3.0 * cut), shots))
         return out
 
-    def safeties(self, cue, place) -> list:
-        balls = self.game.balls
-        targets = sorted(self.game.legal_targets, key=lambda b: float(np.hypot(*(balls.xy[b] - cue))))
+    def safeties(self, game: Game, cue, place) -> list:
+        balls = game.balls
+        targets = sorted(game.legal_targets, key=lambda b: float(np.hypot(*(balls.xy[b] - cue))))
         out = []
         for target in targets[:SAFETY_BALLS]:
             line = balls.xy[target] - cue
             if float(np.hypot(*line)) < 1e-6:
                 continue
             for v in SAFETY_SPEEDS:
-                out.append(self.shot(line, v, (0.0, 0.0), cue if place else None))
+                out.append(self.shot(game, line, v, (0.0, 0.0), cue if place else None))
         return out
 
-    def shot(self, direction, speed, tip, place) -> Shot:
+    def shot(self, game: Game, direction, speed, tip, place) -> Shot:
         # Shot.aimed's speed is a pool ball's (its mass): scaled so a snooker ball leaves at `speed`.
-        mass = float(self.game.balls.masses[0])
+        mass = float(game.balls.masses[0])
         return Shot.aimed(direction, speed * mass / BALL_MASS, tip, None if place is None else tuple(place))
 
     # --- judging ------------------------------------------------------------------------------
-    def value(self, record) -> float:
+    def value(self, game: Game, record) -> float:
         if record.error is not None:
             return -100.0
         ruling, state = record.ruling, record.state_after
@@ -141,10 +165,10 @@ class SnookerPlayer(Agent):
         if state.winner is not None:
             return 1000.0 if state.winner == me else -1000.0
         if ruling.points:
-            return ruling.points + 1.0 + POSITION_BONUS * min(self.easy_pots(record), 3)
+            return ruling.points + 1.0 + POSITION_BONUS * min(self.easy_pots(game, record), 3)
         return 0.3 * self.distance_left(record)
 
-    def easy_pots(self, record) -> int:
+    def easy_pots(self, game: Game, record) -> int:
         """Open pots of the next ball on from where the cue ball stopped (a count, up to 3)."""
         balls, state = record.balls_after, record.state_after
         r = float(balls.radii[0])
@@ -152,11 +176,11 @@ class SnookerPlayer(Agent):
         on = ~balls.pocketed
         on[0] = False
         count = 0
-        for target in sorted(self.game.state.rules.legal_targets(state))[:8]:
+        for target in sorted(game.state.rules.legal_targets(state))[:8]:
             others = balls.xy[on & (np.arange(len(balls)) != target)]
             obj = balls.xy[target]
             for pocket in self.pockets:
-                aim = pocket_aim(obj, pocket, self.game.table, r, others, samples=7)
+                aim = pocket_aim(obj, pocket, game.table, r, others, samples=7)
                 if aim is None:
                     continue
                 to_pocket = unit(aim[0] - obj)
