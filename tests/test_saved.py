@@ -84,6 +84,16 @@ def test_replay_shows_every_shot_in_a_window_when_there_is_a_display(tmp_path, m
     assert "close the window" in capsys.readouterr().out
 
 
+def test_a_snooker_frame_against_the_snooker_player_saves_and_replays(tmp_path):
+    import gymnasium as gym
+
+    record = record_game(gym.make("Snooker-v0", max_shots=15), RandomAgent(6, seed=1), seed=3)
+    env = replay(load_game(save_game(tmp_path / "snooker.json", record)))  # raises at a step that differs
+    final = record["outcomes"][-1]
+    assert env.unwrapped.balls.xy.tolist() == final["xy"] and (final["terminated"] or final["truncated"])
+    assert final["info"]["winner"] == (-1 if env.unwrapped.game.winner is None else env.unwrapped.game.winner)
+
+
 def test_unsavable_opponents_are_named():
     import gymnasium as gym
 
