@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from agents.snooker_match import fuzz, play_frame, random_player
 from pool_env.game import Game
@@ -45,3 +46,16 @@ def test_random_frames_stay_sound():
     for noise in (None, "olympiad"):
         out = fuzz(100, noise, seed=7, max_shots=50)
         assert out["frames"] == 100 and sum(out["ended"].values()) == 100
+
+
+def test_a_tight_row_rounded_to_float32_is_separated_to_touching_balls():
+    from pool_env.players.geometry import separated
+
+    r = 0.02625
+    xy = np.array([(1.0 + k * 2.0 * r * (1.0 - 2e-7), 0.5) for k in range(6)])  # each pair 21 nm too close
+    out = separated(xy, np.zeros(6, dtype=bool), r)
+    gaps = [np.hypot(*(out[j] - out[i])) - 2.0 * r for i in range(6) for j in range(i + 1, 6)]
+    assert min(gaps) >= 0.0  # no two balls overlap (one pass leaves the middle pairs pressed together)
+    assert np.max(np.abs(out - xy)) < 1e-6  # moved by rounding's scale, not more
+    with pytest.raises(ValueError, match="overlap"):
+        separated(np.array([(1.0, 0.5), (1.0 + r, 0.5)]), np.zeros(2, dtype=bool), r, passes=0)

@@ -55,21 +55,27 @@ def segments_distance(a, b, c, d) -> np.ndarray:
     return np.where(crossing, 0.0, ends)
 
 
-def separated(xy, pocketed, radius: float) -> np.ndarray:
+def separated(xy, pocketed, radius: float, passes: int = 100) -> np.ndarray:
     """Positions (n, 2) with any two balls on the table that an observation's float32 rounding
-    made overlap moved apart along their line of centres until they just touch (each pair once,
-    in index order: rounding moves a centre by micrometres, so one pass suffices)."""
+    made overlap moved apart along their line of centres until they just touch. Pairs are fixed
+    in index order, pass after pass until none overlaps (in a tight rack moving one pair can
+    press the next together); ValueError if `passes` passes leave an overlap."""
     xy = np.array(xy, dtype=np.float64)
     on = [i for i in range(len(xy)) if not pocketed[i]]
-    for a, i in enumerate(on):
-        for j in on[a + 1:]:
-            d = xy[j] - xy[i]
-            gap = float(np.hypot(*d)) - 2.0 * radius
-            if gap < 0.0:
-                push = (-gap / 2.0 + 1e-9) * d / max(float(np.hypot(*d)), 1e-12)
-                xy[i] -= push
-                xy[j] += push
-    return xy
+    for _ in range(passes):
+        moved = False
+        for a, i in enumerate(on):
+            for j in on[a + 1:]:
+                d = xy[j] - xy[i]
+                gap = float(np.hypot(*d)) - 2.0 * radius
+                if gap < 0.0:
+                    push = (-gap / 2.0 + 1e-9) * d / max(float(np.hypot(*d)), 1e-12)
+                    xy[i] -= push
+                    xy[j] += push
+                    moved = True
+        if not moved:
+            return xy
+    raise ValueError(f"balls still overlap after {passes} passes of separating them: not a position balls can rest in")
 
 
 def path_clear(a, b, obstacles, clearance: float) -> bool:
