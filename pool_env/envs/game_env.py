@@ -14,6 +14,7 @@ from ..physics import Balls
 from ..players import make_player
 from ..render.overlay import overlay
 from ..render.playback import ShotPlayback
+from ..render.table import game_palette
 from ..render.window import HumanWindow
 from ..rules import codes
 from .break_env import StepsShots, can_render, check_env_options, check_reset_options, run_step
@@ -26,13 +27,19 @@ OPPONENT = 1  # the opponent is player 1 of the game, the agent player 0
 
 def shot_caption(game, record, who: str) -> str:
     """The overlay's first line for a shot of `who`: the game, the shot's number, ball in hand,
-    the 8's called pocket."""
+    the 8's called pocket, the score after it (snooker)."""
     hand = record.ball_in_hand
     hand = f", ball in hand ({hand.replace('_', ' ')})" if hand else ""
     shoots_eight = game.mode == "eight_ball" and 8 in rules.legal_targets(record.state_before)
     called = record.called_pocket
     called = f", 8 called in pocket {called}" if called is not None and shoots_eight else ""
-    return f"{game.label}  shot {record.state_after.shot}: {who} shoots{hand}{called}"
+    return f"{game.label}  shot {record.state_after.shot}: {who} shoots{hand}{called}{score_text(record.state_after)}"
+
+
+def score_text(state) -> str:
+    """", score a-b" (player 0's first) for a game that keeps a score (snooker), else ""."""
+    scores = getattr(state, "scores", None)
+    return "" if scores is None else f", score {scores[0]}-{scores[1]}"
 
 
 def captioned(shots, captions, on: bool = True) -> list:
@@ -236,7 +243,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         self.render_size = (int(render_size[0]), int(render_size[1]))
         self.overlay = bool(overlay)
         self.playback = ShotPlayback(self.table, self.render_size, self.metadata["render_fps"],
-                                     deferred=render_mode is not None)
+                                     deferred=render_mode is not None, palette=game_palette(self.game.mode))
         self._started, self._done, self._shots, self._end_reason = False, True, 0, None
         self._quaternions, self._reset_records, self._reset_error = None, (), None
         self._window = None  # render_mode="human": a pool_env.render.window.Window
@@ -302,7 +309,8 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         else:
             # Several shots: replayed on a playback of their own, from the step's start (the
             # balls' markers turn through the step's shots, from the orientations drawn at reset).
-            replay = ShotPlayback(self.table, self.render_size, self.metadata["render_fps"], deferred=False)
+            replay = ShotPlayback(self.table, self.render_size, self.metadata["render_fps"], deferred=False,
+                                  palette=self.playback.palette)
             replay.reset(self._step_start, self._quaternions)
             shots = []
             for record in records:
@@ -318,10 +326,11 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
             return frame
         game = self.game
         if game.winner is not None:
-            return overlay(frame, [f"{game.label}: {'agent' if game.winner == 0 else 'opponent'} wins"])
+            winner = "agent" if game.winner == 0 else "opponent"
+            return overlay(frame, [f"{game.label}: {winner} wins{score_text(game.state)}"])
         who = "agent" if game.shooter == 0 else "opponent"
         hand = f", ball in hand ({game.ball_in_hand.replace('_', ' ')})" if game.ball_in_hand else ""
-        return overlay(frame, [f"{game.label}: {who} to shoot{hand}"])
+        return overlay(frame, [f"{game.label}: {who} to shoot{hand}{score_text(game.state)}"])
 
     # --- state --------------------------------------------------------------------------------
     @property

@@ -14,6 +14,7 @@ from ..envs.infos import check_info_mode, no_shot_info, record_info, rich_info, 
 from ..game import ELEVATED, GAME_BALLS, Game, game_observation, game_observation_size
 from ..render.overlay import overlay
 from ..render.playback import ShotPlayback
+from ..render.table import game_palette
 from ..rules import codes
 
 AGENTS = ("player_0", "player_1")
@@ -104,7 +105,7 @@ class PoolGameAEC(AECEnv):
         self.render_mode, self.shaping = render_mode, bool(shaping)
         self.render_size = (int(render_size[0]), int(render_size[1]))
         self.playback = ShotPlayback(self.table, self.render_size, self.metadata["render_fps"],
-                                     deferred=render_mode is not None)
+                                     deferred=render_mode is not None, palette=game_palette(game))
         self.possible_agents = list(AGENTS)
         space = gym.spaces.Box(-1.0, 1.0, (self.game.layout.size,), np.float32)
         self.observation_spaces = dict.fromkeys(AGENTS, gym.spaces.Box(-1.0, 1.0, (game_observation_size(game),),

@@ -75,8 +75,9 @@ class ShotPlayback:
     may jump between shots.
     """
 
-    def __init__(self, table, size, fps, deferred):
+    def __init__(self, table, size, fps, deferred, palette="pool"):
         self.table, self.size, self.fps, self.deferred = table, size, float(fps), bool(deferred)
+        self.palette = palette  # the balls' look (`TableRenderer`'s palette)
         self._renderer = None
         self._balls = None  # the balls now
         self._quaternions = None
@@ -91,7 +92,8 @@ class ShotPlayback:
         """The frame renderer (made on first use); `renderer.world_to_pixel` maps metres to pixels."""
         radius = BALL_RADIUS if self._balls is None else float(np.max(self._balls.radii))
         if self._renderer is None or self._renderer.ball_radius != radius:
-            self._renderer = TableRenderer(self.table.length, self.table.width, self.table.pockets, radius, self.size)
+            self._renderer = TableRenderer(self.table.length, self.table.width, self.table.pockets, radius, self.size,
+                                           self.palette)
         return self._renderer
 
     @property

@@ -1,4 +1,4 @@
-"""Fast top-down RGB renderer for a pool table: cloth, rails, pockets, numbered balls and spin markers."""
+"""Fast top-down RGB renderer of a table: cloth, rails, pockets, the balls (pool, snooker, carom) and spin markers."""
 
 from __future__ import annotations
 
@@ -11,6 +11,9 @@ from .digits import number_mask
 
 __all__ = [
     "BALL_COLORS",
+    "PALETTES",
+    "ball_style",
+    "game_palette",
     "CLOTH_RGB",
     "POCKET_RGB",
     "TableRenderer",
@@ -58,16 +61,37 @@ _MIN_NUMBER_RADIUS_PX = 5.0  # smaller balls get no number (it could not be legi
 _DISC = 0.64  # number disc radius, in ball radii: room for the digits, a coloured ring left
 
 
-def _ball_style(idx: int) -> tuple[tuple[int, int, int], bool]:
-    """(colour, is_stripe) of ball `idx`; index >= 16 gets a deterministic golden-ratio hue."""
+# Snooker (WPBSA Section 2 Rule 2: 15 reds and the six colours) and three-cushion (white,
+# yellow, red) balls are plain: one colour each, no stripe, no number.
+SNOOKER_RED_RGB = (190, 20, 30)
+SNOOKER_COLOURS = {16: (250, 205, 30), 17: (20, 120, 50), 18: (115, 60, 25), 19: (25, 65, 200),
+                   20: (240, 130, 160), 21: (20, 20, 20)}  # yellow, green, brown, blue, pink, black
+CAROM_COLOURS = {0: CUE_RGB, 1: (250, 205, 30), 2: (200, 25, 30)}  # white, yellow, red
+PALETTES = ("pool", "snooker", "carom")
+GAME_PALETTES = {"snooker": "snooker", "three_cushion": "carom"}  # a game's balls; every other game: "pool"
+
+
+def game_palette(game: str) -> str:
+    """The palette a game's balls are drawn in (`GAME_PALETTES`, else "pool")."""
+    return GAME_PALETTES.get(game, "pool")
+
+
+def ball_style(idx: int, palette: str = "pool") -> tuple[tuple[int, int, int], bool, bool]:
+    """(colour, is_stripe, numbered) of ball `idx` in `palette` (`PALETTES`): pool balls are
+    numbered, 9-15 striped, and an index >= 16 gets a deterministic golden-ratio hue; snooker
+    and carom balls are plain."""
+    if palette == "snooker":
+        return (CUE_RGB if idx == 0 else SNOOKER_RED_RGB if idx <= 15 else SNOOKER_COLOURS[idx]), False, False
+    if palette == "carom":
+        return CAROM_COLOURS[idx], False, False
     if idx == 0:
-        return CUE_RGB, False
+        return CUE_RGB, False, False
     if idx <= 8:
-        return BALL_COLORS[idx], False
+        return BALL_COLORS[idx], False, True
     if idx <= 15:
-        return BALL_COLORS[idx - 8], True
+        return BALL_COLORS[idx - 8], True, True
     r, g, b = colorsys.hsv_to_rgb((idx * 0.6180339887) % 1.0, 0.75, 0.9)
-    return (round(r * 255), round(g * 255), round(b * 255)), False
+    return (round(r * 255), round(g * 255), round(b * 255)), False, True
 
 
 def _coverage_1d(n: int, lo: float, hi: float) -> np.ndarray:
@@ -137,7 +161,11 @@ class TableRenderer:
         pockets: np.ndarray,
         ball_radius: float,
         size=(640, 360),
+        palette: str = "pool",
     ):
+        if palette not in PALETTES:
+            raise ValueError(f"unknown palette {palette!r}; choose one of {', '.join(PALETTES)}")
+        self.palette = palette
         self.length = float(length)
         self.width = float(width)
         self.ball_radius = float(ball_radius)
@@ -164,7 +192,7 @@ class TableRenderer:
         self._half = math.ceil(self._r_px) + 1
         self._ball_geometry = self._ball_layer_maps()
         self._ball_sprites: dict[int, _Sprites] = {}
-        for idx in range(16):
+        for idx in range(3 if palette == "carom" else 16):
             self._sprites_for(idx)
         self._marker_sprites, self._marker_half = self._render_markers()
 
@@ -264,13 +292,13 @@ class TableRenderer:
         if cached is not None:
             return cached
         g = self._ball_geometry
-        rgb, stripe = _ball_style(idx)
+        rgb, stripe, numbered = ball_style(idx, self.palette)
         col = np.asarray(rgb, dtype=np.float64)
         white = np.asarray(WHITE_RGB, dtype=np.float64)
-        numbered = idx != 0 and self._r_px >= _MIN_NUMBER_RADIUS_PX
+        numbered = numbered and self._r_px >= _MIN_NUMBER_RADIUS_PX
         body_rgb = white if stripe else col
         band_rgb = col
-        disc_rgb = white if idx != 0 else col
+        disc_rgb = white if numbered else col
         prem = g["body"][..., None] * body_rgb + g["band"][..., None] * band_rgb + g["disc"][..., None] * disc_rgb
         alpha = g["alpha"]
         mask = None
