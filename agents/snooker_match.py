@@ -109,9 +109,10 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--frames", type=int, default=0)
     parser.add_argument("--fuzz", type=int, default=0)
-    parser.add_argument("--noise", default=None)
+    parser.add_argument("--noise", default="none", choices=("none", "olympiad"))
     parser.add_argument("--seed", type=int, default=0)
     args = parser.parse_args(argv)
+    args.noise = None if args.noise == "none" else args.noise
     start = time.perf_counter()
     out = {}
     if args.frames:

@@ -135,6 +135,19 @@ def test_two_players_take_turns():
     assert "player 2" in session.status()[0]
 
 
+def test_snooker_is_played_from_the_d_with_the_score_shown():
+    session = PlaySession("snooker", two_players=True, seed=0, size=SIZE, animate=False)
+    head, score = session.status()[:2]
+    assert head.startswith("snooker  shot 1: player 1") and "in d" in head  # Section 3 Rule 4: from the D
+    assert score == "score: player 1 0, player 2 0"
+    cue = session.cue_xy
+    drag(session, session.to_pixel(cue + (0.0, 0.1)), session.to_pixel(cue + (0.0, 0.12)))  # hits nothing: a foul
+    session.update()
+    session.wait()
+    assert session.state.shooter == 1 and session.state.scores == (0, 4)  # the 4-point minimum (Rule 12)
+    assert session.status()[1] == "score: player 1 0, player 2 4"
+
+
 def play_out(session, seconds, limit=60.0):
     """Drive the session's loop with a fake clock until its step is over and shown: each turn
     update, draw the frame shown, tick `seconds(turn, frames drawn so far)`. The (step frame

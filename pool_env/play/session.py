@@ -14,7 +14,7 @@ from ..records.saved import record_game, save_game
 from ..render.window import import_pygame
 from .aim import clamp_tip, shot_action
 from .animation import PendingStep, StepAnimation
-from .games import NAMES, TABLE_SIZE, make_env
+from .games import NAMES, TABLE_SIZE, TWO_SIDED, make_env
 
 PANEL = 250  # px: the panel right of the table (tip diagram, messages, keys)
 STATUS_BAR = 80  # px: the status bar above the table (the game, whose turn, the last shot's messages)
@@ -67,7 +67,7 @@ class PlaySession:
     @property
     def thinking(self) -> str:
         """What the window says while a step is under way."""
-        has_opponent = self.game in ("nine_ball", "eight_ball") and not self.two_players
+        has_opponent = self.game in TWO_SIDED and not self.two_players
         return "opponent thinking..." if has_opponent else "simulating the shot..."
 
     @property
@@ -354,6 +354,8 @@ class PlaySession:
         lines = [head]
         if self.game == "eight_ball" and state.groups[state.shooter] is not None:
             lines.append(f"group: {state.groups[state.shooter]}")
+        if self.game == "snooker":
+            lines.append(f"score: {self._player(0)} {state.scores[0]}, {self._player(1)} {state.scores[1]}")
         if self.needs_call:
             called = self.called is not None
             lines.append(f"8 called in pocket {self.called}" if called else "click a pocket to call the 8")
