@@ -104,3 +104,21 @@ def test_elevation_adds_the_last_action_entry_and_the_opponent_plays_it_too():
     env.reset(seed=0)
     *_, terminated, truncated, info = env.step(np.zeros(5, np.float32))
     assert terminated and info["scores"].tolist() == [0, 2] and info["winner"] == 1  # the search runs out
+
+
+def test_rgb_array_shows_the_three_balls_in_their_colours_and_the_checker_stays_silent():
+    from pool_env.render.table import CAROM_COLOURS
+
+    silent(check_env, gym.make("ThreeCushion-v0", render_mode="rgb_array").unwrapped)
+    env = gym.make("ThreeCushion-v0", render_mode="rgb_array", opponent=None)
+    env.reset(seed=0)  # the starting position (UMB 3.3): the red on the top spot
+    frame, base = env.render(), env.unwrapped
+    renderer = base.renderer  # the TableRenderer render() drew with
+    assert frame.shape == (360, 640, 3)
+    radius = float(base.balls.radii[0])
+    for ball in range(3):
+        x, y = base.balls.xy[ball]
+        col, row = renderer.world_to_pixel(np.array([[x + 0.5 * radius, y]]))[0]
+        assert np.abs(frame[int(row), int(col)].astype(int) - CAROM_COLOURS[ball]).max() < 40, ball
+    with pytest.raises(ValueError, match="render modes"):
+        type(base)(render_mode="rgb_array_list")

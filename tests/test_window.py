@@ -85,7 +85,9 @@ def test_a_headless_human_break_does_not_wait_in_real_time():
     """, SDL_VIDEODRIVER="dummy")
     assert out["driver"] == "dummy" and out["fps"] == 30
     assert out["frames"] > 60, out  # over two seconds of shot at 30 fps, else the timing says little
-    assert out["frames"] / out["fps"] > 3 * out["seconds"], out  # paced at 30 fps it would take frames/30 s
+    # Paced at 30 fps the step would take at least frames/30 s; drawing alone takes a third of that
+    # on an idle machine and more on a loaded one, so the bound is real time itself, not a margin.
+    assert out["frames"] / out["fps"] > out["seconds"], out
     assert out["warnings"] == []  # the user chose the dummy driver: nothing to warn about
 
 

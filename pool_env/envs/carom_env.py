@@ -7,6 +7,8 @@ import numpy as np
 from gymnasium import spaces
 
 from ..game import CAROM_OBSERVATION_SIZE, ELEVATED, Game, carom_observation, simulate_struck
+from ..render.overlay import overlay
+from ..render.table import TableRenderer
 from .game_env import resolve_opponent
 
 AGENT, OPPONENT = 0, 1
@@ -28,6 +30,7 @@ class ThreeCushionEnv(gym.Env):
     | `max_shots` | 200 | truncate after this many agent shots |
     | `elevation` | False | add the cue's elevation as the action's last entry (as the pool envs': masse, jumps) |
     | `table`, `physics` | the carom presets | |
+    | `render_mode`, `render_size` | None, (640, 360) | "rgb_array": `render()` is the table now, with the score |
 
     Action `Box(-1, 1, (4,))` (5 with `elevation`): the "cue_spin" layout (force as a fraction of MAX_FORCE, tip
     side and top as fractions of the miscue limit), striking the agent's own cue ball.
@@ -40,19 +43,20 @@ class ThreeCushionEnv(gym.Env):
     here: generic clients read it from every env). `env.unwrapped.step_records` holds the step's records.
     """
 
-    metadata = {"render_modes": [], "render_fps": 30}
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 30}
 
     def __init__(self, opponent="carom_search", noise=None, points: int | None = 15, innings_limit: int | None = None,
                  equalizing: bool = True, agent_breaks: bool = True, max_shots: int = 200, table=None, physics=None,
-                 render_mode=None, elevation: bool = False):
-        if render_mode is not None:
-            raise ValueError(f"ThreeCushion-v0 has no render mode yet, got {render_mode!r}")
+                 render_mode=None, elevation: bool = False, render_size=(640, 360)):
+        if render_mode not in (None, *self.metadata["render_modes"]):
+            raise ValueError(f"ThreeCushion-v0's render modes are {self.metadata['render_modes']}, got {render_mode!r}")
         if isinstance(max_shots, bool) or not isinstance(max_shots, int) or max_shots < 1:
             raise ValueError(f"max_shots must be an integer >= 1, got {max_shots!r}")
         self.game = Game("three_cushion", table=table, physics=physics, noise=noise, points=points,
                          innings_limit=innings_limit, equalizing=equalizing,
                          layout="cue_spin" + (ELEVATED if elevation else ""))
-        self.agent_breaks, self.max_shots, self.render_mode = bool(agent_breaks), max_shots, None
+        self.agent_breaks, self.max_shots, self.render_mode = bool(agent_breaks), max_shots, render_mode
+        self.render_size, self.renderer = (int(render_size[0]), int(render_size[1])), None
         self.observation_space = spaces.Box(-1.0, 1.0, (CAROM_OBSERVATION_SIZE,), np.float32)
         self.action_space = spaces.Box(-1.0, 1.0, (self.game.layout.size,), np.float32)
         self.opponent, self._seeded_opponent, self.opponent_name = resolve_opponent(opponent, self)
@@ -74,6 +78,23 @@ class ThreeCushionEnv(gym.Env):
     def observe(self, viewer: int = AGENT) -> np.ndarray:
         g = self.game
         return carom_observation(g.balls, g.state, viewer, self.agent_shots, self.max_shots, g.table)
+
+    def render(self):
+        """The table now (uint8 (H, W, 3)) with the game's line on it: who is to shoot, the score, the innings."""
+        if self.render_mode is None:
+            return None
+        if self.renderer is None:
+            t = self.game.table
+            self.renderer = TableRenderer(t.length, t.width, t.pockets, float(np.max(self.game.balls.radii)),
+                                           self.render_size, palette="carom")
+        balls, state = self.game.balls, self.game.state
+        frame = self.renderer.draw(balls.xy, balls.pocketed)
+        if state.ended:
+            who = "draw" if state.winner is None else ("agent" if state.winner == AGENT else "opponent") + " wins"
+        else:
+            who = ("agent" if state.shooter == AGENT else "opponent") + " to shoot"
+        score = f"score {state.scores[0]}-{state.scores[1]}, innings {state.innings[0]}-{state.innings[1]}"
+        return overlay(frame, [f"three-cushion: {who}, {score}"])
 
     def reset(self, *, seed=None, options=None):
         super().reset(seed=seed)
