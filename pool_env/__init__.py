@@ -4,7 +4,8 @@ import gymnasium
 
 __version__ = "0.1.0"
 __all__ = ["Game", "Shot", "make_player", "PoolBreakEnv", "PoolGameEnv", "PoolVectorEnv", "PoolGameVectorEnv",
-           "GhostBallAction", "record_video", "record_game", "save_game", "load_game", "replay", "__version__"]
+           "GhostBallAction", "record_video", "record_game", "save_game", "load_game", "replay", "calibrate",
+           "__version__"]
 
 # The env ids, one registry: registered by entry-point strings so that `import pool_env` stays
 # light (no numba, no physics). `gymnasium.make_vec(id, num_envs=N,
@@ -38,6 +39,7 @@ _LAZY = {  # name: (module, attribute), imported on first use
     "record_video": ("pool_env.records.video", "record_video"),
     "record_game": ("pool_env.records.saved", "record_game"), "save_game": ("pool_env.records.saved", "save_game"),
     "load_game": ("pool_env.records.saved", "load_game"), "replay": ("pool_env.records.saved", "replay"),
+    "calibrate": ("pool_env.physics.calibrate", "calibrate"),
 }
 
 
