@@ -152,15 +152,14 @@ def _pct(p: float, ci=None) -> str:
 
 
 def leaderboard_markdown(rows: list[dict]) -> str:
-    """The leaderboard: each row's win rate [95 % CI] per task, then each row's details per task."""
+    """The leaderboard: each task's win rate [95 % CI] per row (a column a row), then each row's details."""
     names = [name for name in TASK_NAMES if any(name in row["tasks"] for row in rows)]
-    lines = ["| agent | version | " + " | ".join(names) + " |", "| --- | ---: |" + " --- |" * len(names)]
-    for row in rows:
-        cells = [_cell(row["tasks"].get(name)) for name in names]
-        lines.append(f"| {row['agent']} | {row['benchmark_version']} | " + " | ".join(cells) + " |")
+    lines = ["| task | " + " | ".join(f"{row['agent']} (v{row['benchmark_version']})" for row in rows) + " |",
+             "| --- |" + " --- |" * len(rows)]
+    lines += [f"| {name} | " + " | ".join(_cell(row["tasks"].get(name)) for row in rows) + " |" for name in names]
     for row in rows:
         lines += ["", f"{row['agent']} (`{command_of(row)}`):", "",
-                  "| task | games | win rate [95 % CI] | balls / turn | break-and-run | fouls / game | s / decision |",
+                  "| task | games | win rate [95 % CI] | balls / turn | break-and-run | fouls / game | ms / decision |",
                   "| --- | ---: | --- | ---: | ---: | ---: | ---: |"]
         for name, r in row["tasks"].items():
             if "skipped" in r:
@@ -168,7 +167,7 @@ def leaderboard_markdown(rows: list[dict]) -> str:
                 continue
             lines.append(f"| {name} | {r['games']} | {_pct(r['win_rate'], r['ci95'])} | {r['balls_per_turn']:.2f} "
                          f"| {r['break_and_runs']}/{r['breaks']} | {r['fouls_per_game']:.2f} "
-                         f"| {r['seconds_per_decision']:.4f} |")
+                         f"| {1000 * r['seconds_per_decision']:.3g} |")
     return "\n".join(lines) + "\n"
 
 
@@ -185,7 +184,8 @@ def command_of(row: dict) -> str:
         games = f"--games {next(iter(counts.values()))}"
     else:
         games = " ".join(f"--games {name}={n}" for name, n in counts.items())
-    return f"python -m agents.benchmark --agent {row['spec']} {games} --tasks {','.join(counts)}"
+    tasks = "" if list(counts) == list(TASK_NAMES) else f" --tasks {','.join(counts)}"
+    return f"python -m agents.benchmark --agent {row['spec']} {games}{tasks}"
 
 
 def append_row(row: dict, leaderboard) -> list[dict]:

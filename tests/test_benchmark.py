@@ -36,7 +36,7 @@ def test_tiny_row_has_every_metric(tiny):
         assert result["decisions"] >= result["games"] and result["seconds_per_decision"] > 0.0
     assert json.loads(leaderboard.read_text()) == [row]
     md = leaderboard.with_suffix(".md").read_text()
-    assert "| ghost_ball | 1 |" in md and bench.command_of(row) in md
+    assert "| task | ghost_ball (v1) |" in md and bench.command_of(row) in md
 
 
 def test_leaderboard_appends(tiny, tmp_path):
