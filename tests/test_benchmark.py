@@ -112,3 +112,10 @@ def test_bad_input_ends_in_one_line(argv, message, tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and message in err[0]
     assert not (tmp_path / "board.json").exists()
+
+
+def test_game_counts_per_task():
+    default, overrides = bench.game_counts(["50", "nine_search=10", "break-none=3"], tiny=False)
+    assert default == 50
+    assert overrides == {"nine_search-none": 10, "nine_search-olympiad": 10, "break-none": 3}
+    assert bench.game_counts(None, tiny=True) == (2, {})
