@@ -16,7 +16,7 @@ from pool_env.players import make_player as registry_player
 from .benchmark_tasks import BENCHMARK_VERSION, GAME_MAX_SHOTS, TASK_NAMES, TINY_GAMES, TINY_TASKS, Task, select_tasks
 from .learned import LearnedPlayer, ValueNet
 from .stats import wilson
-from .tournament import Timed, display_name, play_game, player_seed, player_stats, step_shots, strip_timings
+from .tournament import Timed, display_name, percent, play_game, player_seed, player_stats, step_shots, strip_timings
 
 AGENT, OPPONENT = "agent", "opponent"  # the names the records use (a player may meet itself)
 METRICS = ("games", "wins", "draws", "win_rate", "ci95", "balls_per_turn", "break_and_runs", "breaks",
@@ -147,10 +147,6 @@ def benchmark(spec: str, games=None, tasks=None, log=None) -> dict:
 
 
 # --- output ---------------------------------------------------------------------------------
-def _pct(p: float, ci=None) -> str:
-    return f"{100 * p:.0f} %" + (f" [{100 * ci[0]:.0f}, {100 * ci[1]:.0f}]" if ci is not None else "")
-
-
 def leaderboard_markdown(rows: list[dict]) -> str:
     """The leaderboard: each task's win rate [95 % CI] per row (a column a row), then each row's details."""
     names = [name for name in TASK_NAMES if any(name in row["tasks"] for row in rows)]
@@ -165,7 +161,7 @@ def leaderboard_markdown(rows: list[dict]) -> str:
             if "skipped" in r:
                 lines.append(f"| {name} | - | skipped: {r['skipped']} | | | | |")
                 continue
-            lines.append(f"| {name} | {r['games']} | {_pct(r['win_rate'], r['ci95'])} | {r['balls_per_turn']:.2f} "
+            lines.append(f"| {name} | {r['games']} | {percent(r['win_rate'], r['ci95'])} | {r['balls_per_turn']:.2f} "
                          f"| {r['break_and_runs']}/{r['breaks']} | {r['fouls_per_game']:.2f} "
                          f"| {1000 * r['seconds_per_decision']:.3g} |")
     return "\n".join(lines) + "\n"
@@ -174,7 +170,7 @@ def leaderboard_markdown(rows: list[dict]) -> str:
 def _cell(result) -> str:
     if result is None:
         return ""
-    return "skipped" if "skipped" in result else f"{_pct(result['win_rate'], result['ci95'])} (n={result['games']})"
+    return "skipped" if "skipped" in result else f"{percent(result['win_rate'], result['ci95'])} (n={result['games']})"
 
 
 def command_of(row: dict) -> str:
