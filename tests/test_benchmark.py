@@ -2,6 +2,7 @@
 determinism by seed, the tasks' seeds, and clear errors for bad agent and task names."""
 
 import json
+from pathlib import Path
 
 import pytest
 
@@ -119,3 +120,17 @@ def test_game_counts_per_task():
     assert default == 50
     assert overrides == {"nine_search-none": 10, "nine_search-olympiad": 10, "break-none": 3}
     assert bench.game_counts(None, tiny=True) == (2, {})
+
+
+def test_the_docs_leaderboard_is_the_reference_rows():
+    """docs/benchmark.md shows docs/results/benchmark.json's rows, every one of this BENCHMARK_VERSION
+    (a bump asks for the reference rows to be run again) with every metric of every task it played."""
+    root = Path(__file__).resolve().parents[1]
+    rows = json.loads((root / "docs/results/benchmark.json").read_text())
+    assert [row["agent"] for row in rows][:4] == ["random", "ghost_ball", "search", "learned"]
+    for row in rows:
+        assert row["benchmark_version"] == BENCHMARK_VERSION, row["agent"]
+        assert list(row["tasks"]) == list(TASK_NAMES)
+        for result in row["tasks"].values():
+            assert "skipped" in result or set(bench.METRICS) <= set(result)
+    assert bench.leaderboard_markdown(rows) in (root / "docs/benchmark.md").read_text()
