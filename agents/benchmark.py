@@ -11,6 +11,7 @@ from pathlib import Path
 
 import pool_env
 from pool_env.envs.game_env import PoolGameEnv
+from pool_env.players import is_model_path, player_names
 from pool_env.players import make_player as registry_player
 
 from .benchmark_tasks import BENCHMARK_VERSION, GAME_MAX_SHOTS, TASK_NAMES, TINY_GAMES, TINY_TASKS, Task, select_tasks
@@ -39,17 +40,15 @@ def make_agent(spec: str, env):
 
 
 def check_agent(spec: str) -> None:
-    """ValueError before any game if `spec` names no player (a player that is named but cannot play a
-    task is skipped there, saying why)."""
-    env = PoolGameEnv("nine_ball", opponent=None)
-    try:
-        make_agent(spec, env)
-    except ValueError:
-        raise
-    except Exception:  # noqa: BLE001 (named but not built for 9-ball: each task says why)
-        pass
-    finally:
-        env.close()
+    """ValueError before any game if `spec` names no player: not a registered name, and no model or net
+    file there (a player that is named but cannot play a task is skipped there, saying why)."""
+    if spec.endswith(".npz") or is_model_path(spec):
+        if not any(Path(p).is_file() for p in (spec, Path(spec).with_suffix(".zip"))):
+            kind = "learned net" if spec.endswith(".npz") else "model"
+            raise ValueError(f"unknown agent {spec!r}: no such {kind} file")
+    elif spec not in player_names():
+        raise ValueError(f"unknown agent {spec!r}; choose one of {', '.join(player_names())}, a saved model's "
+                         "path (.zip) or a learned net's (.npz)")
 
 
 def task_players(spec: str, task: Task) -> dict:
