@@ -313,7 +313,8 @@ def strip_timings(data):
     return data
 
 
-def _pct(p: float, ci=None) -> str:
+def percent(p: float, ci=None) -> str:
+    """A proportion as a whole percentage, with its interval in brackets if given: "45 % [36, 55]"."""
     return f"{100 * p:.0f} %" + (f" [{100 * ci[0]:.0f}, {100 * ci[1]:.0f}]" if ci is not None else "")
 
 
@@ -326,13 +327,13 @@ def markdown(result: dict) -> str:
         lines += [f"## Noise: {setting}", "", "| A | B | games | A wins | B wins | draws | A's win rate [95 % CI] |",
                   "| --- | --- | ---: | ---: | ---: | ---: | --- |"]
         lines += [f"| {p['a']} | {p['b']} | {p['games']} | {p['wins_a']} | {p['wins_b']} | {p['draws']} | "
-                  f"{_pct(p['win_rate_a'], p['ci95'])} |" for p in r["pairings"]]
+                  f"{percent(p['win_rate_a'], p['ci95'])} |" for p in r["pairings"]]
         lines += ["", "| player | Elo | games | score | break-and-run [95 % CI] | fouls / game | balls / turn "
                   "| s / decision |", "| --- | ---: | ---: | ---: | --- | ---: | ---: | ---: |"]
         for name in sorted(r["players"], key=lambda n: -r["elo"][n]):
             s = r["stats"][name]
-            runs = _pct(s["break_and_run_rate"], s["break_and_run_ci95"])
-            lines.append(f"| {name} | {s['elo']:.0f} | {s['games']} | {_pct(s['score'])} | "
+            runs = percent(s["break_and_run_rate"], s["break_and_run_ci95"])
+            lines.append(f"| {name} | {s['elo']:.0f} | {s['games']} | {percent(s['score'])} | "
                          f"{s['break_and_runs']}/{s['breaks']} = {runs} | {s['fouls_per_game']:.2f} | "
                          f"{s['balls_per_turn']:.2f} | "
                          f"{s.get('seconds_per_decision', float('nan')):.4f} |")
