@@ -77,3 +77,11 @@ def test_bad_input_is_refused_with_the_reason():
         pool_env.calibrate([{**good[0], "xy": first_lost}], TABLE)
     with pytest.raises(ValueError, match="'moving' must name balls 0-0"):
         pool_env.calibrate([{**good[0], "moving": (3,)}], TABLE)
+
+
+def test_with_no_parameters_only_the_starts_are_fitted_and_the_residual_measures_the_model():
+    exact = tracks(0.0)
+    right = pool_env.calibrate(exact, TABLE, TRUTH, params=())
+    wrong = pool_env.calibrate(exact, TABLE, Physics.standard(), params=())
+    assert right.values == {} and right.physics == TRUTH and right.rms < 1e-7
+    assert wrong.rms > 1e-3  # mu_s 0.2 for 0.17, mu_r 0.01 for 0.012, e_c 0.85 for 0.8: millimetres off

@@ -14,6 +14,7 @@ BENCHES = {
     "pockets": "our pocket model beside pooltool 0.6: pot/no-pot on a grid of straight and cut shots",
     "game": "Game.evaluate against restore + play, the run vector env's shots/s, 9-ball steps/s",
     "pooltool3d": "jump shots (flights, bounces, landings, a blocker) beside pooltool main's 3D and closed forms",
+    "calibrate": "our physics fitted to pooltool's one-ball tracks (pool_env.calibrate), per cushion model",
 }
 
 # A bench whose module is named otherwise than the bench.

@@ -104,7 +104,7 @@ class Problem:
                 r = alone.residuals(theta)
                 if r is None:
                     continue
-                theta, r, _, _ = levenberg_marquardt(alone, theta, r, max_iterations, tol)
+                theta, r, _, _, _ = levenberg_marquardt(alone, theta, r, max_iterations, tol)  # converged or not
                 if best is None or float(r @ r) < best[0]:
                     best = float(r @ r), theta
             if best is None:
@@ -171,14 +171,15 @@ class Problem:
 
 def calibrate(tracks, table: Table, physics: Physics | None = None, params=("mu_r",), radius: float = BALL_RADIUS,
               mass: float = BALL_MASS, max_iterations: int = 50, tol: float = 1e-10) -> Calibration:
-    """Fit the `Physics` fields `params` (of `FITTABLE`) to `tracks` (see the module) shot on
+    """Fit the `Physics` fields `params` (of `FITTABLE`; none: only the shots' starts, to see how
+    near `physics` itself comes) to `tracks` (see the module) shot on
     `table`, starting from `physics` (default `Physics.standard()`), balls of `radius` (m) and
     `mass` (kg). Returns a `Calibration`. ValueError for an unknown parameter, a malformed
     track or a start the engine cannot simulate; RuntimeError if the fit does not converge in
     `max_iterations` iterations (the relative change in the cost below `tol`)."""
     physics = Physics.standard() if physics is None else physics
     unknown = [p for p in params if p not in FITTABLE]
-    if unknown or not params or len(set(params)) != len(params):
+    if unknown or len(set(params)) != len(params):
         raise ValueError(f"params must be distinct names of {', '.join(FITTABLE)}, got {list(params)}")
     if not tracks:
         raise ValueError("calibrate needs at least one track")
@@ -186,7 +187,10 @@ def calibrate(tracks, table: Table, physics: Physics | None = None, params=("mu_
     problem = Problem(checked, table, physics, params, radius, mass)
     theta = problem.start(max_iterations, tol)
     r = problem.residuals(theta)
-    theta, r, jac, iterations = levenberg_marquardt(problem, theta, r, max_iterations, tol)
+    theta, r, jac, iterations, converged = levenberg_marquardt(problem, theta, r, max_iterations, tol)
+    if not converged:
+        raise RuntimeError(f"calibrate did not converge in {max_iterations} iterations "
+                           f"(residual rms {np.sqrt(np.mean(r ** 2)):.3g} m)")
     dof = max(r.size - theta.size, 1)
     cov = np.linalg.pinv(jac.T @ jac) * float(r @ r) / dof
     k = len(params)
@@ -196,7 +200,8 @@ def calibrate(tracks, table: Table, physics: Physics | None = None, params=("mu_
 
 
 def levenberg_marquardt(problem: Problem, theta, r, max_iterations: int, tol: float):
-    """(theta, residuals, Jacobian, iterations) at the minimum, Marquardt's scaled damping."""
+    """(theta, residuals, Jacobian, iterations, converged) at the minimum, Marquardt's scaled
+    damping; not converged: where `max_iterations` iterations left it."""
     lam, cost = LAMBDA0, float(r @ r)
     for iteration in range(1, max_iterations + 1):
         jac = problem.jacobian(theta, r)
@@ -210,10 +215,10 @@ def levenberg_marquardt(problem: Problem, theta, r, max_iterations: int, tol: fl
                 break
             lam *= LAMBDA_UP
             if lam > 1e12:  # no step lowers the cost: this is the minimum
-                return theta, r, jac, iteration
+                return theta, r, jac, iteration, True
         theta, r, lam = theta + step, trial, max(lam * LAMBDA_DOWN, 1e-12)
         new_cost = float(r @ r)
         if cost - new_cost <= tol * max(cost, 1e-30):
-            return theta, r, problem.jacobian(theta, r), iteration
+            return theta, r, problem.jacobian(theta, r), iteration, True
         cost = new_cost
-    raise RuntimeError(f"calibrate did not converge in {max_iterations} iterations (cost {cost:.3g} m^2)")
+    return theta, r, jac, max_iterations, False
