@@ -68,6 +68,20 @@ class GameGhostBallAgent(Agent):
         b = self.planner.batch
         return (self.game, b.constants.tobytes(), b.rails.tobytes(), b.jaws.tobytes(), b.captures.tobytes())
 
+    def choose(self, game) -> str:
+        """Its option of `game`'s pending decision (a `pool_env.game.Game`), by a simple rule:
+        after a push out it shoots if it has a pot on from there, else passes it back; after an
+        illegal 8-ball break it takes ball in hand; after the 8 on the break it spots it. It
+        never declares a push out itself."""
+        pending = game.pending
+        if pending is None:
+            raise ValueError("no decision is pending")
+        if pending.name == "push_out_reply":
+            balls = game.balls
+            legal = np.array([b in game.legal_targets for b in range(1, len(balls))], dtype=bool)
+            return "shoot" if self.best(balls.xy, ~balls.pocketed, legal) is not None else "pass"
+        return {"illegal_break": "ball_in_hand", "eight_on_break": "spot_eight"}[pending.name]
+
     def decide(self, view) -> Shot:
         """The shot for a decoded observation (`pool_env.game.GameView`): `decide_batch([view])[0]`,
         planned in one or two compiled calls."""
