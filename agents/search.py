@@ -463,6 +463,21 @@ class SearchAgent(Agent):
         masks = np.array([legal_mask(legal, on.shape[1]) for legal in legals]).reshape(on.shape)
         return self.plans.qualities(np.array(xys, dtype=np.float64), on, masks, IN_HAND_QUALITY)
 
+    def choose(self, game) -> str:
+        """Its option of `game`'s pending decision (a `pool_env.game.Game` with decisions).
+        After a push out it scores both replies from the position: shooting is worth its own
+        best ghost-ball quality q there, passing leaves the opponent that shot (1 - q for it):
+        it shoots when q >= 1/2. After an illegal 8-ball break it takes ball in hand; after the
+        8 on the break it spots it."""
+        pending = game.pending
+        if pending is None:
+            raise ValueError("no decision is pending")
+        if pending.name == "push_out_reply":
+            balls = game.balls
+            q = self.quality(balls.xy, ~balls.pocketed, game.legal_targets)
+            return "shoot" if q >= 1.0 - q else "pass"
+        return {"illegal_break": "ball_in_hand", "eight_on_break": "spot_eight"}[pending.name]
+
     # --- the action ------------------------------------------------------------------------------
     def action(self, cand: Candidate, in_hand, area=False) -> np.ndarray:
         """The env's action for a candidate (`pool_env.game.encode_action` of its shot); `area`

@@ -1,4 +1,4 @@
-"""The decision entry of the "_decide" action layouts: one encoder and one decoder, round-trip tested; the players' choices."""
+"""The "_decide" action layouts' decision entry: one encoder and one decoder, round-trip tested; players' choices."""
 
 from __future__ import annotations
 
@@ -66,3 +66,13 @@ def test_ghost_ball_chooses():
     eight = Game("eight_ball", seed=3, decisions=True)
     eight.play(Shot.aimed((1.0, 0.0), 0.6, place=(0.5, 0.6)))
     assert GameGhostBallAgent.from_env(eight).choose(eight) == "ball_in_hand"
+
+
+def test_search_scores_both_replies():
+    from agents.search import SearchAgent
+
+    game = pushed_game()
+    game.play(Shot.aimed((0.0, 1.0), 0.5, push_out=True))
+    agent = SearchAgent.from_env(game, budget=60)
+    q = agent.quality(game.balls.xy, ~game.balls.pocketed, game.legal_targets)
+    assert agent.choose(game) == ("shoot" if q >= 0.5 else "pass")
