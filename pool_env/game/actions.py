@@ -59,6 +59,14 @@ LAYOUTS = {**_LEVEL, **{name + ELEVATED: replace(layout, name=name + ELEVATED, s
                         for name, layout in _LEVEL.items()}}
 
 
+def env_layout(game: str, elevation: bool = False, decisions: bool = False) -> str | None:
+    """The action layout's name of a game env of `game` with the elevation entry and the
+    decision entry as asked (None: the mode's default)."""
+    if not (elevation or decisions):
+        return None
+    return game + ("_decide" if decisions else "") + (ELEVATED if elevation else "")
+
+
 def elevation_entry(entry: float) -> float:
     """The cue's elevation (rad) of an elevation entry: entries <= 0 are a level cue (so the
     zero action, and half of a centred policy's draws, play level), (0, 1] maps linearly
