@@ -144,8 +144,8 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
       other entries are ignored (`Game.encode_decision` / `decode_decision`). The built-in opponents decide
       by their `choose` |
     | last | with `elevation=True` (7 entries in 9-ball, 8 in 8-ball; one more with `decisions`): the cue's
-      elevation, 85 deg * a for a > 0, a level cue for a <= 0 (`PoolBreakEnv`'s); a jump over a blocking ball is legal (the WPA's jump
-      shot: made by elevating the cue), a ball driven off the table a foul (WPA 6.5, 6.1 for the cue
+      elevation, 85 deg * a for a > 0, a level cue for a <= 0 (`PoolBreakEnv`'s); a jump over a blocking
+      ball is legal (the WPA's jump shot: made by elevating the cue), a ball driven off the table a foul (WPA 6.5, 6.1 for the cue
       ball). The built-in opponents cue level |
 
     ## Observation Space
