@@ -145,8 +145,8 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
       by their `choose` |
     | last | with `elevation=True` (7 entries in 9-ball, 8 in 8-ball; one more with `decisions`): the cue's
       elevation, 85 deg * a for a > 0, a level cue for a <= 0 (`PoolBreakEnv`'s); a jump over a blocking
-      ball is legal (the WPA's jump shot: made by elevating the cue), a ball driven off the table a foul (WPA 6.5, 6.1 for the cue
-      ball). The built-in opponents cue level |
+      ball is legal (the WPA's jump shot: made by elevating the cue), a ball driven off the table a foul
+      (WPA 6.5, 6.1 for the cue ball). The built-in opponents cue level |
 
     ## Observation Space
 
