@@ -76,3 +76,23 @@ def test_search_scores_both_replies():
     agent = SearchAgent.from_env(game, budget=60)
     q = agent.quality(game.balls.xy, ~game.balls.pocketed, game.legal_targets)
     assert agent.choose(game) == ("shoot" if q >= 0.5 else "pass")
+
+
+def test_search_weighs_a_push_out_against_its_best_shot():
+    # WPA 2.4: the shot after a legal break may be a push out; search scores push outs by both replies.
+    from agents.search import SearchAgent, decode, game_state
+    from pool_env.envs.game_env import PoolGameEnv
+
+    env = PoolGameEnv("nine_ball", decisions=True, opponent="random")
+    env.reset(seed=0)
+    game = env.unwrapped.game
+    game.reset(balls=game.balls, state=GameState(NineBall(), frozenset(range(1, 10)), 0, None, is_break=False,
+                                                 shot=1, push_out=True))
+    agent = SearchAgent.from_env(env, budget=60)
+    observation = env.unwrapped.observation()
+    action = agent.act(observation)
+    assert action.shape == (7,)
+    d = decode(observation, 10, game.table)
+    value, shot = agent.push_out(d, game_state(d, "nine_ball"))
+    assert shot.push_out and -1.0 <= value <= 1.0
+    assert (action[6] > 0) == (agent.last_stats["kind"] == "push_out")
