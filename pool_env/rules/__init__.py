@@ -9,14 +9,16 @@ from .carom_outcome import CaromOutcome, carom_outcome
 from .eight_ball import EightBall
 from .nine_ball import NineBall
 from .outcome import ShotOutcome, outcome_from_result
-from .racks import eight_ball_rack, foot_spot, head_spot, head_string_x, nine_ball_rack, spot_balls
+from .racks import eight_ball_rack, foot_spot, head_spot, head_string_x, nine_ball_rack, spot_balls, ten_ball_rack
 from .snooker import Snooker, SnookerRuling, SnookerState
 from .snooker_free_ball import settle as settle_snooker
 from .snooker_spots import snooker_rack, spot_colours
 from .state import BALL_IN_HAND, DECISIONS, END_REASONS, FOULS, GROUPS, Decision, GameState, Ruling
+from .ten_ball import TEN_END_REASONS, TenBall
 from .three_cushion import CaromRuling, ThreeCushion, ThreeCushionState, carom_spots, starting_position
 
-KINDS = {"nine_ball": NineBall, "eight_ball": EightBall, "three_cushion": ThreeCushion, "snooker": Snooker}
+KINDS = {"nine_ball": NineBall, "eight_ball": EightBall, "three_cushion": ThreeCushion, "snooker": Snooker,
+         "ten_ball": TenBall}
 STATES = (GameState, ThreeCushionState, SnookerState)  # every rule set's state class (judge, legal_targets, Game)
 
 __all__ = [
@@ -26,6 +28,7 @@ __all__ = [
     "ThreeCushion", "ThreeCushionState", "CaromOutcome", "CaromRuling", "carom_outcome", "carom_spots",
     "starting_position", "STATES", "read_outcome", "cue_ball", "settle", "open_table",
     "Snooker", "SnookerState", "SnookerRuling", "snooker_rack", "spot_colours", "decide", "Decision", "DECISIONS",
+    "TenBall", "ten_ball_rack", "TEN_END_REASONS",
 ]
 
 

@@ -19,6 +19,7 @@ DECISIONS = {
     "push_out_reply": ("shoot", "pass"),  # WPA 2.4: after a legal push out, the incoming player
     "illegal_break": ("ball_in_hand", "accept_table", "rerack_and_break", "rerack_opponent_breaks"),  # 3.3(d)
     "eight_on_break": ("spot_eight", "rebreak"),  # 3.3(e)-(f), 3.6
+    "wrongly_pocketed_reply": ("shoot", "pass"),  # WPA Ten Ball 7: a ball pocketed but not as called
 }
 GROUPS = (None, "solids", "stripes")
 
