@@ -26,7 +26,7 @@ def test_env_checkers_are_silent_with_decisions():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         check_env(env, skip_render_check=True)
-    assert env.action_space.shape == (7,) and env.observation_space.shape == (48,)
+    assert env.action_space.shape == (7,) and env.observation_space.shape == (49,)
 
 
 def test_aec_push_out_gives_the_opponent_a_decision_turn():
@@ -54,7 +54,7 @@ def test_single_agent_opponent_replies_to_a_push_out():
     obs, reward, terminated, truncated, info = env.step(game.encode(Shot.aimed((0.0, 1.0), 0.5, push_out=True)))
     shots = env.unwrapped.step_records
     assert shots[0].ruling.foul is None and game.pending is None  # the opponent chose, then played on or passed
-    assert obs.shape == (48,) and np.all(np.abs(obs) <= 1.0)
+    assert obs.shape == (49,) and np.all(np.abs(obs) <= 1.0)
 
 
 def test_bad_decision_action_raises():

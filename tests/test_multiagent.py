@@ -107,6 +107,15 @@ def test_api_test_passes_with_decision_turns(module):
     assert env.unwrapped.action_space("player_0").shape[0] == env.unwrapped.game.layout.size
 
 
+def test_api_test_passes_for_ten_ball():
+    from pool_env.multiagent import ten_ball_v0
+
+    env = ten_ball_v0.env()
+    api_test(WithoutApiTestsProbe(env), num_cycles=300)
+    assert env.action_space("player_0").shape == (8,) and env.observation_space("player_0").shape == (48,)
+    api_test(WithoutApiTestsProbe(ten_ball_v0.env(decisions=True)), num_cycles=300)
+
+
 def test_turn_stays_after_a_legal_pot_and_passes_after_a_miss():
     env = nine_ball_v0.env()
     env.reset(seed=0, options={"balls": nine_ball_layout()})

@@ -160,8 +160,9 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
     | 2 | ball in hand for the shooter: anywhere, behind the head string (+1 / -1 each) |
     | 2 | the shooter's consecutive fouls, then the opponent's: 0, 1, 2 as -1, 0, 1 |
     | 3 (8-ball) | the shooter's group: open, solids, stripes (one +1) |
-    | 4 (`decisions=True`: 48 in 9-ball, 75 in 8-ball) | +1 for the decision the viewer is to make now, one
-      per `rules.DECISIONS` (push-out reply, illegal break, the 8 on the break), then +1 if he may push out |
+    | 5 (`decisions=True`: 49 in 9-ball, 76 in 8-ball) | +1 for the decision the viewer is to make now, one
+      per `rules.DECISIONS` (push-out reply, illegal break, the 8 on the break, 10-ball's reply to a ball
+      pocketed not as called), then +1 if he may push out |
     | 1 | the agent's shots this episode, 2 shots / max_shots - 1 |
 
     ## Rewards

@@ -49,10 +49,14 @@ _LEVEL = {
     # `Game("eight_ball", layout="eight_ball_call", calling="ball_and_pocket")`: a ball and a pocket every shot.
     "eight_ball_call": ActionLayout("eight_ball_call", 8, spin=True, placement=True, called_pocket=True,
                                     called_ball=True),
+    # 10-ball: every shot but the break calls a ball (any on the table) and a pocket (WPA Ten Ball 5).
+    "ten_ball": ActionLayout("ten_ball", 8, spin=True, placement=True, called_pocket=True, called_ball=True),
     # The layouts with the decision entry (`Game` waits for its decisions: `Game.decide`).
     "nine_ball_decide": ActionLayout("nine_ball_decide", 7, spin=True, placement=True, decision=True),
     "eight_ball_decide": ActionLayout("eight_ball_decide", 8, spin=True, placement=True, called_pocket=True,
                                       decision=True),
+    "ten_ball_decide": ActionLayout("ten_ball_decide", 9, spin=True, placement=True, called_pocket=True,
+                                    called_ball=True, decision=True),
 }
 ELEVATED = "+elevation"  # the suffix of a layout's variant with the cue-elevation entry last
 LAYOUTS = {**_LEVEL, **{name + ELEVATED: replace(layout, name=name + ELEVATED, size=layout.size + 1, elevation=True)

@@ -26,6 +26,7 @@ from .shot import CONTACT_TIME, Shot, noise_of, noisy_shot
 
 SHOT_ERRORS = (SimulationError, ValueError)  # a shot that cannot be struck or simulated: recorded, not raised
 CUE_AREA = ((0.05, 0.25), (0.1, 0.9))  # randomize_cue: the cue ball's start, as fractions of L and W
+CALLING_RULES = ("eight_ball", "ten_ball")  # the games whose shots call a pocket (and a ball)
 CUE_TRIES = 1000  # draws of a random cue spot before falling back to the head spot
 
 
@@ -267,6 +268,8 @@ class Game:
         """The shooter must call a pocket (`Shot.pocket`) for this shot: 8-ball, shooting at
         the 8 (WPA 1.6: the 8 is called; not on the break)."""
         state = self._state
+        if self._mode.rules == "ten_ball":  # every shot but the break (WPA Ten Ball 5)
+            return state.winner is None and not state.is_break
         return (self._mode.rules == "eight_ball" and state.winner is None and not state.is_break
                 and self.legal_targets == frozenset({8}))
 
@@ -321,6 +324,8 @@ class Game:
         targets, ascending; none on the break (WPA 3.3: nothing is called)."""
         if not self.layout.called_ball or self._state is None or self._state.is_break:
             return ()
+        if self._mode.rules == "ten_ball":  # any ball on the table may be called (WPA Ten Ball 5)
+            return tuple(sorted(self._state.on_table))
         return tuple(sorted(self.legal_targets))
 
     # --- starting -------------------------------------------------------------------------------
@@ -366,7 +371,7 @@ class Game:
             return balls
         if balls.pocketed[0]:
             raise ValueError("balls: the cue ball (ball 0) must be on the table")
-        last = {"nine_ball": 9, "eight_ball": 8, "snooker": 21}.get(self._mode.rules)
+        last = {"nine_ball": 9, "eight_ball": 8, "snooker": 21, "ten_ball": 10}.get(self._mode.rules)
         if last is not None and balls.pocketed[last]:
             raise ValueError(f"balls: the {last} must be on the table (the game would be over)")
         check_on_table(balls, self.table, self.physics)
@@ -457,10 +462,10 @@ class Game:
                 if placements is not None:
                     placements[key] = found
             placed = found
-        called = shot.pocket if self._mode.rules == "eight_ball" else None
+        called = shot.pocket if self._mode.rules in CALLING_RULES else None
         if called is not None and called >= self.table.pockets.shape[0]:
             raise ValueError(f"Shot.pocket {called} names no pocket (the table has {self.table.pockets.shape[0]})")
-        ball = shot.ball if self._mode.rules == "eight_ball" else None
+        ball = shot.ball if self._mode.rules in CALLING_RULES else None
         if ball is not None and ball not in self._state.on_table:
             raise ValueError(f"Shot.ball {ball} is not on the table (on it: {sorted(self._state.on_table)})")
         if shot.push_out and not self.may_push_out:

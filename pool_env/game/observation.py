@@ -12,7 +12,7 @@ from ..physics.jit import helper, kernel
 from .snooker_observation import SNOOKER_OBS_SIZE, decode_snooker_observation, snooker_observation
 
 N_BALLS = 16  # the break envs' balls: the cue ball and 15 object balls
-GAME_BALLS = {"nine_ball": 10, "eight_ball": 16, "snooker": 22}  # balls in play, the cue ball included
+GAME_BALLS = {"nine_ball": 10, "eight_ball": 16, "snooker": 22, "ten_ball": 11}  # balls in play, the cue ball included
 
 
 # --- the break envs (PoolBreak-v0, PoolBreakRun-v0) ---------------------------------------------
