@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import pytest
+
 from agents.ten_ball_fuzz import fuzz
 
 
