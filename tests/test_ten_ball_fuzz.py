@@ -1,4 +1,4 @@
-"""agents.ten_ball_fuzz on a few games: random 10-ball games end, every ball accounted for, every state a valid start."""
+"""agents.ten_ball_fuzz on a few games: random 10-ball games end, every ball accounted for, valid starts."""
 
 from __future__ import annotations
 
