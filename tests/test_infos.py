@@ -27,7 +27,7 @@ def signature(info: dict) -> dict:
     return out
 
 
-GAME_IDS = ("PoolNineBall-v0", "PoolEightBall-v0", "Snooker-v0")
+GAME_IDS = ("PoolNineBall-v0", "PoolEightBall-v0", "PoolTenBall-v0", "Snooker-v0")
 CAROM_KEYS = {"points", "opponent_points", "scores", "innings", "opponent_shots", "winner", "draw", "error",
               "pocketed"}  # ThreeCushion-v0's
 

@@ -97,7 +97,9 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
 
     | argument | default | meaning |
     | --- | --- | --- |
-    | `game` | `"nine_ball"` | `"nine_ball"` (PoolNineBall-v0: 10 balls) or `"eight_ball"` (PoolEightBall-v0: 16) |
+    | `game` | `"nine_ball"` | `"nine_ball"` (PoolNineBall-v0: 10 balls), `"eight_ball"` (PoolEightBall-v0: 16) or
+      `"ten_ball"` (PoolTenBall-v0: 11; the action as 8-ball's, entry 6 the called pocket on every shot but the
+      break, plus entry 7, the called ball among those on the table, ascending; observation 48 entries) |
     | `opponent` | `"ghost_ball"` | a player's name (`pool_env.make_player`: `"ghost_ball"`, the rule-aware
       `pool_env.players.GameGhostBallAgent`, `"random"`, `"search"`, a saved model's path), an agent with
       `act(observation)`, a callable `observation -> action`, or None: practice (below). A built-in name's player
