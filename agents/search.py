@@ -82,10 +82,11 @@ def legal_mask(legal, n_balls: int) -> np.ndarray:
 
 
 def decode(observation, n_balls: int, table: Table, game: bool = True) -> GameView:
-    """Read a game observation (`pool_env.game.decode_game_observation`, n_balls 10 or 16) or,
+    """Read a game observation (`pool_env.game.decode_game_observation`, n_balls 10, 11 or 16) or,
     with `game=False`, a `PoolBreakEnv` observation (16 balls, every object ball legal)."""
     if game:
-        return decode_game_observation(observation, "nine_ball" if n_balls == 10 else "eight_ball", table)
+        game_of_size = {n: name for name, n in GAME_BALLS.items()}  # 10 nine_ball, 11 ten_ball, 16 eight_ball
+        return decode_game_observation(observation, game_of_size[n_balls], table)
     xy, on_table = decode_observation(observation, table)
     xy = np.where(on_table[:, None], xy, 0.5 * np.array([table.length, table.width]))
     return GameView(xy, on_table, frozenset(int(b) for b in np.flatnonzero(on_table[1:]) + 1))
@@ -417,7 +418,8 @@ class SearchAgent(Agent):
         `seconds`, `SIMULATION_CHUNK` candidates at a time while the time lasts)."""
         self.sim.reset(balls=balls_of(d, self.radius), state=state)
         area, pockets = self.sim.placement_area(), self.table.pockets.shape[0]  # as sim.decode reads them
-        shots = [decode_action(self.sim.layout, self.action(cand, d.ball_in_hand, area), area, pockets)
+        targets = self.sim.called_targets  # 10-ball: a pot calls the first, the lowest ball (its target)
+        shots = [decode_action(self.sim.layout, self.action(cand, d.ball_in_hand, area), area, pockets, targets)
                  for cand in candidates]
         chunk = len(shots) if self.seconds is None else SIMULATION_CHUNK
         records = []
@@ -516,7 +518,8 @@ class SearchAgent(Agent):
         shot = Shot.aimed(cand.direction, min(cand.speed, MAX_SPEED), cand.tip, place=cand.spot, pocket=cand.pocket)
         if area is False:
             area = None if in_hand is None else placement_area(self.table, in_hand, self.radius)
-        return encode_action(self.sim.layout, shot, area, max(self.table.pockets.shape[0], 1))
+        targets = self.sim.called_targets if self.sim.has_rules else ()  # the position's (simulate reset it)
+        return encode_action(self.sim.layout, shot, area, max(self.table.pockets.shape[0], 1), targets)
 
 
 # --- measuring ---------------------------------------------------------------------------------

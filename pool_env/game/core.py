@@ -319,6 +319,12 @@ class Game:
         return encode_action(self.layout, shot, self.placement_area(), self.table.pockets.shape[0],
                              self._called_targets())
 
+    @property
+    def called_targets(self) -> tuple:
+        """The balls an action's called-ball entry chooses among now, ascending (the first when
+        a Shot names none): 8-ball the legal targets, 10-ball every ball on the table."""
+        return self._called_targets()
+
     def _called_targets(self) -> tuple:
         """The balls an action's called-ball entry chooses among (a layout with one): the legal
         targets, ascending; none on the break (WPA 3.3: nothing is called)."""
