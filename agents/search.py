@@ -22,6 +22,7 @@ from pool_env.game import (
     decode_game_observation,
     decode_observation,
     encode_action,
+    env_layout,
     placement_area,
 )
 from pool_env.physics import BALL_RADIUS, Balls, Physics, Table
@@ -51,6 +52,8 @@ SPOT_TRIES = 14  # spots (best by the cheap ranking) whose shots are planned to 
 # CONTINUE up to 1 with the best next shot's quality), a miss leaving the opponent a shot,
 # a foul (ball in hand for the opponent), a loss.
 WIN, CONTINUE, MISS, FOUL, LOSS = 1.0, 0.35, -0.55, -0.75, -1.0
+PUSH_OUT_SPEEDS = (0.6, 1.3)  # m/s: the push outs tried, soft rolls of the cue ball ...
+PUSH_OUT_TURNS = tuple(math.radians(a) for a in range(0, 360, 45))  # ... in eight directions
 IN_HAND_QUALITY = 1.0  # the next shooter's quality with ball in hand
 SEPARATION, SEPARATION_PASSES = 1e-9, 5  # m: overlaps the observation's rounding leaves, undone
 LOOKAHEAD_WORK = 150  # outcomes x legal balls the lookahead scores per decision (best plain value first)
@@ -79,10 +82,11 @@ def legal_mask(legal, n_balls: int) -> np.ndarray:
 
 
 def decode(observation, n_balls: int, table: Table, game: bool = True) -> GameView:
-    """Read a game observation (`pool_env.game.decode_game_observation`, n_balls 10 or 16) or,
+    """Read a game observation (`pool_env.game.decode_game_observation`, n_balls 10, 11 or 16) or,
     with `game=False`, a `PoolBreakEnv` observation (16 balls, every object ball legal)."""
     if game:
-        return decode_game_observation(observation, "nine_ball" if n_balls == 10 else "eight_ball", table)
+        game_of_size = {n: name for name, n in GAME_BALLS.items()}  # 10 nine_ball, 11 ten_ball, 16 eight_ball
+        return decode_game_observation(observation, game_of_size[n_balls], table)
     xy, on_table = decode_observation(observation, table)
     xy = np.where(on_table[:, None], xy, 0.5 * np.array([table.length, table.width]))
     return GameView(xy, on_table, frozenset(int(b) for b in np.flatnonzero(on_table[1:]) + 1))
@@ -107,7 +111,8 @@ def game_state(decoded: GameView, game: str, rule_options: dict | None = None) -
     on = frozenset(int(b) for b in np.flatnonzero(decoded.on_table[1:]) + 1)
     is_break = decoded.ball_in_hand == "behind_head_string" and racked(decoded.xy, decoded.on_table)
     return dataclasses.replace(state, on_table=on, shooter=0, ball_in_hand=decoded.ball_in_hand,
-                               fouls=decoded.fouls, groups=groups, is_break=is_break, shot=0 if is_break else 1)
+                               fouls=decoded.fouls, groups=groups, is_break=is_break, shot=0 if is_break else 1,
+                               push_out=bool(decoded.push_out and not is_break))
 
 
 def balls_of(decoded: GameView, radius: float = BALL_RADIUS) -> Balls:
@@ -160,7 +165,7 @@ class SearchAgent(Agent):
     def __init__(self, game: str | None = "nine_ball", table: Table | None = None, physics: Physics | None = None,
                  noise: dict | None = None, spin: bool = True, budget: int = 600, noise_samples: int = 6,
                  seed: int | None = 0, lookahead: bool = True, threads: int = 1, seconds: float | None = None,
-                 rule_options: dict | None = None, radius: float = BALL_RADIUS):
+                 rule_options: dict | None = None, radius: float = BALL_RADIUS, decisions: bool = False):
         if game is not None and game not in GAME_BALLS:
             raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)} or None (PoolBreakRun-v0)")
         if int(budget) < 1 or int(noise_samples) < 1:
@@ -179,7 +184,7 @@ class SearchAgent(Agent):
         self.rng = np.random.default_rng(seed)
         self.last_stats: dict = {}
         # The game it plans on: the env's own rules and strike, at the position it decodes.
-        layout = None if game is not None else ("cue_spin" if self.spin else "cue")
+        layout = env_layout(game, decisions=decisions) if game is not None else ("cue_spin" if self.spin else "cue")
         self.sim = Game(game or "run", self.table, self.physics, noise, layout=layout, **self.rule_options)
 
     @classmethod
@@ -188,7 +193,7 @@ class SearchAgent(Agent):
         game = game_of(env)
         if game.has_rules:
             return cls(game=game.mode, table=game.table, physics=game.physics, noise=game.noise,
-                       rule_options=game.rule_options, **options)
+                       rule_options=game.rule_options, decisions=game.layout.decision, **options)
         return cls(game=None, table=game.table, physics=game.physics, spin=game.layout.spin, **options)
 
     def reset(self, seed: int | None = None) -> None:
@@ -207,7 +212,34 @@ class SearchAgent(Agent):
         self.last_stats = {"candidates": len(candidates), "simulations": simulated * self.noise_samples,
                            "seconds": time.perf_counter() - start, "value": float(values[best]),
                            "kind": candidates[best].kind}
+        if d.push_out:  # WPA 2.4: a push out, if one scores better than the best shot
+            value, shot = self.push_out(d, state)
+            if value > values[best]:
+                self.last_stats.update(value=value, kind="push_out")
+                return self.sim.encode(shot)
         return self.action(candidates[best], d.ball_in_hand)
+
+    def push_out(self, d: GameView, state) -> tuple[float, Shot]:
+        """(the mean value, the Shot) of the best push out from the decoded position: soft rolls
+        of the cue ball (`PUSH_OUT_SPEEDS` x `PUSH_OUT_TURNS`) simulated with the noise draws;
+        each legal one scored for both replies the opponent has (WPA 2.4): he shoots, worth
+        MISS x q to us (q the shooter's best ghost-ball quality from there), or passes it back,
+        worth CONTINUE + (1 - CONTINUE) q; he takes the one worse for us. A foul scores FOUL."""
+        self.sim.reset(balls=balls_of(d, self.radius), state=state)
+        shots = [Shot.aimed((math.cos(t), math.sin(t)), v, push_out=True)
+                 for v in PUSH_OUT_SPEEDS for t in PUSH_OUT_TURNS]
+        records = self.sim.evaluate(shots, draws=self.noise_samples, seed=self.rng, threads=self.threads)
+        values = []
+        for record in records:
+            if record.error is not None or record.ruling.foul is not None:
+                values.append(FOUL)
+                continue
+            balls = record.balls_after
+            q = self.quality(balls.xy, ~balls.pocketed, rules.legal_targets(record.state_after))
+            values.append(min(MISS * q, CONTINUE + (1.0 - CONTINUE) * q))
+        means = np.array(values).reshape(len(shots), self.noise_samples).mean(axis=1)
+        best = int(np.argmax(means))
+        return float(means[best]), shots[best]
 
     def candidates(self, d: GameView, state) -> list[Candidate]:
         """Every candidate of this decision, best prior first (pots, then kicks and safeties)."""
@@ -386,7 +418,8 @@ class SearchAgent(Agent):
         `seconds`, `SIMULATION_CHUNK` candidates at a time while the time lasts)."""
         self.sim.reset(balls=balls_of(d, self.radius), state=state)
         area, pockets = self.sim.placement_area(), self.table.pockets.shape[0]  # as sim.decode reads them
-        shots = [decode_action(self.sim.layout, self.action(cand, d.ball_in_hand, area), area, pockets)
+        targets = self.sim.called_targets  # 10-ball: a pot calls the first, the lowest ball (its target)
+        shots = [decode_action(self.sim.layout, self.action(cand, d.ball_in_hand, area), area, pockets, targets)
                  for cand in candidates]
         chunk = len(shots) if self.seconds is None else SIMULATION_CHUNK
         records = []
@@ -463,6 +496,21 @@ class SearchAgent(Agent):
         masks = np.array([legal_mask(legal, on.shape[1]) for legal in legals]).reshape(on.shape)
         return self.plans.qualities(np.array(xys, dtype=np.float64), on, masks, IN_HAND_QUALITY)
 
+    def choose(self, game) -> str:
+        """Its option of `game`'s pending decision (a `pool_env.game.Game` with decisions).
+        After a push out it scores both replies from the position: shooting is worth its own
+        best ghost-ball quality q there, passing leaves the opponent that shot (1 - q for it):
+        it shoots when q >= 1/2. After an illegal 8-ball break it takes ball in hand; after the
+        8 on the break it spots it."""
+        pending = game.pending
+        if pending is None:
+            raise ValueError("no decision is pending")
+        if pending.name == "push_out_reply":
+            balls = game.balls
+            q = self.quality(balls.xy, ~balls.pocketed, game.legal_targets)
+            return "shoot" if q >= 1.0 - q else "pass"
+        return {"illegal_break": "ball_in_hand", "eight_on_break": "spot_eight"}[pending.name]
+
     # --- the action ------------------------------------------------------------------------------
     def action(self, cand: Candidate, in_hand, area=False) -> np.ndarray:
         """The env's action for a candidate (`pool_env.game.encode_action` of its shot); `area`
@@ -470,7 +518,8 @@ class SearchAgent(Agent):
         shot = Shot.aimed(cand.direction, min(cand.speed, MAX_SPEED), cand.tip, place=cand.spot, pocket=cand.pocket)
         if area is False:
             area = None if in_hand is None else placement_area(self.table, in_hand, self.radius)
-        return encode_action(self.sim.layout, shot, area, max(self.table.pockets.shape[0], 1))
+        targets = self.sim.called_targets if self.sim.has_rules else ()  # the position's (simulate reset it)
+        return encode_action(self.sim.layout, shot, area, max(self.table.pockets.shape[0], 1), targets)
 
 
 # --- measuring ---------------------------------------------------------------------------------

@@ -31,8 +31,8 @@ BUILTIN = ("random", "ghost_ball", "search", "learned", "search+value")  # the r
 TIMING_KEYS = ("seconds", "seconds_per_decision", "wall_seconds")  # the only entries that differ between runs
 
 
-ENV_IDS = {"nine_ball": "PoolNineBall-v0", "eight_ball": "PoolEightBall-v0", "three_cushion": "ThreeCushion-v0",
-           "snooker": "Snooker-v0"}
+ENV_IDS = {"nine_ball": "PoolNineBall-v0", "eight_ball": "PoolEightBall-v0", "ten_ball": "PoolTenBall-v0",
+           "three_cushion": "ThreeCushion-v0", "snooker": "Snooker-v0"}
 MAX_SHOTS = {"snooker": 300}  # the agent's shots before a game is stopped unfinished; else 100 (a frame is long)
 
 

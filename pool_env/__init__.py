@@ -19,6 +19,8 @@ ENV_IDS = {
                         {"game": "nine_ball"}),
     "PoolEightBall-v0": ("pool_env.envs.game_env:PoolGameEnv", "pool_env.envs.vector:PoolGameVectorEnv",
                          {"game": "eight_ball"}),
+    "PoolTenBall-v0": ("pool_env.envs.game_env:PoolGameEnv", "pool_env.envs.vector:PoolGameVectorEnv",
+                       {"game": "ten_ball"}),
     "ThreeCushion-v0": ("pool_env.envs.carom_env:ThreeCushionEnv", "pool_env.envs.carom_vector:ThreeCushionVectorEnv",
                         {}),
     "Snooker-v0": ("pool_env.envs.game_env:PoolGameEnv", "pool_env.envs.vector:PoolGameVectorEnv",

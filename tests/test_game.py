@@ -206,9 +206,14 @@ def test_encode_of_decode_gives_the_action_back(name):
             a[6] = -1.0 + (2 * int(rng.integers(6)) + 1) / 6  # a bin's centre
         if layout_.called_ball:
             a[7] = -1.0 + (2 * int(rng.integers(len(TARGETS))) + 1) / len(TARGETS)  # a bin's centre
+        push_out = False
+        if layout_.decision:  # a push out declared (where one may be) or not: written back as +-0.5
+            push_out = bool(rng.integers(2))
+            a[layout_.decision_index] = 0.5 if push_out else -0.5
         if layout_.elevation:
             a[-1] = max(a[-1], 0.0)  # every entry <= 0 is the level cue, written back as 0
-        shot = decode_action(layout_, a, area, targets=TARGETS)
+        shot = decode_action(layout_, a, area, targets=TARGETS, push_out=True)
+        assert shot.push_out == push_out
         assert np.allclose(encode_action(layout_, shot, area, targets=TARGETS), a, atol=2e-6)
 
 

@@ -27,7 +27,7 @@ def signature(info: dict) -> dict:
     return out
 
 
-GAME_IDS = ("PoolNineBall-v0", "PoolEightBall-v0", "Snooker-v0")
+GAME_IDS = ("PoolNineBall-v0", "PoolEightBall-v0", "PoolTenBall-v0", "Snooker-v0")
 CAROM_KEYS = {"points", "opponent_points", "scores", "innings", "opponent_shots", "winner", "draw", "error",
               "pocketed"}  # ThreeCushion-v0's
 
@@ -79,7 +79,7 @@ def test_code_tables_follow_the_rules_names_with_none_first():
     # the pool games' names keep their codes; snooker's own names follow them, each name once
     snooker_fouls = tuple(f for f in SNOOKER_FOULS if f not in rules.FOULS)
     assert codes.FOUL_CODES == (None, *rules.FOULS, *snooker_fouls) and "wrong_ball_potted" in snooker_fouls
-    assert codes.END_REASON_CODES == (None, *rules.END_REASONS, *SNOOKER_END_REASONS)
+    assert codes.END_REASON_CODES == (None, *rules.END_REASONS, *SNOOKER_END_REASONS, *rules.TEN_END_REASONS)
     assert codes.BALL_IN_HAND_CODES == (None, "anywhere", "behind_head_string", "in_d")  # snooker: in the D
     assert codes.TRUNCATION_CODES == (None, "shot_limit", "opponent_shot_limit", "shot_error")
     for key, table in codes.CODE_TABLES.items():

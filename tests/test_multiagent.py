@@ -89,6 +89,7 @@ def test_api_test_passes(module):
     env = module.env()
     api_test(WithoutApiTestsProbe(env), num_cycles=300)
     assert isinstance(env.unwrapped, AECEnv)
+
     name = module.__name__.rsplit(".", 1)[-1]
     assert env.metadata["name"] == name and env.metadata["is_parallelizable"] is False
     assert env.possible_agents == ["player_0", "player_1"]
@@ -96,6 +97,23 @@ def test_api_test_passes(module):
     assert env.action_space("player_0").shape == (size,)
     assert env.action_space("player_1") is env.action_space("player_0")
     assert env.observation_space("player_0").shape == ((71,) if size == 7 else (44,))
+
+
+@pytest.mark.parametrize("module", MODULES[:2], ids=lambda m: m.__name__.rsplit(".", 1)[-1])
+def test_api_test_passes_with_decision_turns(module):
+    # Random 8-ball breaks are mostly illegal: the incoming player's decision turns are exercised (WPA 3.3(d)).
+    env = module.env(decisions=True)
+    api_test(WithoutApiTestsProbe(env), num_cycles=300)
+    assert env.unwrapped.action_space("player_0").shape[0] == env.unwrapped.game.layout.size
+
+
+def test_api_test_passes_for_ten_ball():
+    from pool_env.multiagent import ten_ball_v0
+
+    env = ten_ball_v0.env()
+    api_test(WithoutApiTestsProbe(env), num_cycles=300)
+    assert env.action_space("player_0").shape == (8,) and env.observation_space("player_0").shape == (48,)
+    api_test(WithoutApiTestsProbe(ten_ball_v0.env(decisions=True)), num_cycles=300)
 
 
 def test_turn_stays_after_a_legal_pot_and_passes_after_a_miss():

@@ -129,3 +129,11 @@ def test_a_player_that_raises_forfeits():
     assert record["winner"] == "random" and record["forfeit"] == "broken"
     assert "ValueError: bug" in record["end_reason"]
     assert tour.player_stats([record], "broken")["forfeits"] == 1
+
+
+def test_ten_ball_tournament_runs(tmp_path):
+    # python -m agents.tournament --game ten_ball: the ghost-ball player beats the random one.
+    tour.main(["--game", "ten_ball", "--players", "random,ghost_ball", "--games", "2", "--noise", "none",
+               "--out", str(tmp_path)])
+    elo = json.loads((tmp_path / "tournament.json").read_text())["results"]["none"]["elo"]
+    assert elo["ghost_ball"] > elo["random"]

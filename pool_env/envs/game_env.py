@@ -9,7 +9,7 @@ import numpy as np
 from gymnasium import logger, spaces
 
 from .. import rules
-from ..game import ELEVATED, GAME_BALLS, Game, Shot, game_observation, game_observation_size, game_view
+from ..game import GAME_BALLS, Game, Shot, env_layout, game_observation, game_observation_size, game_view
 from ..physics import Balls
 from ..players import make_player
 from ..render.overlay import overlay
@@ -104,7 +104,9 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
 
     | argument | default | meaning |
     | --- | --- | --- |
-    | `game` | `"nine_ball"` | `"nine_ball"` (PoolNineBall-v0: 10 balls) or `"eight_ball"` (PoolEightBall-v0: 16) |
+    | `game` | `"nine_ball"` | `"nine_ball"` (PoolNineBall-v0: 10 balls), `"eight_ball"` (PoolEightBall-v0: 16) or
+      `"ten_ball"` (PoolTenBall-v0: 11; the action as 8-ball's, entry 6 the called pocket on every shot but the
+      break, plus entry 7, the called ball among those on the table, ascending; observation 48 entries) |
     | `opponent` | `"ghost_ball"` | a player's name (`pool_env.make_player`: `"ghost_ball"`, the rule-aware
       `pool_env.players.GameGhostBallAgent`, `"random"`, `"search"`, a saved model's path), an agent with
       `act(observation)`, a callable `observation -> action`, or None: practice (below). A built-in name's player
@@ -125,6 +127,9 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
       shoot, the episode going on when the turn passes until the game ends (`python -m pool_env.play
       --two-players`); observations from player 0's side |
     | `elevation` | False | add the cue's elevation to the action (its last entry, below): jump and masse shots |
+    | `decisions` | False | decision turns (docs/rules.md): the action gains the decision entry and the
+      observation the decision flags (below); the 9-ball push out and its reply, 8-ball's choices after an
+      illegal break or the 8 on the break. Without, a decision's default applies (docs/rules.md) |
 
     ## Action Space
 
@@ -139,10 +144,18 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
       a ball or outside the area moves to the nearest free one (`place_cue_ball`) |
     | 6 | 8-ball: the pocket called for the 8: [-1, 1] cut into six equal bins, pocket k (`Table.pockets`
       order) in bin k; ignored unless the agent shoots at the 8 |
-    | last | with `elevation=True` (7 entries in 9-ball, 8 in 8-ball): the cue's elevation, 85 deg * a for
-      a > 0, a level cue for a <= 0 (`PoolBreakEnv`'s); a jump over a blocking ball is legal (the WPA's jump
-      shot: made by elevating the cue), a ball driven off the table a foul (WPA 6.5, 6.1 for the cue
-      ball). The built-in opponents cue level |
+    | 6 (9-ball), 7 (8-ball) | with `decisions=True`: the decision entry. On a shot that may be a push out
+      (the shot right after a legal 9-ball break, WPA 2.4), > 0 declares one; when the agent has a decision
+      to make (the observation's flags), the step is that decision: the entry cuts [-1, 1] into as many
+      equal bins as the decision has options (`rules.DECISIONS` order: after a push out "shoot", "pass";
+      after an illegal 8-ball break "ball_in_hand", "accept_table", "rerack_and_break",
+      "rerack_opponent_breaks"; after the 8 on the break "spot_eight", "rebreak"), option k in bin k, and the
+      other entries are ignored (`Game.encode_decision` / `decode_decision`). The built-in opponents decide
+      by their `choose` |
+    | last | with `elevation=True` (7 entries in 9-ball, 8 in 8-ball; one more with `decisions`): the cue's
+      elevation, 85 deg * a for a > 0, a level cue for a <= 0 (`PoolBreakEnv`'s); a jump over a blocking
+      ball is legal (the WPA's jump shot: made by elevating the cue), a ball driven off the table a foul
+      (WPA 6.5, 6.1 for the cue ball). The built-in opponents cue level |
 
     ## Observation Space
 
@@ -156,6 +169,9 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
     | 2 | ball in hand for the shooter: anywhere, behind the head string (+1 / -1 each) |
     | 2 | the shooter's consecutive fouls, then the opponent's: 0, 1, 2 as -1, 0, 1 |
     | 3 (8-ball) | the shooter's group: open, solids, stripes (one +1) |
+    | 5 (`decisions=True`: 49 in 9-ball, 76 in 8-ball) | +1 for the decision the viewer is to make now, one
+      per `rules.DECISIONS` (push-out reply, illegal break, the 8 on the break, 10-ball's reply to a ball
+      pocketed not as called), then +1 if he may push out |
     | 1 | the agent's shots this episode, 2 shots / max_shots - 1 |
 
     ## Rewards
@@ -219,21 +235,22 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
 
     def __init__(self, game="nine_ball", opponent="ghost_ball", render_mode=None, table=None, physics=None,
                  noise=None, agent_breaks=True, shaping=False, max_shots=100, rule_options=None,
-                 render_size=(640, 360), overlay=True, hotseat=False, info_mode="numeric", elevation=False):
+                 render_size=(640, 360), overlay=True, hotseat=False, info_mode="numeric", elevation=False,
+                 decisions=False):
         self.info_mode = check_info_mode(info_mode)
         if game not in GAME_BALLS:
             raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
         self.render_mode = render_mode
         self.max_shots = check_env_options(render_mode, self.metadata["render_modes"], max_shots)
         self.rule_options = dict(rule_options or {})
-        self.elevation = bool(elevation)
-        self.game = Game(game, table, physics, noise, layout=game + ELEVATED if self.elevation else None,
+        self.elevation, self.decisions = bool(elevation), bool(decisions)
+        self.game = Game(game, table, physics, noise, layout=env_layout(game, self.elevation, self.decisions),
                          **self.rule_options)
         self.table, self.physics, self.noise = self.game.table, self.game.physics, self.game.noise
         self.agent_breaks, self.shaping, self.hotseat = bool(agent_breaks), bool(shaping), bool(hotseat)
         self.n_balls = self.game.n_balls
         self.action_space = spaces.Box(-1.0, 1.0, (self.game.layout.size,), np.float32)
-        self.observation_space = spaces.Box(-1.0, 1.0, (game_observation_size(game),), np.float32)
+        self.observation_space = spaces.Box(-1.0, 1.0, (game_observation_size(game, self.decisions),), np.float32)
         self.opponent = opponent
         self._opponent, self._opponent_player, self._opponent_name = resolve_opponent(opponent, self)
         if self._opponent is None and not self.agent_breaks:
@@ -361,7 +378,8 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
 
     def observation(self, viewer: int = 0) -> np.ndarray:
         """The observation now from player `viewer`'s side (0: the agent's, the env's own)."""
-        return game_observation(self.game.balls, self.game.state, viewer, self._shots, self.max_shots, self.table)
+        return game_observation(self.game.balls, self.game.state, viewer, self._shots, self.max_shots, self.table,
+                                self.decisions)
 
     # --- a step, as a generator of shots (vector envs simulate many envs' shots at once) --------
     def step_shots(self, action, observe=True):
@@ -382,6 +400,10 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
                 self.game.decode(action)  # a bad action still raises
             self._error, self._truncation = ended_at_reset, self._reset_truncation
             return self._finish(observe)
+        if self.game.pending is not None:  # the agent's decision (the decision entry picks it)
+            self.game.decide(self.game.decode_decision(action))
+            yield from self._opponent_turn()  # after a pass back, the opponent shoots
+            return self._finish(observe)
         struck = self.game.strike(action)
         self._note(self.game.resolve(struck, (yield struck)), mine=True)
         yield from self._opponent_turn()
@@ -396,6 +418,9 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
                 self._truncation = "opponent_shot_limit"
                 return
             player = self._opponent_player
+            if game.pending is not None:  # a built-in player's choice (`choose`), else the default
+                game.decide(player.choose(game) if hasattr(player, "choose") else game.pending.default)
+                continue
             direct = player is not None and hasattr(player, "decide_batch")  # it reads the game, not an observation
             if direct:
                 view = game_view(game.balls, game.state, OPPONENT, self._shots, self.max_shots, self.table)

@@ -6,10 +6,13 @@ from .actions import (
     ActionLayout,
     cue_force,
     decode_action,
+    decode_decision,
     decode_entries,
     elevation_entry,
     encode_action,
+    encode_decision,
     encoded_entries,
+    env_layout,
 )
 from .carom_observation import CAROM_OBSERVATION_SIZE, CaromView, carom_observation, decode_carom_observation
 from .core import Game, GameSnapshot, ShotRecord, StruckShot, play_batch, simulate_struck, simulate_struck_batch
@@ -37,7 +40,7 @@ __all__ = [
     "decode_action", "encode_action", "N_BALLS", "GameView", "GAME_BALLS", "break_observation", "break_observations",
     "decode_observation", "game_observation", "decode_game_observation", "game_observation_size",
     "place_cue_ball", "placement_area", "CONTACT_TIME", "MAX_FORCE", "MAX_SPEED", "MAX_TIP_OFFSET",
-    "NOISE_PRESETS", "noise_of", "noisy_shot",
+    "NOISE_PRESETS", "noise_of", "noisy_shot", "env_layout", "decode_decision", "encode_decision",
     "CAROM_OBSERVATION_SIZE", "CaromView", "carom_observation", "decode_carom_observation",
     "SnookerView", "decode_snooker_observation", "snooker_observation",
 ]

@@ -19,6 +19,8 @@ class ActionLayout:
     """An action vector's layout: `size` entries in [-1, 1]; `spin` has the tip entries (2-3);
     `placement` the ball-in-hand entries (4-5); `called_pocket` the pocket entry (6);
     `called_ball` the called-ball entry (7: 8-ball with called ball and pocket, WPA 1.6);
+    `decision` the decision entry, after those (a "_decide" layout: on a shot that may be a
+    push out, > 0 declares one; at a pending decision it picks the option, `decode_decision`);
     `elevation` the cue-elevation entry, the last one (a layout's "+elevation" variant)."""
 
     name: str
@@ -28,6 +30,14 @@ class ActionLayout:
     called_pocket: bool = False
     elevation: bool = False
     called_ball: bool = False
+    decision: bool = False
+
+    @property
+    def decision_index(self) -> int:
+        """The decision entry's index (the last but the elevation's)."""
+        if not self.decision:
+            raise ValueError(f"layout {self.name!r} has no decision entry")
+        return self.size - 1 - int(self.elevation)
 
 
 _LEVEL = {
@@ -39,10 +49,26 @@ _LEVEL = {
     # `Game("eight_ball", layout="eight_ball_call", calling="ball_and_pocket")`: a ball and a pocket every shot.
     "eight_ball_call": ActionLayout("eight_ball_call", 8, spin=True, placement=True, called_pocket=True,
                                     called_ball=True),
+    # 10-ball: every shot but the break calls a ball (any on the table) and a pocket (WPA Ten Ball 5).
+    "ten_ball": ActionLayout("ten_ball", 8, spin=True, placement=True, called_pocket=True, called_ball=True),
+    # The layouts with the decision entry (`Game` waits for its decisions: `Game.decide`).
+    "nine_ball_decide": ActionLayout("nine_ball_decide", 7, spin=True, placement=True, decision=True),
+    "eight_ball_decide": ActionLayout("eight_ball_decide", 8, spin=True, placement=True, called_pocket=True,
+                                      decision=True),
+    "ten_ball_decide": ActionLayout("ten_ball_decide", 9, spin=True, placement=True, called_pocket=True,
+                                    called_ball=True, decision=True),
 }
 ELEVATED = "+elevation"  # the suffix of a layout's variant with the cue-elevation entry last
 LAYOUTS = {**_LEVEL, **{name + ELEVATED: replace(layout, name=name + ELEVATED, size=layout.size + 1, elevation=True)
                         for name, layout in _LEVEL.items()}}
+
+
+def env_layout(game: str, elevation: bool = False, decisions: bool = False) -> str | None:
+    """The action layout's name of a game env of `game` with the elevation entry and the
+    decision entry as asked (None: the mode's default)."""
+    if not (elevation or decisions):
+        return None
+    return game + ("_decide" if decisions else "") + (ELEVATED if elevation else "")
 
 
 def elevation_entry(entry: float) -> float:
@@ -91,13 +117,14 @@ def cue_entries(values, spin: bool) -> tuple:
     return (MAX_FORCE * dx, MAX_FORCE * dy), (side, top)
 
 
-def decode_action(layout: ActionLayout, action, area=None, n_pockets: int = 6, targets=()) -> Shot:
+def decode_action(layout: ActionLayout, action, area=None, n_pockets: int = 6, targets=(), push_out=False) -> Shot:
     """The `Shot` an action of `layout` means. `area` (x_lo, x_hi, y_lo, y_hi) is where the
     cue ball may be placed (ball in hand; None: it plays from where it lies, and entries 4-5
     are ignored): entries 4-5 map linearly onto it. Entry 6 cuts [-1, 1] into `n_pockets`
     equal bins, pocket k in bin k. Entry 7 (`called_ball`) cuts [-1, 1] into len(`targets`)
     equal bins, targets[k] (the balls the shooter may call, ascending) in bin k; no targets, no
-    called ball. An elevated layout's last entry is the cue's elevation (`elevation_entry`).
+    called ball. The decision entry (`decision`) > 0 declares a push out when `push_out` (the
+    shooter may). An elevated layout's last entry is the cue's elevation (`elevation_entry`).
     ValueError for a wrong shape or a non-finite entry."""
     if not (layout.placement or layout.elevation):
         force, tip = cue_force(action, layout.spin)
@@ -108,10 +135,40 @@ def decode_action(layout: ActionLayout, action, area=None, n_pockets: int = 6, t
     values = a.tolist()  # Python floats: the same IEEE arithmetic as numpy's, without its per-call cost
     if not all(math.isfinite(v) for v in values):
         raise ValueError(f"action must be finite, got {values}")
-    return decode_entries(layout, values, area, n_pockets, targets)
+    return decode_entries(layout, values, area, n_pockets, targets, push_out)
 
 
-def decode_entries(layout: ActionLayout, values, area=None, n_pockets: int = 6, targets=()) -> Shot:
+def checked_entries(layout: ActionLayout, action) -> list:
+    """An action's entries as Python floats; ValueError for a wrong shape or a non-finite entry."""
+    a = np.asarray(action, dtype=np.float64)
+    if a.shape != (layout.size,):
+        raise ValueError(f"action must have shape ({layout.size},), got shape {a.shape}")
+    values = a.tolist()
+    if not all(math.isfinite(v) for v in values):
+        raise ValueError(f"action must be finite, got {values}")
+    return values
+
+
+def decode_decision(layout: ActionLayout, action, options) -> str:
+    """The option an action of a layout with the decision entry picks at a pending decision:
+    the entry cuts [-1, 1] into len(`options`) equal bins, options[k] in bin k (the other
+    entries are ignored). ValueError for a layout without the entry or a bad action."""
+    index = layout.decision_index
+    entry = min(max(checked_entries(layout, action)[index], -1.0), 1.0)
+    return options[min(int((entry + 1.0) * 0.5 * len(options)), len(options) - 1)]
+
+
+def encode_decision(layout: ActionLayout, option, options) -> np.ndarray:
+    """The action (float32) that `decode_decision` reads back as `option`: zeros but the
+    decision entry, the middle of the option's bin. ValueError for an option not in `options`."""
+    if option not in options:
+        raise ValueError(f"{option!r} is not one of the options {tuple(options)}")
+    action = np.zeros(layout.size, dtype=np.float32)
+    action[layout.decision_index] = -1.0 + (2.0 * list(options).index(option) + 1.0) / len(options)
+    return action
+
+
+def decode_entries(layout: ActionLayout, values, area=None, n_pockets: int = 6, targets=(), push_out=False) -> Shot:
     """`decode_action` of an action's entries already checked (`layout.size` finite Python floats)."""
     a = [min(max(v, -1.0), 1.0) for v in values]  # np.clip(a, -1, 1)
     spin = layout.spin or layout.placement
@@ -128,7 +185,8 @@ def decode_entries(layout: ActionLayout, values, area=None, n_pockets: int = 6, 
     ball = None
     if layout.called_ball and len(targets):
         ball = int(targets[min(int((a[7] + 1.0) * 0.5 * len(targets)), len(targets) - 1)])
-    return Shot(force, tip, place, pocket, elevation, ball)
+    pushed = bool(layout.decision and push_out and a[layout.decision_index] > 0.0)
+    return Shot(force, tip, place, pocket, elevation, ball, pushed)
 
 
 def encode_action(layout: ActionLayout, shot: Shot, area=None, n_pockets: int = 6, targets=()) -> np.ndarray:
@@ -174,6 +232,8 @@ def action_entries(layout: ActionLayout, shot: Shot, area=None, n_pockets: int =
         called = list(targets)
         k = called.index(shot.ball) if shot.ball in called else 0
         entries.append(-1.0 + (2.0 * k + 1.0) / max(len(called), 1))
+    if layout.decision:  # a push out declared, or not
+        entries.append(0.5 if shot.push_out else -0.5)
     if layout.elevation:
         entries.append(shot.elevation / MAX_ELEVATION)
     return entries

@@ -10,13 +10,23 @@ import numpy as np
 from .. import rules
 from ..physics import BALL_RADIUS, Balls, Physics, Result, SimulationError, Table, simulate, simulate_batch, strike
 from ..physics.simulate import check_on_table
-from .actions import LAYOUTS, ActionLayout, decode_action, decode_entries, encode_action, encoded_entries
+from .actions import (
+    LAYOUTS,
+    ActionLayout,
+    decode_action,
+    decode_decision,
+    decode_entries,
+    encode_action,
+    encode_decision,
+    encoded_entries,
+)
 from .modes import Mode, mode_of
 from .placement import area_centre, place_cue_ball, placement_area
 from .shot import CONTACT_TIME, Shot, noise_of, noisy_shot
 
 SHOT_ERRORS = (SimulationError, ValueError)  # a shot that cannot be struck or simulated: recorded, not raised
 CUE_AREA = ((0.05, 0.25), (0.1, 0.9))  # randomize_cue: the cue ball's start, as fractions of L and W
+CALLING_RULES = ("eight_ball", "ten_ball")  # the games whose shots call a pocket (and a ball)
 CUE_TRIES = 1000  # draws of a random cue spot before falling back to the head spot
 
 
@@ -39,6 +49,7 @@ class StruckShot:
     action: tuple | None = None
     elevation: float = 0.0
     called_ball: int | None = None
+    push_out: bool = False
 
 
 @dataclass(eq=False, slots=True)
@@ -154,7 +165,8 @@ class Game:
     """
 
     def __init__(self, mode: str = "nine_ball", table: Table | None = None, physics: Physics | None = None,
-                 noise=None, seed=None, layout: str | None = None, randomize_cue: bool = False, **rule_options):
+                 noise=None, seed=None, layout: str | None = None, randomize_cue: bool = False,
+                 decisions: bool | None = None, **rule_options):
         self._mode: Mode = mode_of(mode)
         self.table = self._mode.table() if table is None else table
         if not isinstance(self.table, Table):
@@ -174,6 +186,8 @@ class Game:
         if rule_options and self._mode.rules is None:
             raise TypeError(f"the {mode} mode has no rules to take options {sorted(rule_options)}")
         self.randomize_cue = bool(randomize_cue)
+        # With decisions, a choice the rules leave (`pending`) waits for `decide`; without, its default applies.
+        self.decisions = bool(self.layout.decision) if decisions is None else bool(decisions)
         self.rule_options = dict(rule_options)
         if self._mode.rules is not None:
             rules.new_game(self._mode.rules, **self.rule_options)  # bad options raise here
@@ -226,10 +240,36 @@ class Game:
         return frozenset() if self._state.winner is not None else rules.legal_targets(self._state)
 
     @property
+    def pending(self):
+        """The `rules.Decision` the shooter makes before he shoots (`decide`), or None. Only
+        with `decisions` (a layout with the decision entry, or `Game(..., decisions=True)`);
+        otherwise the decision's default applies as the shot before it is judged."""
+        return getattr(self._state, "pending", None) if self._state is not None else None
+
+    @property
+    def may_push_out(self) -> bool:
+        """The shooter may declare this shot a push out (`Shot.push_out`: WPA 2.4)."""
+        return bool(getattr(self._state, "push_out", False)) and not self._over
+
+    def decide(self, option: str):
+        """The shooter takes `option` of the pending decision (`pending.options`); the new
+        rules' state. A re-rack (8-ball, WPA 3.3(d)-(f)) racks the balls afresh from the
+        game's generator. ValueError when no decision is pending or `option` is not one."""
+        if self.pending is None:
+            raise ValueError("no decision is pending: the shooter shoots (play)")
+        state = rules.decide(self._state, option)
+        if state.is_break and not self._state.is_break:
+            self._balls = self._mode.rack(self.table, int(self.rng.integers(2**63 - 1)))
+        self._state = state
+        return state
+
+    @property
     def calls_pocket(self) -> bool:
         """The shooter must call a pocket (`Shot.pocket`) for this shot: 8-ball, shooting at
         the 8 (WPA 1.6: the 8 is called; not on the break)."""
         state = self._state
+        if self._mode.rules == "ten_ball":  # every shot but the break (WPA Ten Ball 5)
+            return state.winner is None and not state.is_break
         return (self._mode.rules == "eight_ball" and state.winner is None and not state.is_break
                 and self.legal_targets == frozenset({8}))
 
@@ -259,18 +299,39 @@ class Game:
         """The `Shot` an action vector of the game's layout means now (the ball-in-hand entries
         map onto the shooter's placement area). ValueError for a wrong shape or a non-finite entry."""
         return decode_action(self.layout, action, self.placement_area(), self.table.pockets.shape[0],
-                             self._called_targets())
+                             self._called_targets(), self.may_push_out)
+
+    def decode_decision(self, action) -> str:
+        """The option of the pending decision an action of a layout with the decision entry
+        picks (`actions.decode_decision`). ValueError without a decision pending or the entry."""
+        if self.pending is None:
+            raise ValueError("no decision is pending: the action is a shot (decode)")
+        return decode_decision(self.layout, action, self.pending.options)
+
+    def encode_decision(self, option: str) -> np.ndarray:
+        """The action (float32) that `decode_decision` reads back as `option` now."""
+        if self.pending is None:
+            raise ValueError("no decision is pending: the action is a shot (encode)")
+        return encode_decision(self.layout, option, self.pending.options)
 
     def encode(self, shot: Shot) -> np.ndarray:
         """The action vector (float32) of the game's layout that `decode` reads back as `shot` now."""
         return encode_action(self.layout, shot, self.placement_area(), self.table.pockets.shape[0],
                              self._called_targets())
 
+    @property
+    def called_targets(self) -> tuple:
+        """The balls an action's called-ball entry chooses among now, ascending (the first when
+        a Shot names none): 8-ball the legal targets, 10-ball every ball on the table."""
+        return self._called_targets()
+
     def _called_targets(self) -> tuple:
         """The balls an action's called-ball entry chooses among (a layout with one): the legal
         targets, ascending; none on the break (WPA 3.3: nothing is called)."""
         if not self.layout.called_ball or self._state is None or self._state.is_break:
             return ()
+        if self._mode.rules == "ten_ball":  # any ball on the table may be called (WPA Ten Ball 5)
+            return tuple(sorted(self._state.on_table))
         return tuple(sorted(self.legal_targets))
 
     # --- starting -------------------------------------------------------------------------------
@@ -316,7 +377,7 @@ class Game:
             return balls
         if balls.pocketed[0]:
             raise ValueError("balls: the cue ball (ball 0) must be on the table")
-        last = {"nine_ball": 9, "eight_ball": 8, "snooker": 21}.get(self._mode.rules)
+        last = {"nine_ball": 9, "eight_ball": 8, "snooker": 21, "ten_ball": 10}.get(self._mode.rules)
         if last is not None and balls.pocketed[last]:
             raise ValueError(f"balls: the {last} must be on the table (the game would be over)")
         check_on_table(balls, self.table, self.physics)
@@ -362,7 +423,13 @@ class Game:
         nothing but the generator. RuntimeError if the game is over, ValueError for a bad shot."""
         if self._over:
             raise RuntimeError("the game is over; reset() it")
+        self._check_no_pending()
         return self._strike(*self._shot_and_action(shot), rng)
+
+    def _check_no_pending(self):
+        if self.pending is not None:
+            raise RuntimeError(f"player {self.shooter} has a decision to make first ({self.pending.name}: one of "
+                               f"{self.pending.options}); call decide(option)")
 
     def strike_encoded(self, shot: Shot, rng=None) -> StruckShot:
         """`strike` of the action vector that `encode` makes of `shot` (`strike(encode(shot))`,
@@ -371,10 +438,12 @@ class Game:
         game's state and hand it the Shot an env action of theirs would carry."""
         if self._over:
             raise RuntimeError("the game is over; reset() it")
+        self._check_no_pending()
         area, pockets = self.placement_area(), self.table.pockets.shape[0]
         targets = self._called_targets()
         entries = encoded_entries(self.layout, shot, area, pockets, targets)
-        return self._strike(decode_entries(self.layout, entries, area, pockets, targets), tuple(entries), rng)
+        decoded = decode_entries(self.layout, entries, area, pockets, targets, self.may_push_out)
+        return self._strike(decoded, tuple(entries), rng)
 
     def _shot_and_action(self, shot) -> tuple:
         """(the `Shot`, the action vector's entries as a tuple or None) of a Shot or an action."""
@@ -399,12 +468,14 @@ class Game:
                 if placements is not None:
                     placements[key] = found
             placed = found
-        called = shot.pocket if self._mode.rules == "eight_ball" else None
+        called = shot.pocket if self._mode.rules in CALLING_RULES else None
         if called is not None and called >= self.table.pockets.shape[0]:
             raise ValueError(f"Shot.pocket {called} names no pocket (the table has {self.table.pockets.shape[0]})")
-        ball = shot.ball if self._mode.rules == "eight_ball" else None
+        ball = shot.ball if self._mode.rules in CALLING_RULES else None
         if ball is not None and ball not in self._state.on_table:
             raise ValueError(f"Shot.ball {ball} is not on the table (on it: {sorted(self._state.on_table)})")
+        if shot.push_out and not self.may_push_out:
+            raise ValueError("Shot.push_out: no push out now (only the 9-ball shot right after a legal break: WPA 2.4)")
         force, tip, elevation = shot.force, shot.tip, shot.elevation
         if self.noise is not None:
             force, tip, elevation = noisy_shot(force, tip, self.noise, self.rng if rng is None else rng, elevation)
@@ -413,7 +484,8 @@ class Game:
                             physics=self.physics)
         except ValueError as exc:
             struck = exc
-        return StruckShot(shot, self.shooter, hand, called, placed, force, tip, struck, action, elevation, ball)
+        return StruckShot(shot, self.shooter, hand, called, placed, force, tip, struck, action, elevation, ball,
+                          shot.push_out)
 
     def resolve(self, struck: StruckShot, result) -> ShotRecord:
         """`play`'s second half: apply the simulation's `Result` (or the SimulationError or
@@ -443,14 +515,16 @@ class Game:
             over = self._mode.one_shot or bool(final.pocketed[0]) or cleared
             return ShotRecord(*head, final, result, None, None, over, elevation=struck.elevation)
         outcome = rules.read_outcome(self._state, result)
-        key = (outcome, struck.called_pocket, struck.called_ball)
+        key = (outcome, struck.called_pocket, struck.called_ball, struck.push_out)
         judged = None if rulings is None else rulings.get(key)
         if judged is None:
-            judged = rules.judge(self._state, outcome, struck.called_pocket, struck.called_ball)
+            judged = rules.judge(self._state, outcome, struck.called_pocket, struck.called_ball, struck.push_out)
             if rulings is not None:
                 rulings[key] = judged
         state, ruling = judged
         balls, state = rules.settle(state, ruling, final, self.table)
+        if not self.decisions and getattr(state, "pending", None) is not None:  # no re-rack is a default
+            state = rules.decide(state, state.pending.default)
         return ShotRecord(*head, balls, result, ruling, state, state.over, judged=outcome,
                           elevation=struck.elevation, called_ball=struck.called_ball)
 
@@ -502,6 +576,7 @@ class Game:
             raise ValueError(f"draws must be an integer >= 1, got {draws!r}")
         if self._over:
             raise RuntimeError("the game is over; reset() it")
+        self._check_no_pending()
         decoded = []
         for k, shot in enumerate(shots):
             try:

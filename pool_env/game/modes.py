@@ -36,6 +36,8 @@ class Mode:
             return rules.nine_ball_rack(table, seed=seed)
         if self.rules == "eight_ball":
             return rules.eight_ball_rack(table, seed=seed)
+        if self.rules == "ten_ball":
+            return rules.ten_ball_rack(table, seed=seed)
         if self.rules == "three_cushion":  # the breaker plays the white (UMB 3.3): one starting position
             return rules.starting_position(table)
         if self.rules == "snooker":
@@ -48,6 +50,7 @@ MODES = {
     "run": Mode("run", 16, None, one_shot=False, layout="cue", label="break and run"),
     "nine_ball": Mode("nine_ball", 10, "nine_ball", one_shot=False, layout="nine_ball", label="9-ball"),
     "eight_ball": Mode("eight_ball", 16, "eight_ball", one_shot=False, layout="eight_ball", label="8-ball"),
+    "ten_ball": Mode("ten_ball", 11, "ten_ball", one_shot=False, layout="ten_ball", label="10-ball"),
     "three_cushion": Mode("three_cushion", 3, "three_cushion", one_shot=False, layout="cue_spin", label="three-cushion",
                           table=Table.carom, physics=Physics.carom, cue_in_hand=False),
     # 0 the cue ball, 1-15 the reds, 16-21 yellow, green, brown, blue, pink, black (rules.snooker_spots).

@@ -12,7 +12,7 @@ from ..physics.jit import helper, kernel
 from .snooker_observation import SNOOKER_OBS_SIZE, decode_snooker_observation, snooker_observation
 
 N_BALLS = 16  # the break envs' balls: the cue ball and 15 object balls
-GAME_BALLS = {"nine_ball": 10, "eight_ball": 16, "snooker": 22}  # balls in play, the cue ball included
+GAME_BALLS = {"nine_ball": 10, "eight_ball": 16, "snooker": 22, "ten_ball": 11}  # balls in play, the cue ball included
 
 
 # --- the break envs (PoolBreak-v0, PoolBreakRun-v0) ---------------------------------------------
@@ -54,11 +54,23 @@ def decode_observation(obs, table: Table):
 
 
 # --- the games (PoolNineBall-v0, PoolEightBall-v0, the two-player envs) -------------------------
-def game_observation_size(game: str) -> int:
+DECISION_ENTRIES = len(rules.DECISIONS) + 1  # with decisions: one flag per decision, then "may push out"
+
+
+def game_observation_size(game: str, decisions: bool = False) -> int:
     if game == "snooker":
         return SNOOKER_OBS_SIZE
     n = GAME_BALLS[game]
-    return 3 * n + (n - 1) + 4 + (3 if game == "eight_ball" else 0) + 1
+    return 3 * n + (n - 1) + 4 + (3 if game == "eight_ball" else 0) + DECISION_ENTRIES * bool(decisions) + 1
+
+
+def decision_entries(state, viewer: int) -> list:
+    """The decision flags of `viewer`'s observation: +1 for the decision he is to make now (one
+    per `rules.DECISIONS`, in order), then +1 if he may push out on his shot; -1 otherwise."""
+    mine = state.shooter == viewer and state.winner is None
+    pending = getattr(state, "pending", None) if mine else None
+    flags = [1.0 if pending is not None and pending.name == name else -1.0 for name in rules.DECISIONS]
+    return flags + [1.0 if mine and getattr(state, "push_out", False) else -1.0]
 
 
 @helper
@@ -92,12 +104,14 @@ def viewed_balls(xy, pocketed, length, width, out):
         out[k, 0], out[k, 1] = (ex + 1.0) * 0.5 * length, (ey + 1.0) * 0.5 * width
 
 
-def game_observation(balls: Balls, state, viewer: int, shots: int, max_shots: int, table: Table) -> np.ndarray:
-    """The observation of `viewer` (0 or 1) as PoolGameEnv documents it, float32 in [-1, 1]."""
+def game_observation(balls: Balls, state, viewer: int, shots: int, max_shots: int, table: Table,
+                     decisions: bool = False) -> np.ndarray:
+    """The observation of `viewer` (0 or 1) as PoolGameEnv documents it, float32 in [-1, 1]
+    (`decisions`: with the decision flags, `decision_entries`, before the shot counter)."""
     if state.kind == "snooker":
         return snooker_observation(balls, state, viewer, shots, max_shots, table)
     n = len(balls)
-    out = np.empty(game_observation_size(state.kind), dtype=np.float32)
+    out = np.empty(game_observation_size(state.kind, decisions), dtype=np.float32)
     observed_balls(balls.xy, balls.pocketed, table.length, table.width, out[: 3 * n].reshape(n, 3))
     legal = out[3 * n: 4 * n - 1]
     legal[:] = -1.0
@@ -110,6 +124,8 @@ def game_observation(balls: Balls, state, viewer: int, shots: int, max_shots: in
         group = state.groups[viewer]
         tail += [1.0 if group is None else -1.0, 1.0 if group == "solids" else -1.0,
                  1.0 if group == "stripes" else -1.0]
+    if decisions:
+        tail += decision_entries(state, viewer)
     tail.append(2.0 * min(shots, max_shots) / max_shots - 1.0)
     out[4 * n - 1:] = tail
     return out
@@ -121,7 +137,9 @@ class GameView:
     positions (n, 2) in metres (a pocketed ball's are meaningless), on-table flags (n,), the
     legal first contacts (object balls), ball in hand for the viewer (None, "anywhere",
     "behind_head_string"), consecutive fouls (viewer, opponent; 2 means two or more), the
-    viewer's 8-ball group (None while open, and in 9-ball) and the shot counter entry."""
+    viewer's 8-ball group (None while open, and in 9-ball), the shot counter entry; with the
+    decision entries, the name of the decision the viewer is to make (`pending`, else None)
+    and whether he may push out."""
 
     xy: np.ndarray
     on_table: np.ndarray
@@ -130,6 +148,8 @@ class GameView:
     fouls: tuple = (0, 0)
     group: str | None = None
     counter: float = -1.0
+    pending: str | None = None
+    push_out: bool = False
 
     @property
     def legal_mask(self) -> np.ndarray:
@@ -141,13 +161,16 @@ class GameView:
 
 
 def decode_game_observation(obs, game: str, table: Table) -> GameView:
-    """The `GameView` of a game observation of `game` ("nine_ball", "eight_ball"; "snooker": a `SnookerView`)."""
+    """The `GameView` of a game observation of `game` ("nine_ball", "eight_ball"; "snooker": a
+    `SnookerView`), with or without the decision entries (told by its length)."""
     if game == "snooker":
         return decode_snooker_observation(obs, table)
     n = GAME_BALLS[game]
     obs = np.asarray(obs, dtype=np.float64)
-    if obs.shape != (game_observation_size(game),):
-        raise ValueError(f"a {game} observation has shape ({game_observation_size(game)},), got {obs.shape}")
+    sizes = (game_observation_size(game), game_observation_size(game, True))
+    if obs.shape not in ((sizes[0],), (sizes[1],)):
+        raise ValueError(f"a {game} observation has shape ({sizes[0]},) (or ({sizes[1]},) with the decision "
+                         f"entries), got {obs.shape}")
     per_ball = obs[: 3 * n].reshape(n, 3)
     on_table = per_ball[:, 2] > 0
     xy = np.column_stack([(per_ball[:, 0] + 1.0) * 0.5 * table.length, (per_ball[:, 1] + 1.0) * 0.5 * table.width])
@@ -159,10 +182,16 @@ def decode_game_observation(obs, game: str, table: Table) -> GameView:
     if game == "eight_ball":
         flags = obs[4 * n + 3: 4 * n + 6]
         group = "solids" if flags[1] > 0 else ("stripes" if flags[2] > 0 else None)
-    return GameView(xy, on_table, legal, in_hand, fouls, group, float(obs[-1]))
+    pending, push_out = None, False
+    if obs.shape == (sizes[1],):
+        flags = obs[-1 - DECISION_ENTRIES: -1]
+        pending = next((name for name, f in zip(rules.DECISIONS, flags) if f > 0), None)
+        push_out = bool(flags[-1] > 0)
+    return GameView(xy, on_table, legal, in_hand, fouls, group, float(obs[-1]), pending, push_out)
 
 
-def game_view(balls: Balls, state, viewer: int, shots: int, max_shots: int, table: Table) -> GameView:
+def game_view(balls: Balls, state, viewer: int, shots: int, max_shots: int, table: Table,
+              decisions: bool = False) -> GameView:
     """The `GameView` that `decode_game_observation` reads from `game_observation(balls, state,
     viewer, shots, max_shots, table)`, bit for bit (the positions rounded to float32 and back,
     as the observation keeps them), without building the observation: for players that read
@@ -174,4 +203,9 @@ def game_view(balls: Balls, state, viewer: int, shots: int, max_shots: int, tabl
     fouls = (min(state.fouls[viewer], 2), min(state.fouls[1 - viewer], 2))
     group = state.groups[viewer] if state.kind == "eight_ball" else None
     counter = float(np.float32(2.0 * min(shots, max_shots) / max_shots - 1.0))
-    return GameView(xy, ~balls.pocketed, legal, in_hand, fouls, group, counter)
+    pending, push_out = None, False
+    if decisions:
+        flags = decision_entries(state, viewer)
+        pending = next((name for name, f in zip(rules.DECISIONS, flags) if f > 0), None)
+        push_out = flags[-1] > 0
+    return GameView(xy, ~balls.pocketed, legal, in_hand, fouls, group, counter, pending, push_out)

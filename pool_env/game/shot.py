@@ -60,6 +60,8 @@ class Shot:
       level cue. An elevated cue drives the ball into the slate: it swerves, masses or jumps
       (`pool_env.physics.strike`). `force` keeps its meaning: its direction is the aim seen
       from above, its length the push along the cue.
+    - `push_out` (bool): the shooter declares a push out (9-ball and 10-ball, the shot right
+      after a legal break, `Game.may_push_out`: WPA 2.4); ValueError from `Game` elsewhere.
 
     `Shot.aimed(direction, speed, ...)` builds one from a direction and a speed in m/s. A
     non-finite entry, a zero or too strong force, a tip past the miscue limit, an elevation
@@ -71,6 +73,7 @@ class Shot:
     pocket: int | None = None
     elevation: float = 0.0
     ball: int | None = None
+    push_out: bool = False
 
     def __post_init__(self):
         force = _pair(self.force, "Shot.force")
@@ -99,10 +102,13 @@ class Shot:
                 raise ValueError(f"Shot.ball must be None or an object ball's number (an integer >= 1), "
                                  f"got {self.ball!r}")
             object.__setattr__(self, "ball", int(self.ball))
+        if not isinstance(self.push_out, (bool, np.bool_)):
+            raise ValueError(f"Shot.push_out must be a bool, got {self.push_out!r}")
+        object.__setattr__(self, "push_out", bool(self.push_out))
 
     @classmethod
     def aimed(cls, direction, speed: float, tip=(0.0, 0.0), place=None, pocket=None, elevation=0.0,
-              ball=None) -> Shot:
+              ball=None, push_out=False) -> Shot:
         """The cue ball sent along `direction` (any length) at `speed` m/s (the push along the
         cue: an elevated cue's ball leaves slower along the table, driven into the slate)."""
         dx, dy = _pair(direction, "direction")
@@ -110,7 +116,7 @@ class Shot:
         if length == 0.0:
             raise ValueError("direction must not be zero")
         scale = float(speed) * BALL_MASS / CONTACT_TIME / length
-        return cls((dx * scale, dy * scale), tip, place, pocket, elevation, ball)
+        return cls((dx * scale, dy * scale), tip, place, pocket, elevation, ball, push_out)
 
     @property
     def speed(self) -> float:

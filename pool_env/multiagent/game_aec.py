@@ -1,4 +1,4 @@
-"""`PoolGameAEC`: 9-ball, 8-ball or snooker for two agents as a PettingZoo AEC env (the *_v0 modules)."""
+"""`PoolGameAEC`: 9-ball, 8-ball, 10-ball or snooker for two agents as a PettingZoo AEC env (the *_v0 modules)."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ from pettingzoo.utils import wrappers
 from ..envs.break_env import can_render, check_env_options, check_reset_options
 from ..envs.game_env import SHAPING_BALL, SHAPING_FOUL, PoolGameEnv, captioned, shot_caption
 from ..envs.infos import check_info_mode, no_shot_info, record_info, rich_info, score_info, winner_code
-from ..game import ELEVATED, GAME_BALLS, Game, game_observation, game_observation_size
+from ..game import GAME_BALLS, Game, env_layout, game_observation, game_observation_size
 from ..render.overlay import overlay
 from ..render.playback import ShotPlayback
 from ..render.table import game_palette
@@ -44,11 +44,13 @@ class PoolGameAEC(AECEnv):
 
     | argument | default | meaning |
     | --- | --- | --- |
-    | `game` | `"nine_ball"` | `"nine_ball"`, `"eight_ball"` or `"snooker"` (the `*_v0` modules fix it) |
+    | `game` | `"nine_ball"` | `"nine_ball"`, `"eight_ball"`, `"ten_ball"` or `"snooker"` (the `*_v0` modules fix it) |
     | `noise` | None | None, `"olympiad"` or a dict of standard deviations, on both players' shots |
     | `shaping` | False | add +0.1 to the shooter per ball he pockets legally and -0.1 per foul |
     | `max_shots` | 200 | truncate both agents after this many shots in all |
     | `info_mode` | `"numeric"` | `"rich"` adds the shot's record to the infos |
+    | `decisions` | False | decision turns, as PoolGameEnv's: the deciding player's turn is his decision
+      (the action's decision entry; no shot, no reward, the infos stay the last shot's) |
     | `rule_options`, `table`, `physics`, `render_mode`, `render_size` | | as PoolGameEnv's |
 
     - **Actions** `action_space(agent)`: PoolGameEnv's Box(-1, 1, (6,)) for 9-ball, (7,) for
@@ -92,14 +94,14 @@ class PoolGameAEC(AECEnv):
 
     def __init__(self, game="nine_ball", render_mode=None, noise=None, shaping=False, max_shots=200,
                  rule_options=None, table=None, physics=None, render_size=(640, 360), info_mode="numeric",
-                 elevation=False):
+                 elevation=False, decisions=False):
         super().__init__()
         self.info_mode = check_info_mode(info_mode)
         if game not in GAME_BALLS:
             raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
         self.max_shots = check_env_options(render_mode, self.metadata["render_modes"], max_shots)
-        self.elevation = bool(elevation)
-        self.game = Game(game, table, physics, noise, layout=game + ELEVATED if self.elevation else None,
+        self.elevation, self.decisions = bool(elevation), bool(decisions)
+        self.game = Game(game, table, physics, noise, layout=env_layout(game, self.elevation, self.decisions),
                          **dict(rule_options or {}))
         self.table, self.physics = self.game.table, self.game.physics
         self.render_mode, self.shaping = render_mode, bool(shaping)
@@ -108,8 +110,8 @@ class PoolGameAEC(AECEnv):
                                      deferred=render_mode is not None, palette=game_palette(game))
         self.possible_agents = list(AGENTS)
         space = gym.spaces.Box(-1.0, 1.0, (self.game.layout.size,), np.float32)
-        self.observation_spaces = dict.fromkeys(AGENTS, gym.spaces.Box(-1.0, 1.0, (game_observation_size(game),),
-                                                                        np.float32))
+        size = game_observation_size(game, self.decisions)
+        self.observation_spaces = dict.fromkeys(AGENTS, gym.spaces.Box(-1.0, 1.0, (size,), np.float32))
         self.action_spaces = dict.fromkeys(AGENTS, space)
         self.agents = []
         self.np_random, self.np_random_seed = None, None
@@ -157,6 +159,9 @@ class PoolGameAEC(AECEnv):
             self._was_dead_step(action)
             return
         game = self.game
+        if game.pending is not None:  # the deciding player's turn: the decision entry picks his option
+            self._decide(agent, action)
+            return
         record = game.play(action)  # ValueError for a bad action, before any change
         self._follow(record)
         self._cumulative_rewards[agent] = 0.0
@@ -182,6 +187,16 @@ class PoolGameAEC(AECEnv):
             self.truncations = dict.fromkeys(AGENTS, True)
         self.infos = {other: dict(info) for other in AGENTS}
         self.agent_selection = AGENTS[game.shooter]
+        self._accumulate_rewards()
+
+    def _decide(self, agent, action):
+        """A decision turn: no shot, no reward; the infos stay the last shot's; a re-rack is shown."""
+        self.game.decide(self.game.decode_decision(action))  # ValueError for a bad action
+        if self.game.state.is_break:
+            self.playback.place(self.game.balls)
+        self._cumulative_rewards[agent] = 0.0
+        self.rewards = dict.fromkeys(AGENTS, 0.0)
+        self.agent_selection = AGENTS[self.game.shooter]
         self._accumulate_rewards()
 
     def _info(self, shot: dict, shooter: int, record, truncation=None) -> dict:
@@ -214,7 +229,8 @@ class PoolGameAEC(AECEnv):
         if not self._started:
             raise RuntimeError("call reset() before observe()")
         viewer = AGENTS.index(self._check_agent(agent))
-        return game_observation(self.game.balls, self.game.state, viewer, self.shots, self.max_shots, self.table)
+        return game_observation(self.game.balls, self.game.state, viewer, self.shots, self.max_shots, self.table,
+                                self.decisions)
 
     def render(self):
         if not can_render(self.render_mode, self._started):

@@ -23,6 +23,12 @@ STRAIGHT_IN_BACKS = (0.15, 0.35)  # m: straight-in spots this far behind the obj
 PLACEMENT_TRIES = 6  # the best-ranked spots planned in full
 
 
+def callable_balls(view) -> tuple:
+    """The object balls on the table, ascending: what a 10-ball called-ball entry chooses among
+    (the first, the lowest, is the ball this player pots)."""
+    return tuple(int(b) for b in np.flatnonzero(view.on_table[1:]) + 1)
+
+
 class GameGhostBallAgent(Agent):
     """Plays a game env's observation by the rules with the ghost-ball method
     (`GhostBallAgent`'s planner): on the break, full at the apex ball from the head spot; then
@@ -37,10 +43,11 @@ class GameGhostBallAgent(Agent):
     name = "ghost_ball"
 
     def __init__(self, game: str = "nine_ball", table: Table | None = None, physics: Physics | None = None,
-                 radius: float = BALL_RADIUS):
+                 radius: float = BALL_RADIUS, layout: str | None = None):
         if game not in GAME_BALLS or game == "snooker":  # snooker's ghost-ball player: players.snooker
             raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
         self.game, self.n_balls = game, GAME_BALLS[game]
+        self.layout = LAYOUTS[game if layout is None else layout]  # the env's action layout (`act`)
         self.table = Table.eight_foot() if table is None else table
         self.physics = Physics.standard() if physics is None else physics
         self.radius = radius
@@ -51,22 +58,37 @@ class GameGhostBallAgent(Agent):
     def from_env(cls, env, **kwargs) -> GameGhostBallAgent:
         """For a game env, a two-player env or a `pool_env.game.Game` of 9-ball or 8-ball."""
         game = game_of(env)
-        return cls(game=game.mode, table=game.table, physics=game.physics, **kwargs)
+        return cls(game=game.mode, table=game.table, physics=game.physics, layout=game.layout.name, **kwargs)
 
     def act(self, observation) -> np.ndarray:
         view = decode_game_observation(observation, self.game, self.table)
-        return self.encode(self.decide(view), view.ball_in_hand)
+        return self.encode(self.decide(view), view.ball_in_hand, callable_balls(view))
 
     def act_batch(self, observations) -> list[np.ndarray]:
         """`act` of each observation, planned together (`decide_batch`): the same actions."""
         views = [decode_game_observation(observation, self.game, self.table) for observation in observations]
-        return [self.encode(shot, view.ball_in_hand) for shot, view in zip(self.decide_batch(views), views)]
+        return [self.encode(shot, view.ball_in_hand, callable_balls(view))
+                for shot, view in zip(self.decide_batch(views), views)]
 
     @property
     def batch_key(self) -> tuple:
         """Equal for players that plan alike (game, table, physics, radius): one's `decide_batch` serves the others."""
         b = self.planner.batch
         return (self.game, b.constants.tobytes(), b.rails.tobytes(), b.jaws.tobytes(), b.captures.tobytes())
+
+    def choose(self, game) -> str:
+        """Its option of `game`'s pending decision (a `pool_env.game.Game`), by a simple rule:
+        after a push out it shoots if it has a pot on from there, else passes it back; after an
+        illegal 8-ball break it takes ball in hand; after the 8 on the break it spots it. It
+        never declares a push out itself."""
+        pending = game.pending
+        if pending is None:
+            raise ValueError("no decision is pending")
+        if pending.name == "push_out_reply":
+            balls = game.balls
+            legal = np.array([b in game.legal_targets for b in range(1, len(balls))], dtype=bool)
+            return "shoot" if self.best(balls.xy, ~balls.pocketed, legal) is not None else "pass"
+        return {"illegal_break": "ball_in_hand", "eight_on_break": "spot_eight"}[pending.name]
 
     def decide(self, view) -> Shot:
         """The shot for a decoded observation (`pool_env.game.GameView`): `decide_batch([view])[0]`,
@@ -140,10 +162,11 @@ class GameGhostBallAgent(Agent):
                 shots.append(self.safety(trial, view.on_table, legal[q, 1:], place))
         return shots
 
-    def encode(self, shot: Shot, in_hand) -> np.ndarray:
-        """The game env's action of `shot` (`pool_env.game.encode_action`)."""
+    def encode(self, shot: Shot, in_hand, targets=()) -> np.ndarray:
+        """The game env's action of `shot` (`pool_env.game.encode_action`; `targets` the balls a
+        called-ball entry chooses among: a shot naming none calls the first)."""
         area = None if in_hand is None else placement_area(self.table, in_hand, self.radius)
-        return encode_action(LAYOUTS[self.game], shot, area, max(self.table.pockets.shape[0], 1))
+        return encode_action(self.layout, shot, area, max(self.table.pockets.shape[0], 1), targets)
 
     # --- planning ----------------------------------------------------------------------------
     def arrays(self, views):

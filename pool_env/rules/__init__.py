@@ -9,14 +9,16 @@ from .carom_outcome import CaromOutcome, carom_outcome
 from .eight_ball import EightBall
 from .nine_ball import NineBall
 from .outcome import ShotOutcome, outcome_from_result
-from .racks import eight_ball_rack, foot_spot, head_spot, head_string_x, nine_ball_rack, spot_balls
+from .racks import eight_ball_rack, foot_spot, head_spot, head_string_x, nine_ball_rack, spot_balls, ten_ball_rack
 from .snooker import Snooker, SnookerRuling, SnookerState
 from .snooker_free_ball import settle as settle_snooker
 from .snooker_spots import snooker_rack, spot_colours
-from .state import BALL_IN_HAND, END_REASONS, FOULS, GROUPS, GameState, Ruling
+from .state import BALL_IN_HAND, DECISIONS, END_REASONS, FOULS, GROUPS, Decision, GameState, Ruling
+from .ten_ball import TEN_END_REASONS, TenBall
 from .three_cushion import CaromRuling, ThreeCushion, ThreeCushionState, carom_spots, starting_position
 
-KINDS = {"nine_ball": NineBall, "eight_ball": EightBall, "three_cushion": ThreeCushion, "snooker": Snooker}
+KINDS = {"nine_ball": NineBall, "eight_ball": EightBall, "three_cushion": ThreeCushion, "snooker": Snooker,
+         "ten_ball": TenBall}
 STATES = (GameState, ThreeCushionState, SnookerState)  # every rule set's state class (judge, legal_targets, Game)
 
 __all__ = [
@@ -25,7 +27,8 @@ __all__ = [
     "nine_ball_rack", "eight_ball_rack", "spot_balls", "head_string_x", "foot_spot", "head_spot", "codes",
     "ThreeCushion", "ThreeCushionState", "CaromOutcome", "CaromRuling", "carom_outcome", "carom_spots",
     "starting_position", "STATES", "read_outcome", "cue_ball", "settle", "open_table",
-    "Snooker", "SnookerState", "SnookerRuling", "snooker_rack", "spot_colours",
+    "Snooker", "SnookerState", "SnookerRuling", "snooker_rack", "spot_colours", "decide", "Decision", "DECISIONS",
+    "TenBall", "ten_ball_rack", "TEN_END_REASONS",
 ]
 
 
@@ -47,16 +50,33 @@ def new_game(kind, breaker: int = 0, **options) -> GameState:
 
 
 def judge(state: GameState | ThreeCushionState, outcome: ShotOutcome | CaromOutcome, called_pocket: int | None = None,
-          called_ball: int | None = None) -> tuple[GameState, Ruling]:
+          called_ball: int | None = None, push_out: bool = False) -> tuple[GameState, Ruling]:
     """(the next GameState, the Ruling) after the shot `outcome` played from `state`, by
     `state.rules`. 8-ball only: `called_pocket` names the pocket, `called_ball` the ball
     (read by `EightBall(calling="ball_and_pocket")`; the default "eight_only" calls only the
-    8's pocket). Raises ValueError for a finished game, a shot naming balls not on the
-    table, or a bad called pocket or ball."""
+    8's pocket). `push_out`: the shooter declared a push out (9-ball, when `state.push_out`:
+    WPA 2.4). Raises ValueError for a finished game, a decision pending, a shot naming balls
+    not on the table, a bad called pocket or ball, or a push out where none is allowed."""
     if not isinstance(state, STATES):
         raise TypeError(f"state must be one of pool_env.rules.STATES (GameState, ThreeCushionState, SnookerState), "
                         f"got {type(state).__name__}")
+    if push_out:
+        if not getattr(state, "push_out", False):
+            raise ValueError("no push out now: only the 9-ball shot right after a legal break may be one (WPA 2.4)")
+        return state.rules.judge(state, outcome, called_pocket, called_ball, push_out=True)
     return state.rules.judge(state, outcome, called_pocket, called_ball)
+
+
+def decide(state: GameState, option: str) -> GameState:
+    """The state after the shooter chooses `option` of `state.pending` (a `Decision`): 9-ball's
+    reply to a push out ("shoot", "pass"), 8-ball's choices after an illegal break or the 8 on
+    the break. ValueError when no decision is pending or `option` is not one of its options."""
+    if not isinstance(state, STATES):
+        raise TypeError(f"state must be one of pool_env.rules.STATES (GameState, ThreeCushionState, SnookerState), "
+                        f"got {type(state).__name__}")
+    if getattr(state, "pending", None) is None:
+        raise ValueError("no decision is pending: the shooter shoots (rules.judge)")
+    return state.rules.decide(state, option)
 
 
 def legal_targets(state: GameState) -> frozenset:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from .snooker import SNOOKER_END_REASONS, SNOOKER_FOULS, SNOOKER_IN_HAND
 from .state import BALL_IN_HAND, END_REASONS, FOULS
+from .ten_ball import TEN_END_REASONS
 
 # Why a game env's episode stopped without a winner (its `truncation` info): the agent's shot
 # limit (`max_shots`, the envs' stand-in for the WPA's stalemate, 1.12, which is not declared:
@@ -12,9 +13,9 @@ TRUNCATIONS = ("shot_limit", "opponent_shot_limit", "shot_error")
 
 # Code k names entry k; code 0 is None (no foul, the game goes on, no ball in hand, not
 # truncated), so a code is falsy exactly when its name is None.
-# Snooker's names follow the pool ones (codes of the pool names stay as they were).
+# Snooker's names follow the pool ones (codes of the pool names stay as they were), 10-ball's last.
 FOUL_CODES = (None, *FOULS, *(f for f in SNOOKER_FOULS if f not in FOULS))
-END_REASON_CODES = (None, *END_REASONS, *SNOOKER_END_REASONS)
+END_REASON_CODES = (None, *END_REASONS, *SNOOKER_END_REASONS, *TEN_END_REASONS)
 BALL_IN_HAND_CODES = (*BALL_IN_HAND, *(h for h in SNOOKER_IN_HAND if h not in BALL_IN_HAND))
 TRUNCATION_CODES = (None, *TRUNCATIONS)
 CODE_TABLES = {"foul": FOUL_CODES, "end_reason": END_REASON_CODES, "ball_in_hand": BALL_IN_HAND_CODES,

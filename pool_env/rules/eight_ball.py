@@ -5,10 +5,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .state import (
+    DECISIONS,
+    Decision,
     GameState,
     Ruling,
     advance,
     break_requirement,
+    check_option,
     check_shot,
     ordered,
     standard_fouls,
@@ -36,11 +39,14 @@ class EightBall:
     """8-ball (WPA rules, section 3): solids 1-7 against stripes 9-15, then the 8 in a called pocket.
 
     `n_pockets` (default 6): how many pockets a called pocket may name (0 to n_pockets - 1,
-    `Table.pockets` order). `illegal_break`: what the incoming player takes after an illegal
-    break (WPA 3.3(d) lets him accept the table or have it re-racked; an env cannot re-rack
-    mid-episode): "ball_in_hand" (default: the table as it lies with the cue ball in hand
-    anywhere, so a soft break never pays) or "table_in_position" (WPA 3.3(d)(1) to the
-    letter: the cue ball where it stopped). `calling`: "eight_only" (default: the env's
+    `Table.pockets` order). After an illegal break the incoming player decides (WPA 3.3(d),
+    `decide`): "accept_table" (3.3(d)(1): the cue ball where it stopped), "rerack_and_break",
+    "rerack_opponent_breaks" (3.3(d)(2)), or "ball_in_hand" (the table as it lies with the cue
+    ball in hand anywhere); `illegal_break` names the default a player who does not decide
+    gets: "ball_in_hand" (default, so a soft break never pays) or "table_in_position"
+    ("accept_table"). After the 8 drops on the break the breaker (after a foul, the incoming
+    player) decides (3.3(e)-(f)): "spot_eight" (the default) or "rebreak" (he breaks again).
+    `calling`: "eight_only" (default: the env's
     action layouts name a pocket, not a ball): only the 8 is called, every other ball counts
     wherever it drops, and on an open table the first ball to drop on a legal shot decides
     the groups; or "ball_and_pocket" (WPA 1.6 and 3.4-3.5): every shot after the break calls
@@ -110,7 +116,8 @@ class EightBall:
         messages = [m for _, m in fouls]
         on_table = state.on_table - set(outcome.pocketed) - set(outcome.off_table)
         spot = ()
-        if EIGHT in outcome.pocketed or EIGHT in outcome.off_table:  # 3.3(e)-(f), 3.6: spotted (our choice)
+        eight_gone = EIGHT in outcome.pocketed or EIGHT in outcome.off_table
+        if eight_gone:  # 3.3(e)-(f), 3.6: spotted (the default), or a re-break (decide)
             spot, on_table = (EIGHT,), on_table | {EIGHT}
             messages.append("the 8 is spotted")
         counts = list(state.fouls)
@@ -122,8 +129,34 @@ class EightBall:
             hand = "anywhere"
         turn_passed = bool(fouls) or not outcome.pocketed  # 3.3(c): a legal break that pockets continues
         ruling = Ruling(names[0] if names else None, names, turn_passed, hand, spot, None, None, ())
-        new = advance(state, ruling, on_table, counts)
-        return new, with_messages(ruling, messages + turn_messages(new, turn_passed, False))
+        pending = None
+        if illegal:  # 3.3(d): the incoming player's choice
+            default = "ball_in_hand" if self.illegal_break == "ball_in_hand" else "accept_table"
+            pending = Decision("illegal_break", DECISIONS["illegal_break"], default)
+        elif eight_gone:  # 3.3(e): the breaker's choice; 3.3(f): after a foul, the incoming player's
+            pending = Decision("eight_on_break", DECISIONS["eight_on_break"], "spot_eight")
+        new = advance(state, ruling, on_table, counts, pending=pending)
+        messages += turn_messages(new, turn_passed, False)
+        if pending is not None:
+            messages.append(f"player {new.shooter} decides: {' or '.join(pending.options)}")
+        return new, with_messages(ruling, messages)
+
+    def decide(self, state: GameState, option: str) -> GameState:
+        """The state after the shooter's `option` of the pending decision: after an illegal
+        break (WPA 3.3(d)) "accept_table" (the cue ball where it lies), "ball_in_hand"
+        (anywhere), "rerack_and_break" (he breaks a new rack), "rerack_opponent_breaks"; after
+        the 8 on the break (3.3(e)-(f)) "spot_eight" (the 8 stays spotted) or "rebreak" (he
+        breaks a new rack). A cue ball in hand behind the head string (a scratch) stays so."""
+        check_option(state, option)
+        if option in ("rerack_and_break", "rerack_opponent_breaks", "rebreak"):
+            breaker = 1 - state.shooter if option == "rerack_opponent_breaks" else state.shooter
+            return GameState(self, self.object_balls, shooter=breaker, ball_in_hand="behind_head_string",
+                             shot=state.shot)
+        hand = state.ball_in_hand
+        if hand != "behind_head_string" and state.pending.name == "illegal_break":
+            hand = "anywhere" if option == "ball_in_hand" else None
+        return GameState.successor(self, state.on_table, state.shooter, hand, state.fouls, state.groups,
+                                   state.shot, None)
 
     def _judge_shot(self, state, outcome, called_pocket, called_ball=None):
         """Any shot after the break: WPA 3.4 (open table, groups), 3.5 (continuing play), 3.7

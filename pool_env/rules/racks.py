@@ -1,4 +1,4 @@
-"""WPA racks (9-ball diamond, 8-ball triangle), spotting balls on the long string, and the head string."""
+"""WPA racks (9-ball diamond, 8-ball and 10-ball triangles), spotting balls on the long string, and the head string."""
 
 from __future__ import annotations
 
@@ -71,6 +71,21 @@ def nine_ball_rack(table: Table, seed=None, n_balls: int = 10) -> Balls:
     numbers = rng.permutation(np.arange(2, 9)).tolist()
     layout = {(0, 0.0): 1, middle: 9, **dict(zip(others, numbers))}
     return _place(table, layout, rng, n_balls)
+
+
+def ten_ball_rack(table: Table, seed=None) -> Balls:
+    """The 10-ball triangle (WPA Ten Ball 2): four rows (1, 2, 3, 4 balls), the 1 at the apex
+    on the foot spot, the 10 in the middle of the triangle (the middle of the third row), the
+    2-9 in a random order drawn from `numpy.random.default_rng(seed)`; the cue ball on the head
+    spot. 11 balls, ball k = number k."""
+    _check_table(table)
+    rng = np.random.default_rng(seed)
+    spots = [(row, k - row / 2.0) for row in range(4) for k in range(row + 1)]
+    middle = (2, 0.0)
+    others = [p for p in spots if p not in ((0, 0.0), middle)]
+    numbers = rng.permutation(np.arange(2, 10)).tolist()
+    layout = {(0, 0.0): 1, middle: 10, **dict(zip(others, numbers))}
+    return _place(table, layout, rng, 11)
 
 
 def eight_ball_rack(table: Table, seed=None) -> Balls:

@@ -13,7 +13,37 @@ FOULS = ("scratch", "no_contact", "wrong_ball_first", "illegal_break", "no_rail"
 END_REASONS = ("nine_pocketed", "three_fouls", "eight_pocketed", "eight_early", "eight_wrong_pocket",
                "eight_with_foul", "eight_off_table")
 BALL_IN_HAND = (None, "anywhere", "behind_head_string")
+# The decisions a player makes instead of a shot (`GameState.pending`): each one's options, the
+# first the built-in default (what a player who does not decide gets).
+DECISIONS = {
+    "push_out_reply": ("shoot", "pass"),  # WPA 2.4: after a legal push out, the incoming player
+    "illegal_break": ("ball_in_hand", "accept_table", "rerack_and_break", "rerack_opponent_breaks"),  # 3.3(d)
+    "eight_on_break": ("spot_eight", "rebreak"),  # 3.3(e)-(f), 3.6
+    "wrongly_pocketed_reply": ("shoot", "pass"),  # WPA Ten Ball 7: a ball pocketed but not as called
+}
 GROUPS = (None, "solids", "stripes")
+
+
+@dataclass(frozen=True)
+class Decision:
+    """A choice the shooter (`GameState.shooter`) makes before the next shot: `name` a key of
+    `DECISIONS`, `options` the choices open to him, `default` the one a player who does not
+    decide gets (`rules.decide` takes one of `options`)."""
+
+    name: str
+    options: tuple
+    default: str
+
+    def __post_init__(self):
+        if self.name not in DECISIONS:
+            raise ValueError(f"Decision: unknown decision {self.name!r}; known: {', '.join(DECISIONS)}")
+        object.__setattr__(self, "options", tuple(self.options))
+        unknown = [o for o in self.options if o not in DECISIONS[self.name]]
+        if unknown or not self.options:
+            raise ValueError(f"Decision {self.name!r}: options must be some of {DECISIONS[self.name]}, "
+                             f"got {self.options!r}")
+        if self.default not in self.options:
+            raise ValueError(f"Decision {self.name!r}: default {self.default!r} is not one of {self.options}")
 
 
 @dataclass(frozen=True)
@@ -26,7 +56,9 @@ class GameState:
     "behind_head_string": x < `racks.head_string_x(table)`); `fouls` each player's consecutive
     fouls; `groups` each player's 8-ball group (None while the table is open, "solids" 1-7,
     "stripes" 9-15); `is_break` the next shot is the break; `shot` shots taken so far;
-    `winner` None while the game goes on, else 0 or 1."""
+    `winner` None while the game goes on, else 0 or 1; `pending` None, or the `Decision` the
+    shooter makes before he shoots (`rules.decide`); `push_out` the shooter may declare a push
+    out on this shot (9-ball, the shot right after a legal break: WPA 2.4)."""
 
     rules: object
     on_table: frozenset
@@ -37,6 +69,8 @@ class GameState:
     is_break: bool = True
     shot: int = 0
     winner: int | None = None
+    pending: Decision | None = None
+    push_out: bool = False
 
     def __post_init__(self):
         object.__setattr__(self, "on_table", frozenset(self.on_table))
@@ -46,13 +80,14 @@ class GameState:
 
     @classmethod
     def successor(cls, rules, on_table: frozenset, shooter: int, ball_in_hand, fouls: tuple, groups: tuple,
-                  shot: int, winner) -> GameState:
+                  shot: int, winner, pending=None, push_out=False) -> GameState:
         """The state after a shot, built by a rule set from a checked state (`advance`): the
         fields as given (a frozenset and tuples already), without `__post_init__`'s
         conversions and checks, which cost most of a ruling's time."""
         state = object.__new__(cls)
         state.__dict__.update(rules=rules, on_table=on_table, shooter=shooter, ball_in_hand=ball_in_hand,
-                              fouls=fouls, groups=groups, is_break=False, shot=shot, winner=winner)
+                              fouls=fouls, groups=groups, is_break=False, shot=shot, winner=winner,
+                              pending=pending, push_out=push_out)
         return state
 
     @property
@@ -114,6 +149,11 @@ def check_state(s: GameState) -> None:
         raise ValueError(f"GameState: is_break must be a bool and shot an integer >= 0, got {s.is_break!r}, {s.shot!r}")
     if s.winner not in (None, 0, 1):
         raise ValueError(f"GameState: winner must be None, 0 or 1, got {s.winner!r}")
+    if s.pending is not None and (not isinstance(s.pending, Decision) or s.winner is not None):
+        raise ValueError(f"GameState: pending must be None or a Decision of a game under way, got {s.pending!r}")
+    if not isinstance(s.push_out, bool) or (s.push_out and (s.pending is not None or s.is_break)):
+        raise ValueError(f"GameState: push_out must be a bool, and False on the break or with a decision pending, "
+                         f"got {s.push_out!r}")
     if s.winner is None and s.rules.money_ball not in s.on_table:
         raise ValueError(f"GameState: the {s.rules.money_ball} is off the table but the game has no winner")
 
@@ -127,6 +167,9 @@ def check_shot(state, outcome) -> None:
         raise TypeError(f"outcome must be a pool_env.rules.ShotOutcome, got {type(outcome).__name__}")
     if state.winner is not None:
         raise ValueError(f"the game is over (player {state.winner} won); start a new one with new_game")
+    if state.pending is not None:
+        raise ValueError(f"player {state.shooter} has a decision to make first ({state.pending.name}: one of "
+                         f"{state.pending.options}); call rules.decide(state, option)")
     named = set(outcome.pocketed) | set(outcome.object_balls_to_rail) | (set(outcome.off_table) - {CUE})
     if outcome.first_contact is not None:
         named.add(outcome.first_contact)
@@ -179,13 +222,26 @@ def ordered(fouls) -> list:
     return out
 
 
-def advance(state, ruling, on_table, fouls, groups=None):
+def advance(state, ruling, on_table, fouls, groups=None, pending=None, push_out=False):
     """The GameState after a shot ruled `ruling`: the next shooter, ball in hand, fouls,
-    groups and the balls left (`on_table`, spotted balls included)."""
+    groups and the balls left (`on_table`, spotted balls included); the decision he makes
+    first (`pending`), whether he may push out."""
     shooter = 1 - state.shooter if ruling.turn_passed else state.shooter
     # Built directly (dataclasses.replace costs several times as much, and a game judges every shot).
     return GameState.successor(state.rules, frozenset(on_table), shooter, ruling.ball_in_hand, tuple(fouls),
-                               state.groups if groups is None else tuple(groups), state.shot + 1, ruling.winner)
+                               state.groups if groups is None else tuple(groups), state.shot + 1, ruling.winner,
+                              pending, push_out)
+
+
+def check_option(state, option) -> None:
+    """ValueError unless `state` has a decision pending and `option` is one of its options."""
+    if not isinstance(state, GameState):
+        raise TypeError(f"state must be a pool_env.rules.GameState, got {type(state).__name__}")
+    if state.pending is None:
+        raise ValueError("no decision is pending: the shooter shoots (rules.judge)")
+    if option not in state.pending.options:
+        raise ValueError(f"{option!r} is not an option of the pending {state.pending.name!r} decision; "
+                         f"choose one of {state.pending.options}")
 
 
 def turn_messages(new, turn_passed, warn_two_fouls) -> list:
