@@ -130,6 +130,8 @@ def test_a_snapshot_of_another_game_is_refused_naming_what_differs():
         Game("nine_ball").restore(snap)
     with pytest.raises(TypeError, match="GameSnapshot"):
         Game("nine_ball").restore({"balls": None})
+    with pytest.raises(ValueError, match="its decisions differ"):  # a choice left pending would never be made
+        Game("nine_ball", decisions=True).restore(Game("nine_ball").snapshot())
 
 
 @pytest.mark.parametrize("shot, match", [

@@ -531,9 +531,11 @@ class Game:
     # --- branching ------------------------------------------------------------------------------
     @property
     def key(self) -> tuple:
-        """What a snapshot must match to be restored here: mode, table, physics, noise, rules."""
+        """What a snapshot must match to be restored here: mode, table, physics, noise, rules, and
+        whether choices wait for `decide` (a pending choice means nothing to a game that never waits)."""
         noise = None if self.noise is None else tuple(sorted(self.noise.items()))
-        return (self.mode, table_key(self.table), self.physics, noise, tuple(sorted(self.rule_options.items())))
+        return (self.mode, table_key(self.table), self.physics, noise, tuple(sorted(self.rule_options.items())),
+                self.decisions)
 
     def snapshot(self) -> GameSnapshot:
         """The whole state now, the noise generator's included."""
@@ -542,13 +544,13 @@ class Game:
 
     def restore(self, snapshot: GameSnapshot) -> Game:
         """Put back a `snapshot` of this game (or of one made with the same mode, table, physics,
-        noise and rules); the generator's state is set in place. ValueError for another game's."""
+        noise, rules and decisions); the generator's state is set in place. ValueError for another game's."""
         if not isinstance(snapshot, GameSnapshot):
             raise TypeError(f"restore takes a GameSnapshot, got {type(snapshot).__name__}")
         if snapshot.key != self.key:
             theirs, ours = snapshot.key, self.key
-            what = [name for name, a, b in zip(("mode", "table", "physics", "noise", "rule options"), theirs, ours)
-                    if a != b]
+            names = ("mode", "table", "physics", "noise", "rule options", "decisions")
+            what = [name for name, a, b in zip(names, theirs, ours) if a != b]
             raise ValueError(f"the snapshot is of another game: its {', '.join(what)} differ from this game's")
         ours = type(self.rng.bit_generator).__name__
         if snapshot.rng_state["bit_generator"] != ours:
