@@ -79,6 +79,13 @@ class PlaySession:
         """The shooter must call a pocket (the game's `calls_pocket`: 8-ball, at the 8, not the break)."""
         return not self.done and not self.busy and self.base.game.calls_pocket
 
+    @property
+    def called_ball(self) -> int:
+        """The ball a clicked pocket calls: the 8 in 8-ball; in 10-ball the lowest on the table,
+        the ball a shot calls when it names none (`Game.called_targets`)."""
+        targets = self.base.game.called_targets
+        return targets[0] if self.game == "ten_ball" and targets else 8
+
     def restart(self, seed=None):
         """A new game (seed `seed`, default the next one)."""
         self.wait()
@@ -152,7 +159,7 @@ class PlaySession:
         xy = self.to_world(pos)
         pocket = self._pocket_at(xy)
         if self.needs_call and pocket is not None:
-            self.called, self.note = pocket, f"8 called in pocket {pocket}"
+            self.called, self.note = pocket, f"{self.called_ball} called in pocket {pocket}"
         elif self.in_hand is not None and math.dist(xy, self.cue_xy) <= 2 * BALL_RADIUS:
             self.placing = True
         else:
@@ -358,7 +365,8 @@ class PlaySession:
             lines.append(f"score: {self._player(0)} {state.scores[0]}, {self._player(1)} {state.scores[1]}")
         if self.needs_call:
             called = self.called is not None
-            lines.append(f"8 called in pocket {self.called}" if called else "click a pocket to call the 8")
+            ball = self.called_ball
+            lines.append(f"{ball} called in pocket {self.called}" if called else f"click a pocket to call the {ball}")
         return lines + self.lines
 
     def table_frame(self):
