@@ -69,3 +69,21 @@ def test_the_overlay_line_carries_the_score():
     env.reset(seed=0)
     assert score_text(env.unwrapped.game.state) == ", score 0-0"
     assert score_text(gym.make("PoolNineBall-v0").unwrapped.game.state) == ""  # no score in 9-ball
+
+
+def test_the_baulk_line_and_the_d_are_marked_on_the_snooker_cloth_only():
+    # WPBSA Section 1 Rule 1(d)-(e): the baulk line 737 mm from the baulk cushion, the D of radius 292 mm on it.
+    env = gym.make("Snooker-v0", render_mode="rgb_array")
+    env.reset(seed=0)
+    frame, renderer = env.render(), env.unwrapped.playback.renderer
+    width = env.unwrapped.game.table.width
+    marks = [(0.737, 0.2), (0.737 - 0.292, 0.5 * width)]  # on the line off the D, the D's back
+    cloth = [(0.737 + 0.05, 0.2), (0.737 - 0.292 + 0.05, 0.5 * width)]  # 5 cm inside, plain cloth
+    light = [frame[int(r) - 1:int(r) + 2, int(c) - 1:int(c) + 2].astype(int).reshape(-1, 3).max(axis=0)
+             for c, r in renderer.world_to_pixel(np.array(marks))]  # a line a pixel or two wide: its 3 x 3
+    plain = [frame[int(r), int(c)].astype(int) for c, r in renderer.world_to_pixel(np.array(cloth))]
+    # light marks (the cloth's red channel is 36), green cloth beside them
+    assert all(p.min() > 120 and p[0] > 100 + plain[0][0] for p in light) and all(p[1] > p[0] + 50 for p in plain)
+    pool = TableRenderer(2.24, 1.12, np.zeros((0, 3)), 0.028575)  # a pool palette: no markings
+    col, row = pool.world_to_pixel(np.array([[0.737 * 2.24 / 3.569, 0.2]]))[0]
+    assert pool.draw(np.zeros((0, 2)), np.zeros(0, dtype=bool))[int(row), int(col)][1] > 100

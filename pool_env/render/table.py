@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 
+from ..physics.snooker import BAULK_LINE, D_RADIUS, SNOOKER_LENGTH, SNOOKER_WIDTH
 from .digits import number_mask
 
 __all__ = [
@@ -34,6 +35,7 @@ TEXT_RGB = (18, 18, 18)
 MARKER_CORE_RGB = (15, 15, 15)  # body +z marker
 ANTIPODE_CORE_RGB = (225, 20, 20)  # body -z marker
 MARKER_HALO_RGB = (250, 250, 250)
+BAULK_RGB = (225, 235, 225)  # snooker's baulk line and D
 SHADOW_RGB = (8, 30, 16)  # an airborne ball's shadow on the cloth
 SHADOW_ALPHA = 0.55
 # The light's slant: a ball h metres above where it rests casts its shadow this many times h
@@ -243,11 +245,29 @@ class TableRenderer:
         for col, row in self.world_to_pixel(np.array(sights)):
             _paint_disc(img, col, row, dr, DIAMOND_RGB)
 
+        if self.palette == "snooker":
+            self._paint_baulk(img)
         if len(self.pockets):
             centres = self.world_to_pixel(self.pockets[:, :2])
             for (col, row), r in zip(centres, self.pockets[:, 2], strict=True):
                 _paint_disc(img, col, row, r * s, POCKET_RGB)
         return np.clip(np.rint(img), 0, 255).astype(np.uint8)
+
+    def _paint_baulk(self, img: np.ndarray) -> None:
+        """Snooker's markings on the cloth: the baulk line and the D (WPBSA Section 1 Rule 1(d)-(e)),
+        scaled to the table as `rules.snooker_spots` scales them."""
+        h_px, w_px = img.shape[:2]
+        bx = BAULK_LINE * self.length / SNOOKER_LENGTH
+        radius = D_RADIUS * self.width / SNOOKER_WIDTH * self.scale
+        (col, row), = self.world_to_pixel(np.array([[bx, 0.5 * self.width]]))
+        top, bottom = self.world_to_pixel(np.array([[bx, self.width], [bx, 0.0]]))[:, 1]
+        half = max(0.5, 0.004 * self.scale)  # a line 8 mm wide, at least a pixel
+        cols, rows = np.arange(w_px) + 0.5, np.arange(h_px) + 0.5
+        line = np.clip(half + 0.5 - np.abs(cols - col), 0.0, 1.0)[None, :] * \
+            ((rows >= top) & (rows <= bottom)).astype(float)[:, None]
+        d = np.hypot(cols[None, :] - col, rows[:, None] - row)
+        arc = np.clip(half + 0.5 - np.abs(d - radius), 0.0, 1.0) * (cols[None, :] <= col)
+        _paint(img, np.maximum(line, arc) * 0.7, BAULK_RGB)
 
     # --- sprites ---------------------------------------------------------------
     def _phase_centres(self, half: int) -> np.ndarray:
