@@ -128,16 +128,23 @@ def spot_balls(balls: Balls, table: Table, numbers) -> Balls:
     return Balls(xy, v, w, radius=balls.radius, mass=balls.mass, pocketed=pocketed)
 
 
-def _spot_x(table, xy, radii, pocketed, r):
-    """The x on the long string nearest the foot spot, behind it first, where a ball of
-    radius r overlaps no ball on the table."""
-    fx, y = foot_spot(table)
+def blocked_on_line(y: float, r: float, xy, radii, pocketed) -> list:
+    """The (x_lo, x_hi) intervals of the line at height y where a ball of radius r would come
+    within SPOT_GAP of a ball on the table (one interval a ball near the line)."""
     blocked = []
     for (bx, by), rb, gone in zip(xy, radii, pocketed):
         reach = rb + r + SPOT_GAP
         if not gone and abs(by - y) < reach:
             half = math.sqrt(reach * reach - (by - y) ** 2)
             blocked.append((bx - half, bx + half))
+    return blocked
+
+
+def _spot_x(table, xy, radii, pocketed, r):
+    """The x on the long string nearest the foot spot, behind it first, where a ball of
+    radius r overlaps no ball on the table."""
+    fx, y = foot_spot(table)
+    blocked = blocked_on_line(y, r, xy, radii, pocketed)
     lo, hi = r + SPOT_GAP, table.length - r - SPOT_GAP  # inside the head and foot rails
 
     def free(x):

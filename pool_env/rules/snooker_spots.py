@@ -13,13 +13,13 @@ import numpy as np
 
 from ..physics.objects import Balls, Table
 from ..physics.snooker import BAULK_LINE, BLACK_SPOT_FROM_TOP, D_RADIUS, SNOOKER_BALL_MASS, SNOOKER_BALL_RADIUS
+from .racks import SPOT_GAP, blocked_on_line
 
 N_SNOOKER_BALLS = 22
 REDS = frozenset(range(1, 16))
 COLOURS = (16, 17, 18, 19, 20, 21)  # yellow, green, brown, blue, pink, black: ascending value
 YELLOW, BLACK = 16, 21
 COLOUR_NAMES = {16: "yellow", 17: "green", 18: "brown", 19: "blue", 20: "pink", 21: "black"}
-SPOT_GAP = 1e-6  # m: the clearance between a spotted ball and the ball it is placed against
 RACK_GAP = 2e-4  # m: between the reds of the triangle, and between the apex red and the pink
 
 
@@ -128,12 +128,7 @@ def _free_along(x0, y, towards, r, table, xy, radii, pocketed):
     """The x nearest x0 on the long string in direction `towards` where a ball of radius r
     touches no ball: the candidates are the far edges of the balls in the way."""
     lo, hi = r + SPOT_GAP, table.length - r - SPOT_GAP
-    blocked = []
-    for (bx, by), rb, gone in zip(xy, radii, pocketed):
-        reach = rb + r + SPOT_GAP
-        if not gone and abs(by - y) < reach:
-            half = math.sqrt(reach * reach - (by - y) ** 2)
-            blocked.append((bx - half, bx + half))
+    blocked = blocked_on_line(y, r, xy, radii, pocketed)
     edges = [b if towards > 0 else a for a, b in blocked]
     candidates = sorted((c for c in edges if (c - x0) * towards >= 0), key=lambda c: abs(c - x0))
     for c in candidates:
