@@ -121,4 +121,45 @@ def test_rgb_array_shows_the_three_balls_in_their_colours_and_the_checker_stays_
         col, row = renderer.world_to_pixel(np.array([[x + 0.5 * radius, y]]))[0]
         assert np.abs(frame[int(row), int(col)].astype(int) - CAROM_COLOURS[ball]).max() < 40, ball
     with pytest.raises(ValueError, match="render modes"):
-        type(base)(render_mode="rgb_array_list")
+        type(base)(render_mode="depth")
+
+
+def test_rgb_array_list_films_every_shot_of_the_step_the_opponents_innings_too():
+    from pool_env.render.playback import frame_times
+
+    env = gym.make("ThreeCushion-v0", render_mode="rgb_array_list", render_size=(160, 90), points=3)
+    env.reset(seed=2)
+    env.step(np.array([0.05, 0.0, 0.0, 0.0], np.float32))  # a soft miss: the search's inning follows
+    base = env.unwrapped
+    records = base.step_records
+    assert len(records) >= 2 and {r.shooter for r in records} == {0, 1}
+    frames = env.render()
+    fps = base.metadata["render_fps"]
+    # One frame a 1/fps of each shot's trajectory, every shot's own (frame_times), in the order played.
+    assert len(frames) == sum(len(frame_times(r.result.duration, fps)) for r in records)
+    plain = gym.make("ThreeCushion-v0", render_mode="rgb_array_list", render_size=(160, 90), points=3,
+                     overlay=False)
+    plain.reset(seed=2)
+    plain.step(np.array([0.05, 0.0, 0.0, 0.0], np.float32))
+    bare = plain.render()
+    assert len(bare) == len(frames)
+    assert not np.array_equal(frames[0][:12], bare[0][:12]) and np.array_equal(frames[0][40:], bare[0][40:])
+    assert np.array_equal(bare[-1], plain.unwrapped.playback.frame())  # the last frame: the balls at rest
+
+
+def test_a_video_of_three_cushion_has_the_score_on_its_card(tmp_path):
+    from pool_env.records.video_overlay import episode_result, shot_summary
+
+    env = gym.make("ThreeCushion-v0", render_size=(160, 90), points=2)
+    written = pool_env.record_video(env, lambda obs: np.zeros(4, np.float32), tmp_path / "c.mp4", seed=1)
+    assert written > 0 and (tmp_path / "c.mp4").stat().st_size > 0
+    lines = episode_result(env.unwrapped, 0, {"winner": 1, "scores": np.array([0, 2])}, -2.0, 3, 0, 0)
+    assert lines[1] == "opponent wins three-cushion" and "score 0-2" in lines
+    assert shot_summary({"pocketed": [], "point": True}) == "point"  # a carom shot: a point or none
+
+
+def test_ghost_ball_names_the_carom_search_player_at_three_cushion():
+    from pool_env.players import CaromSearchAgent
+
+    env = gym.make("ThreeCushion-v0", opponent="ghost_ball").unwrapped  # no ghost ball without pockets
+    assert isinstance(env.opponent_player, CaromSearchAgent)

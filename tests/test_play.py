@@ -148,6 +148,31 @@ def test_snooker_is_played_from_the_d_with_the_score_shown():
     assert session.status()[1] == "score: player 1 0, player 2 4"
 
 
+def test_three_cushion_passes_the_inning_and_the_other_player_strikes_the_yellow():
+    session = PlaySession("three_cushion", two_players=True, seed=0, size=SIZE, animate=False)
+    head, score, ball = session.status()[:3]
+    assert head.startswith("three-cushion  shot 1: player 1") and score == "score: player 1 0, player 2 0"
+    assert ball.startswith("white cue ball") and np.array_equal(session.cue_xy, session.base.balls.xy[0])
+    cue = session.cue_xy
+    drag(session, session.to_pixel(cue + (0.0, 0.1)), session.to_pixel(cue + (0.0, 0.12)))  # soft, away: no point
+    session.update()
+    session.wait()
+    # UMB Art. 3.1: a miss ends the inning; each player has his own cue ball (the second the yellow).
+    assert not session.done and session.state.shooter == 1 and session.cue_index == 1
+    assert np.array_equal(session.cue_xy, session.base.balls.xy[1]) and session.status()[2].startswith("yellow")
+
+
+def test_three_cushion_in_a_human_window_shows_the_last_frame_of_the_step():
+    env = gym.make("ThreeCushion-v0", render_mode="human", render_size=SIZE, opponent=None)
+    env.reset(seed=0)
+    window = env.unwrapped.window
+    assert window.is_open
+    env.step(np.array([0.3, 0.0, 0.0, 0.0], np.float32))
+    assert np.array_equal(window.frame(), env.unwrapped.shot_frames()[-1])
+    env.close()
+    assert not window.is_open
+
+
 def test_ten_ball_calls_the_lowest_ball_in_the_clicked_pocket():
     session = PlaySession("ten_ball", two_players=True, seed=0, size=SIZE, animate=False)
     assert not session.needs_call  # nothing is called on the break (WPA Ten Ball 5)

@@ -43,7 +43,7 @@ def test_check_env_passes_without_a_display_and_warns_once():
 
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")  # count every warning, not Python's first-per-line
-            for env_id in ("PoolBreak-v0", "PoolNineBall-v0"):
+            for env_id in ("PoolBreak-v0", "PoolNineBall-v0", "ThreeCushion-v0"):
                 check_env(gym.make(env_id).unwrapped)  # every render mode, "human" included
             env = gym.make("PoolBreak-v0", render_mode="human")
             env.reset(seed=0)
@@ -53,7 +53,7 @@ def test_check_env_passes_without_a_display_and_warns_once():
         print(json.dumps({"no_display": [str(w.message) for w in caught if "no display" in str(w.message)],
                           "driver": driver, "sdl_videodriver": os.environ.get("SDL_VIDEODRIVER")}))
     """)
-    assert len(out["no_display"]) == 1, out  # three human-mode windows, one warning
+    assert len(out["no_display"]) == 1, out  # four human-mode windows, one warning
     assert "offscreen" in out["no_display"][0] and "rgb_array" in out["no_display"][0]
     assert out["driver"] in ("offscreen", "dummy")
     assert out["sdl_videodriver"] is None  # set for pygame's init only, not left in the environment

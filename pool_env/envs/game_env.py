@@ -13,7 +13,7 @@ from ..game import GAME_BALLS, Game, Shot, env_layout, game_observation, game_ob
 from ..physics import Balls
 from ..players import make_player
 from ..render.overlay import overlay
-from ..render.playback import ShotPlayback
+from ..render.playback import ShotPlayback, step_shot_frames
 from ..render.table import game_palette
 from ..render.window import HumanWindow
 from ..rules import codes
@@ -321,18 +321,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         records = [record for record in self._step_records if record.error is None]
         if not records:
             return [self._annotate(frame) for frame in self.playback.shot_frames(fps)]
-        if len(records) == 1:
-            shots = [self.playback.shot_frames(fps)]
-        else:
-            # Several shots: replayed on a playback of their own, from the step's start (the
-            # balls' markers turn through the step's shots, from the orientations drawn at reset).
-            replay = ShotPlayback(self.table, self.render_size, self.metadata["render_fps"], deferred=False,
-                                  palette=self.playback.palette)
-            replay.reset(self._step_start, self._quaternions)
-            shots = []
-            for record in records:
-                replay.shot(record.result)
-                shots.append(replay.shot_frames(fps))
+        shots = step_shot_frames(self.playback, self._step_start, self._quaternions, [r.result for r in records], fps)
         captions = [(shot_caption(self.game, record, who), list(record.ruling.messages))
                     for record, who in self._captions]
         return captioned(shots, captions, self.overlay)

@@ -108,14 +108,15 @@ class Shot:
 
     @classmethod
     def aimed(cls, direction, speed: float, tip=(0.0, 0.0), place=None, pocket=None, elevation=0.0,
-              ball=None, push_out=False) -> Shot:
+              ball=None, push_out=False, mass=BALL_MASS) -> Shot:
         """The cue ball sent along `direction` (any length) at `speed` m/s (the push along the
-        cue: an elevated cue's ball leaves slower along the table, driven into the slate)."""
+        cue: an elevated cue's ball leaves slower along the table, driven into the slate);
+        `mass` (kg) the cue ball's, a pool ball's by default (a carom ball is heavier)."""
         dx, dy = _pair(direction, "direction")
         length = math.hypot(dx, dy)
         if length == 0.0:
             raise ValueError("direction must not be zero")
-        scale = float(speed) * BALL_MASS / CONTACT_TIME / length
+        scale = float(speed) * float(mass) / CONTACT_TIME / length
         return cls((dx * scale, dy * scale), tip, place, pocket, elevation, ball, push_out)
 
     @property

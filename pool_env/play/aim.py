@@ -34,14 +34,15 @@ def clamp_tip(side, top):
     return float(side), float(top)
 
 
-def first_hit(balls, cue_xy, direction, table):
-    """(ghost ball centre, ball hit or None) of a cue ball rolling straight from `cue_xy` along
-    the unit `direction`: where it first touches an object ball, else where it meets a cushion."""
+def first_hit(balls, cue_xy, direction, table, cue=0):
+    """(ghost ball centre, ball hit or None) of the cue ball (index `cue`) rolling straight from
+    `cue_xy` along the unit `direction`: where it first touches another ball, else where it
+    meets a cushion."""
     c, u = np.asarray(cue_xy, dtype=np.float64), np.asarray(direction, dtype=np.float64)
-    r = float(balls.radii[0])
+    r = float(balls.radii[cue])
     best, hit = math.inf, None
-    for k in range(1, len(balls)):
-        if balls.pocketed[k]:
+    for k in range(len(balls)):
+        if k == cue or balls.pocketed[k]:
             continue
         p = balls.xy[k] - c
         along = float(p @ u)

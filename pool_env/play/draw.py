@@ -105,9 +105,9 @@ def draw_aim(session, surface):
     balls, cue = session.base.balls, np.asarray(session.cue_xy)
     back = np.asarray(session.drag) - cue
     direction = -back / math.hypot(*back)
-    ghost, hit = first_hit(balls, cue, direction, session.base.table)
+    ghost, hit = first_hit(balls, cue, direction, session.base.table, session.cue_index)
     c, g, m = session.to_pixel(cue), session.to_pixel(ghost), session.to_pixel(session.drag)
-    r_px = float(balls.radii[0]) * scale
+    r_px = float(balls.radii[session.cue_index]) * scale
     pull = (m - c) / max(1.0, math.hypot(*(m - c)))
     pygame.draw.line(surface, CUE_RGB, c + 1.5 * r_px * pull, m + 4 * r_px * pull, 5)  # the cue, pulled back
     pygame.draw.line(surface, AIM_RGB, c, g, 2)

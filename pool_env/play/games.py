@@ -8,10 +8,11 @@ from ..players import player_names
 
 GAMES = {"break": ("PoolBreak-v0", {"spin": True}), "run": ("PoolBreakRun-v0", {"spin": True}),
          "nine_ball": ("PoolNineBall-v0", {}), "eight_ball": ("PoolEightBall-v0", {}),
-         "ten_ball": ("PoolTenBall-v0", {}), "snooker": ("Snooker-v0", {})}
+         "ten_ball": ("PoolTenBall-v0", {}), "snooker": ("Snooker-v0", {}), "three_cushion": ("ThreeCushion-v0", {})}
 NAMES = {"break": "break", "run": "break and run", "nine_ball": "9-ball", "eight_ball": "8-ball", "ten_ball": "10-ball",
-         "snooker": "snooker"}
-TWO_SIDED = ("nine_ball", "eight_ball", "ten_ball", "snooker")  # the games with an opponent (or a friend)
+         "snooker": "snooker", "three_cushion": "three-cushion"}
+# the games with an opponent (or a friend)
+TWO_SIDED = ("nine_ball", "eight_ball", "ten_ball", "snooker", "three_cushion")
 TABLE_SIZE = (1120, 630)  # px: the table's frames
 
 

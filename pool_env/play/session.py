@@ -12,6 +12,7 @@ from ..game import MAX_SPEED, Shot, place_cue_ball, placement_area
 from ..physics import BALL_RADIUS
 from ..records.saved import record_game, save_game
 from ..render.window import import_pygame
+from ..rules import cue_ball
 from .aim import clamp_tip, shot_action
 from .animation import PendingStep, StepAnimation
 from .games import NAMES, TABLE_SIZE, TWO_SIDED, make_env
@@ -71,6 +72,11 @@ class PlaySession:
         return "opponent thinking..." if has_opponent else "simulating the shot..."
 
     @property
+    def cue_index(self) -> int:
+        """The ball the shooter strikes: 0, or in three-cushion his own (white or yellow)."""
+        return 0 if self.state is None else cue_ball(self.state)
+
+    @property
     def in_hand(self):
         return None if self.state is None or self.done else self.state.ball_in_hand
 
@@ -100,7 +106,7 @@ class PlaySession:
         self.called = None
         self._still = None
         balls = self.base.balls
-        self.cue_xy = balls.xy[0].copy()
+        self.cue_xy = balls.xy[self.cue_index].copy()
         if self.in_hand is not None:
             x_lo, x_hi, y_lo, y_hi = placement_area(self.base.table, self.in_hand, float(balls.radii[0]))
             wanted = self.cue_xy if not balls.pocketed[0] else ((x_lo + x_hi) / 2, (y_lo + y_hi) / 2)
@@ -204,7 +210,8 @@ class PlaySession:
             return None
         power = float(np.hypot(head[0], head[1]))
         place = tuple(self.cue_xy) if self.in_hand is not None else None
-        shot = Shot.aimed(head[0:2], power * MAX_SPEED, tuple(self.tip), place, self.called)
+        mass = float(self.base.balls.masses[self.cue_index])
+        shot = Shot.aimed(head[0:2], power * MAX_SPEED, tuple(self.tip), place, self.called, mass=mass)
         return self.base.game.encode(shot)
 
     def update(self):
@@ -361,8 +368,11 @@ class PlaySession:
         lines = [head]
         if self.game == "eight_ball" and state.groups[state.shooter] is not None:
             lines.append(f"group: {state.groups[state.shooter]}")
-        if self.game == "snooker":
+        if self.game in ("snooker", "three_cushion"):
             lines.append(f"score: {self._player(0)} {state.scores[0]}, {self._player(1)} {state.scores[1]}")
+        if self.game == "three_cushion":
+            ball = "white" if self.cue_index == 0 else "yellow"
+            lines.append(f"{ball} cue ball, innings {state.innings[0]}-{state.innings[1]}")
         if self.needs_call:
             called = self.called is not None
             ball = self.called_ball
@@ -379,7 +389,7 @@ class PlaySession:
         if self._still is None:
             balls, playback = self.base.balls, self.base.playback
             xy, pocketed = balls.xy.copy(), balls.pocketed.copy()
-            xy[0], pocketed[0] = self.cue_xy, False
+            xy[self.cue_index], pocketed[self.cue_index] = self.cue_xy, False
             playback.frame()  # brings the rotation markers to the end of the last shot
             self._still = playback.renderer.draw(xy, pocketed, playback.orientation)
         return self._still

@@ -84,6 +84,8 @@ def _ghost_ball(env, seed=None):
     game = game_of(env)
     if game.mode == "snooker":  # the ghost-ball player of snooker
         return SnookerPlayer.from_env(game, seed=seed)
+    if game.mode == "three_cushion":  # no ghost ball at carom: its built-in player searches
+        return CaromSearchAgent.from_env(env, seed=seed)
     if game.has_rules:
         return GameGhostBallAgent.from_env(game)
     return GhostBallAgent(game.table, game.physics, spin=game.layout.spin)

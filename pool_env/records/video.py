@@ -10,6 +10,7 @@ import imageio.v2 as imageio
 import numpy as np
 
 from ..envs.break_env import PoolBreakEnv
+from ..envs.carom_env import ThreeCushionEnv
 from ..envs.game_env import PoolGameEnv
 from .saved import GameRecorder, save_game
 from .video_overlay import CARD_SECONDS, Story
@@ -22,8 +23,9 @@ VIDEO_EXTENSIONS = (".mp4", ".mov", ".mkv", ".avi")
 
 def _base(env):
     base = env.unwrapped
-    if not isinstance(base, (PoolBreakEnv, PoolGameEnv)):
-        raise TypeError(f"expected a PoolBreakEnv or PoolGameEnv (possibly wrapped), got {type(base).__name__}")
+    if not isinstance(base, (PoolBreakEnv, PoolGameEnv, ThreeCushionEnv)):
+        raise TypeError(f"expected a PoolBreakEnv, PoolGameEnv or ThreeCushionEnv (possibly wrapped), "
+                        f"got {type(base).__name__}")
     return base
 
 
@@ -81,15 +83,16 @@ class _Writer:
 def record_video(env, policy, path, episodes=1, fps=None, *, seed=None, overlay=True, save_games=None) -> int:
     """Play `episodes` episodes with `policy` and write every shot, whole, to the .mp4 at `path`.
 
-    `env` is a PoolBreakEnv or a PoolGameEnv (possibly wrapped, any render mode; a game's
-    step films the opponent's shots too, with the game's overlay) or an id such as
-    "PoolBreak-v0" or "PoolNineBall-v0". `policy` maps an observation to an action: a callable, an object with
-    `.act(obs)`, a Stable-Baselines3 model (`.predict(obs, deterministic=True)`), or None for
-    random actions. Frames are sampled from the exact trajectories at `fps` (default
-    `metadata["render_fps"]`) and the video plays at that rate, so in real time. `seed` seeds
-    the first reset. Returns the number of frames written. `path` may also end in .mov, .mkv
-    or .avi; another extension (e.g. .gif) raises `ValueError` before anything is simulated.
-    A missing folder is created.
+    `env` is a PoolBreakEnv, a PoolGameEnv or a ThreeCushionEnv (possibly wrapped, any
+    render mode; a game's step films the opponent's shots too, with the game's overlay) or
+    an id such as "PoolBreak-v0", "PoolNineBall-v0" or "ThreeCushion-v0". `policy` maps an
+    observation to an action: a callable, an object with `.act(obs)`, a Stable-Baselines3
+    model (`.predict(obs, deterministic=True)`), or None for random actions. Frames are
+    sampled from the exact trajectories at `fps` (default `metadata["render_fps"]`) and the
+    video plays at that rate, so in real time. `seed` seeds the first reset. Returns the
+    number of frames written. `path` may also end in .mov, .mkv or .avi; another extension
+    (e.g. .gif) raises `ValueError` before anything is simulated. A missing folder is
+    created.
 
     `overlay=True` (see `video_frames`): a caption under the cloth (episode, numbered from 0 as
     the saved games are, shot, reward so far, what the last shot did, the rules' messages), the

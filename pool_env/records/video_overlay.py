@@ -10,7 +10,7 @@ from ..envs.infos import NO_WINNER
 from ..physics.kinds import BALL_POCKET
 from ..render.overlay import card, cue_line, fit_band, font_size, overlay, pocket_mark
 from ..render.playback import frame_times
-from ..rules import codes
+from ..rules import codes, cue_ball
 
 CUE_SECONDS = 0.5  # the cue line is shown this long before each shot
 CARD_SECONDS = 1.5  # each episode ends on a card with its result, this long
@@ -19,15 +19,21 @@ CARD_SECONDS = 1.5  # each episode ends on a card with its result, this long
 def shot_facts(record) -> dict:
     """What the captions tell of one shot, from its `ShotRecord`: the object balls pocketed, a
     scratch, the foul's name, the rules' lines, a failure."""
-    return {"pocketed": [int(b) for b in record.pocketed], "scratch": record.scratch, "foul": record.foul,
-            "messages": list(record.ruling.messages) if record.ruling is not None else [],
-            "error": record.error is not None}
+    facts = {"pocketed": [int(b) for b in record.pocketed], "scratch": record.scratch, "foul": record.foul,
+             "messages": list(record.ruling.messages) if record.ruling is not None else [],
+             "error": record.error is not None, "cue_ball": cue_ball(record.state_before)}
+    if record.ruling is not None and hasattr(record.ruling, "point"):  # carom: a point or none, no pockets
+        facts["point"] = bool(record.ruling.point)
+    return facts
 
 
 def shot_summary(facts: dict) -> str:
     """One shot in words (its `shot_facts`): the balls pocketed, a scratch, a foul."""
     balls = facts.get("pocketed", [])
-    parts = [("pocketed " + ", ".join(str(b) for b in balls)) if balls else "nothing pocketed"]
+    if "point" in facts:
+        parts = ["point" if facts["point"] else "no point"]
+    else:
+        parts = [("pocketed " + ", ".join(str(b) for b in balls)) if balls else "nothing pocketed"]
     if facts.get("scratch"):
         parts.append("cue ball pocketed (scratch)")
     if facts.get("foul"):
@@ -44,11 +50,15 @@ def episode_result(base, episode: int, info: dict, reward: float, shots: int, ba
         name = base.game.label
         winner = info.get("winner", NO_WINNER)
         if winner != NO_WINNER:
-            reason = codes.decode("end_reason", info["end_reason"])
+            reason = codes.decode("end_reason", info["end_reason"]) if "end_reason" in info else None
             who = "agent" if winner == 0 else "opponent"
             lines.append(f"{who} wins {name}" + (f" ({reason.replace('_', ' ')})" if reason else ""))
+        elif info.get("draw"):
+            lines.append(f"{name}: a draw")
         else:
             lines.append(f"{name}: no winner ({'error' if info.get('error') else 'shot limit'})")
+        if "scores" in info:
+            lines.append(f"score {int(info['scores'][0])}-{int(info['scores'][1])}")
         lines.append(f"{shots} shots, reward {reward:+.2f}")
         return lines
     lines.append(f"{balls} ball{'s' if balls != 1 else ''} in {shots} shot{'s' if shots != 1 else ''}"
@@ -83,7 +93,8 @@ class Story:
             who = shot_info.pop("_who", None)
             label = f"shot {self.shots}" + (f" ({who})" if who else "")
             rows, _ = result.sample(np.zeros(1))
-            cue = cue_line(shot[0], self.base.playback.renderer, rows[0, 0, 0:2], rows[0, 0, 2:4])
+            c = shot_info.pop("cue_ball", 0)
+            cue = cue_line(shot[0], self.base.playback.renderer, rows[0, c, 0:2], rows[0, c, 2:4])
             out += [self._caption(cue, label)] * round(CUE_SECONDS * self.fps)
             pocket_at = self._cue_pocket(result)
             for j in range(1, count):

@@ -186,3 +186,18 @@ class ShotPlayback:
 
     def _draw(self, xy, pocketed, orientation, heights=None):
         return self.renderer.draw(xy, pocketed, orientation, heights)
+
+
+def step_shot_frames(playback: ShotPlayback, start, quaternions, results, fps=None) -> list[list[np.ndarray]]:
+    """The frames of each shot of a step (`results`, the shots' Results in order), one list a
+    shot: one shot is the playback's own last shot; several are replayed on a playback of their
+    own from the step's `start` balls, the markers turning through them from `quaternions`."""
+    if len(results) == 1:
+        return [playback.shot_frames(fps)]
+    replay = ShotPlayback(playback.table, playback.size, playback.fps, deferred=False, palette=playback.palette)
+    replay.reset(start, quaternions)
+    shots = []
+    for result in results:
+        replay.shot(result)
+        shots.append(replay.shot_frames(fps))
+    return shots
