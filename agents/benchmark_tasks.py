@@ -8,7 +8,7 @@ from dataclasses import dataclass
 # any score of a player that did not change (tests/test_benchmark.py pins a reference row of
 # ghost_ball on a tiny configuration, and fails to remind one to bump it): rows of different
 # versions do not compare.
-BENCHMARK_VERSION = 1
+BENCHMARK_VERSION = 2  # 2: 8-ball calls a ball and a pocket on every shot (WPA 1.6)
 
 MAX_GAMES = 10_000  # each task owns seeds first_seed .. first_seed + MAX_GAMES - 1
 GAME_MAX_SHOTS = 100  # the agent's shots before a game (or a practice rack) stops unfinished

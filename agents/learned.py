@@ -113,7 +113,7 @@ def pot_candidates(search: SearchAgent, xy, on_table, legal, state=None) -> tupl
         for t, tip in enumerate(search.tips()):
             rest = cue_rest(search, xy[0], xy[ball], direction, speed, tip[1])
             cands.append(Candidate(direction, speed, tip, pocket=pocket,
-                                   prior=float(plan[i, SCORE]) * (1.0 - 0.05 * t - 0.02 * k)))
+                                   prior=float(plan[i, SCORE]) * (1.0 - 0.05 * t - 0.02 * k), ball=ball))
             rows.append([ball, pocket, k, float(plan[i, SCORE]), float(plan[i, DN]), float(plan[i, D1]),
                          float(plan[i, D2]), float(plan[i, SCRATCH]), rest])
             balls.append(ball)

@@ -63,7 +63,8 @@ SIMULATION_CHUNK, LOOKAHEAD_CHUNK = 64, 4  # with `seconds`: candidates simulate
 @dataclass
 class Candidate:
     """One shot to try: the cue ball sent along `direction` at `speed` m/s with tip `tip`,
-    from `spot` (ball in hand; None: where it lies), the 8 called in `pocket`."""
+    from `spot` (ball in hand; None: where it lies), `ball` called in `pocket` (a pot's ball
+    and pocket; 8-ball and 10-ball read the call)."""
 
     direction: np.ndarray
     speed: float
@@ -72,6 +73,7 @@ class Candidate:
     pocket: int | None = None
     kind: str = "pot"
     prior: float = 0.0
+    ball: int | None = None
 
 
 def legal_mask(legal, n_balls: int) -> np.ndarray:
@@ -184,7 +186,8 @@ class SearchAgent(Agent):
         self.rng = np.random.default_rng(seed)
         self.last_stats: dict = {}
         # The game it plans on: the env's own rules and strike, at the position it decodes.
-        layout = env_layout(game, decisions=decisions) if game is not None else ("cue_spin" if self.spin else "cue")
+        layout = ("cue_spin" if self.spin else "cue") if game is None else \
+            env_layout(game, decisions=decisions, calling=self.rule_options.get("calling"))
         self.sim = Game(game or "run", self.table, self.physics, noise, layout=layout, **self.rule_options)
 
     @classmethod
@@ -281,7 +284,8 @@ class SearchAgent(Agent):
                 direction = geo.rotate(shot, turn)
                 for t, tip in enumerate(tips):
                     out[q].append(Candidate(direction, speed, tip, spots[q], int(index[i, 2]),
-                                            prior=score * (1.0 - 0.1 * j - 0.05 * t - 0.02 * k)))
+                                            prior=score * (1.0 - 0.1 * j - 0.05 * t - 0.02 * k),
+                                            ball=int(index[i, 1])))
         for q in range(n):
             rest = self.safeties(xys[q], on_table, legal)
             if not out[q]:
@@ -515,7 +519,8 @@ class SearchAgent(Agent):
     def action(self, cand: Candidate, in_hand, area=False) -> np.ndarray:
         """The env's action for a candidate (`pool_env.game.encode_action` of its shot); `area`
         the placement area of `in_hand` if already known."""
-        shot = Shot.aimed(cand.direction, min(cand.speed, MAX_SPEED), cand.tip, place=cand.spot, pocket=cand.pocket)
+        shot = Shot.aimed(cand.direction, min(cand.speed, MAX_SPEED), cand.tip, place=cand.spot, pocket=cand.pocket,
+                          ball=cand.ball)
         if area is False:
             area = None if in_hand is None else placement_area(self.table, in_hand, self.radius)
         targets = self.sim.called_targets if self.sim.has_rules else ()  # the position's (simulate reset it)

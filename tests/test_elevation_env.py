@@ -15,7 +15,7 @@ from pool_env.physics.cue import MAX_ELEVATION
 from pool_env.render.table import SHADOW_SLANT, TableRenderer
 
 IDS = ("PoolBreak-v0", "PoolBreakRun-v0", "PoolNineBall-v0", "PoolEightBall-v0")
-LEVEL_SIZES = {"PoolBreak-v0": 2, "PoolBreakRun-v0": 2, "PoolNineBall-v0": 6, "PoolEightBall-v0": 7}
+LEVEL_SIZES = {"PoolBreak-v0": 2, "PoolBreakRun-v0": 2, "PoolNineBall-v0": 6, "PoolEightBall-v0": 8}
 AREA = (0.1, 0.5, 0.1, 1.0)
 
 

@@ -112,7 +112,7 @@ def test_evaluate_equals_restoring_and_playing_each_draw_and_changes_nothing():
 def test_play_batch_equals_playing_each_game():
     games = [Game("eight_ball", noise="olympiad", seed=s) for s in (1, 2, 3)]
     twins = [Game("eight_ball", noise="olympiad", seed=s) for s in (1, 2, 3)]
-    shots = [np.array([0.8, 0.05 * k, 0.0, 0.0, 0.0, 0.0, 0.5], np.float32) for k in range(3)]
+    shots = [np.array([0.8, 0.05 * k, 0.0, 0.0, 0.0, 0.0, 0.5, 0.0], np.float32) for k in range(3)]
     for batched, twin in zip(play_batch(games, shots), [t.play(s) for t, s in zip(twins, shots)]):
         same_record(batched, twin)
     assert [g.shooter for g in games] == [t.shooter for t in twins]

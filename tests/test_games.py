@@ -41,10 +41,13 @@ def test_checkers_are_silent(env_id):
 
 def test_spaces_and_first_observation_are_as_documented():
     # 9-ball: 10 balls x 3 + 9 legal flags + 2 ball in hand + 2 fouls + 1 counter = 44;
-    # 8-ball: 16 x 3 + 15 + 2 + 2 + 3 groups + 1 = 71. Actions: 6 and 7 entries.
+    # 8-ball: 16 x 3 + 15 + 2 + 2 + 3 groups + 1 = 71. Actions: 6 and 8 entries (8-ball calls a
+    # pocket and a ball, WPA 1.6; 7 with calling="eight_only", the pocket alone).
     nine, eight = gym.make("PoolNineBall-v0"), gym.make("PoolEightBall-v0")
     assert nine.observation_space.shape == (44,) and nine.action_space.shape == (6,)
-    assert eight.observation_space.shape == (71,) and eight.action_space.shape == (7,)
+    assert eight.observation_space.shape == (71,) and eight.action_space.shape == (8,)
+    only = gym.make("PoolEightBall-v0", rule_options={"calling": "eight_only"})
+    assert only.action_space.shape == (7,)
     obs, _ = nine.reset(seed=0)
     # On the break only the 1 is a legal first contact (WPA 2.3), and the breaker has the
     # cue ball in hand behind the head string.
@@ -122,7 +125,7 @@ def test_noise_is_deterministic_given_the_seed():
     for seed in (3, 3, 4):
         env = gym.make("PoolEightBall-v0", noise="olympiad", opponent="random")
         env.reset(seed=seed)
-        out = [env.step(action(vx=8.0, place=(1.0, 0.0), n=7))[0]]
+        out = [env.step(action(vx=8.0, place=(1.0, 0.0), n=8))[0]]
         out.append(env.unwrapped.balls.xy.copy())
         runs.append(out)
     assert all(np.array_equal(a, b) for a, b in zip(runs[0], runs[1]))

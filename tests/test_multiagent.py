@@ -93,10 +93,10 @@ def test_api_test_passes(module):
     name = module.__name__.rsplit(".", 1)[-1]
     assert env.metadata["name"] == name and env.metadata["is_parallelizable"] is False
     assert env.possible_agents == ["player_0", "player_1"]
-    size = 7 if name == "eight_ball_v0" else 6
+    size = 8 if name == "eight_ball_v0" else 6  # 8-ball: the called pocket and ball (WPA 1.6)
     assert env.action_space("player_0").shape == (size,)
     assert env.action_space("player_1") is env.action_space("player_0")
-    assert env.observation_space("player_0").shape == ((71,) if size == 7 else (44,))
+    assert env.observation_space("player_0").shape == ((71,) if size == 8 else (44,))
 
 
 @pytest.mark.parametrize("module", MODULES[:2], ids=lambda m: m.__name__.rsplit(".", 1)[-1])

@@ -71,9 +71,9 @@ def test_a_ball_hanging_in_a_mouth_is_clipped_in_the_view_as_in_the_observation(
     assert view.xy.tobytes() == want.xy.tobytes()
 
 
-@pytest.mark.parametrize("layout", ["nine_ball", "eight_ball", "eight_ball+elevation"])
+@pytest.mark.parametrize("layout", ["nine_ball", "eight_ball_call", "eight_ball_call+elevation"])
 def test_strike_encoded_is_strike_of_the_encoded_action(layout):
-    mode = layout.split("+")[0]
+    mode = "eight_ball" if layout.startswith("eight_ball") else layout.split("+")[0]
     game = Game(mode, seed=1, layout=layout)
     rng = np.random.default_rng(2)
     for k in range(40):
@@ -81,10 +81,12 @@ def test_strike_encoded_is_strike_of_the_encoded_action(layout):
         place = None if area is None or k % 3 == 0 else (rng.uniform(area[0], area[1]), rng.uniform(area[2], area[3]))
         shot = Shot.aimed((rng.normal(), rng.normal()), rng.uniform(0.01, 12.0), (rng.uniform(-0.3, 0.3), 0.1),
                           place=place, pocket=int(rng.integers(6)) if k % 2 else None)
-        entries = encoded_entries(game.layout, shot, area, 6)
-        action = encode_action(game.layout, shot, area, 6)
+        targets = game.called_targets  # 8-ball's called-ball entry chooses among them (WPA 1.6)
+        entries = encoded_entries(game.layout, shot, area, 6, targets)
+        action = encode_action(game.layout, shot, area, 6, targets)
         assert entries == action.astype(np.float64).tolist()  # the float32 entries, as Python floats
-        assert decode_entries(game.layout, entries, area, 6) == decode_action(game.layout, action, area, 6)
+        assert decode_entries(game.layout, entries, area, 6, targets) == decode_action(game.layout, action, area, 6,
+                                                                                       targets)
         snapshot = game.snapshot()
         direct = game.strike_encoded(shot)
         game.restore(snapshot)

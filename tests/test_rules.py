@@ -244,12 +244,12 @@ def test_eight_on_the_break_with_a_scratch():
 def test_open_table_group_assignment():
     # WPA 3.4: on an open table any ball but the 8 may be hit first (a solid into a stripe is
     # legal); a legally pocketed ball decides the groups (here the first ball to drop: the
-    # called-ball simplification) and the shooter continues (3.5).
-    state, ruling = judge(eight(), shot(2, (11,)))
+    # called-ball simplification, calling="eight_only") and the shooter continues (3.5).
+    state, ruling = judge(eight(calling="eight_only"), shot(2, (11,)))
     assert ruling.foul is None and not ruling.turn_passed
     assert state.groups == ("stripes", "solids") and state.shooter == 0
     assert "player 0 takes stripes (the 11 dropped first), player 1 solids" in ruling.messages
-    state, _ = judge(eight(shooter=1), shot(10, (6, 12)))
+    state, _ = judge(eight(shooter=1, calling="eight_only"), shot(10, (6, 12)))
     assert state.groups == ("stripes", "solids")  # player 1 made the 6 first: solids for player 1
 
 
@@ -284,10 +284,11 @@ def test_eight_no_rail_no_contact_and_scratch():
 
 def test_eight_turn_stays_on_own_ball_and_passes_on_opponents_only():
     # WPA 3.5: the shooter continues after pocketing his own ball; an opponent's ball alone
-    # (a legal shot: his own group hit first) ends the turn, and it stays down.
-    state, ruling = judge(eight(groups=SOLIDS_ON), shot(3, (3, 12)))
+    # (a legal shot: his own group hit first) ends the turn, and it stays down (the 8-only
+    # calling; called shots: tests/test_rules_called.py).
+    state, ruling = judge(eight(groups=SOLIDS_ON, calling="eight_only"), shot(3, (3, 12)))
     assert not ruling.turn_passed and state.shooter == 0
-    state, ruling = judge(eight(groups=SOLIDS_ON), shot(3, (12,)))
+    state, ruling = judge(eight(groups=SOLIDS_ON, calling="eight_only"), shot(3, (12,)))
     assert ruling.foul is None and ruling.turn_passed and 12 not in state.on_table and state.shooter == 1
 
 

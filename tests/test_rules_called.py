@@ -85,12 +85,14 @@ def test_a_called_ball_not_on_the_table_is_refused():
         EightBall(calling="everything")
 
 
-def test_the_default_calls_only_the_eight():
-    # The env's action layouts name a pocket only, so the rule set's default is "eight_only":
-    # a ball of the group in any pocket keeps the table, uncalled.
-    plain = GameState(EightBall(), frozenset(range(1, 16)), 0, None, (0, 0), ("solids", "stripes"), False, 5)
-    _, ruling = judge(plain, shot(3, [(3, 4)]))
-    assert EightBall().calling == "eight_only" and not ruling.turn_passed
+def test_the_default_calls_ball_and_pocket_and_eight_only_calls_only_the_eight():
+    # WPA 1.6 is the default: an uncalled ball of the group in a pocket does not keep the table.
+    # With calling="eight_only" (the simplification) it does, uncalled.
+    groups = ("solids", "stripes")
+    called = GameState(EightBall(), frozenset(range(1, 16)), 0, None, (0, 0), groups, False, 5)
+    assert EightBall().calling == "ball_and_pocket" and judge(called, shot(3, [(3, 4)]))[1].turn_passed
+    plain = GameState(EightBall(calling="eight_only"), frozenset(range(1, 16)), 0, None, (0, 0), groups, False, 5)
+    assert not judge(plain, shot(3, [(3, 4)]))[1].turn_passed
 
 
 def test_a_game_with_called_shots_judges_the_shots_call():
@@ -126,3 +128,43 @@ def test_a_game_with_called_shots_judges_the_shots_call():
     assert action.shape == (8,) and acting.decode(action).ball == 1
     record = acting.play(action)
     assert record.called_ball == 1 and record.pocketed == (1,) and not record.ruling.turn_passed
+
+
+def test_the_ghost_ball_player_calls_the_ball_it_pots_as_the_env_reads_it():
+    # WPA 1.6: a called shot names its ball. The player's action must decode, in the env's game,
+    # to the ball of the pot it planned (its decide), among the legal targets.
+    import gymnasium as gym
+
+    from pool_env.game import decode_game_observation
+    from pool_env.players import GameGhostBallAgent
+
+    env = gym.make("PoolEightBall-v0", opponent="random")
+    player = GameGhostBallAgent.from_env(env)
+    game = env.unwrapped.game
+    called = 0
+    for seed in range(6):
+        obs, _ = env.reset(seed=seed)
+        for _ in range(12):
+            action = player.act(obs)
+            planned = player.decide(decode_game_observation(obs, "eight_ball", game.table))
+            shot = game.decode(action)
+            if not game.state.is_break and planned.ball is not None:
+                assert shot.ball == planned.ball and shot.ball in game.legal_targets
+                assert shot.pocket == planned.pocket
+                called += 1
+            obs, *_, terminated, truncated, _ = env.step(action)
+            if terminated or truncated:
+                break
+    assert called >= 1
+
+
+def test_a_saved_game_from_before_called_shots_replays_calling_the_eight_only():
+    from pathlib import Path
+
+    from pool_env.records.saved import load_game, replay
+
+    path = Path(__file__).parent / "data" / "saved_games" / "eight_ball_ghost_vs_ghost.json"
+    record = load_game(path)  # saved-game version 2: 8-ball then called the 8 only
+    assert record["env_kwargs"]["rule_options"] == {"calling": "eight_only"}
+    env = replay(record)  # raises ReplayMismatch at any difference
+    assert env.unwrapped.action_space.shape == (7,)

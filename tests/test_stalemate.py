@@ -49,7 +49,8 @@ def test_a_truncation_code_only_on_the_truncating_step_of_every_game_env():
                 *_, terminated, truncated, info = env.step(rng.uniform(-1, 1, env.action_space.shape))
                 assert bool(info["truncation"]) == truncated
                 if truncated:
-                    assert codes.decode("truncation", info["truncation"]) in ("shot_limit", "shot_error")
+                    assert codes.decode("truncation", info["truncation"]) in ("shot_limit", "shot_error",
+                                                                              "opponent_shot_limit")
                 if terminated or truncated:
                     break
 

@@ -105,8 +105,8 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
     | argument | default | meaning |
     | --- | --- | --- |
     | `game` | `"nine_ball"` | `"nine_ball"` (PoolNineBall-v0: 10 balls), `"eight_ball"` (PoolEightBall-v0: 16) or
-      `"ten_ball"` (PoolTenBall-v0: 11; the action as 8-ball's, entry 6 the called pocket on every shot but the
-      break, plus entry 7, the called ball among those on the table, ascending; observation 48 entries) |
+      `"ten_ball"` (PoolTenBall-v0: 11; the action as 8-ball's, its entry 7 the called ball among those on the
+      table, ascending; observation 48 entries) |
     | `opponent` | `"ghost_ball"` | a player's name (`pool_env.make_player`: `"ghost_ball"`, the rule-aware
       `pool_env.players.GameGhostBallAgent`, `"random"`, `"search"`, a saved model's path), an agent with
       `act(observation)`, a callable `observation -> action`, or None: practice (below). A built-in name's player
@@ -118,7 +118,8 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
     | `agent_breaks` | True | the agent breaks every game (False: the opponent does, inside `reset`) |
     | `shaping` | False | add +0.1 per ball the agent pockets legally and -0.1 per agent foul |
     | `max_shots` | 100 | truncate after this many agent shots (a game of misses would never end) |
-    | `rule_options` | None | the rule set's options (`NineBall(three_foul_rule=...)`, `EightBall(illegal_break=...)`) |
+    | `rule_options` | None | the rule set's options (`NineBall(three_foul_rule=...)`, `EightBall(illegal_break=...)`;
+      `{"calling": "eight_only"}`: 8-ball calls the 8's pocket only, and the action loses entry 7) |
     | `table`, `physics`, `render_mode`, `render_size` | as `PoolBreakEnv` | |
     | `info_mode` | `"numeric"` | `"rich"` adds the step's shot records to `info` (below) |
     | `overlay` | True | frames carry text: the game, whose shot, ball in hand, the called pocket; at the end
@@ -133,7 +134,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
 
     ## Action Space
 
-    `Box(-1, 1, (6,), float32)` (9-ball) or `(7,)` (8-ball):
+    `Box(-1, 1, (6,), float32)` (9-ball) or `(8,)` (8-ball; `(7,)` with `calling="eight_only"`):
 
     | index | meaning |
     | --- | --- |
@@ -142,9 +143,13 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
     | 4-5 | with ball in hand, where to place the cue ball: (x, y) mapped linearly onto the area it may go
       (`placement_area`: the cloth, or behind the head string, x at most L/4 - 0.1 mm); ignored otherwise. A spot on
       a ball or outside the area moves to the nearest free one (`place_cue_ball`) |
-    | 6 | 8-ball: the pocket called for the 8: [-1, 1] cut into six equal bins, pocket k (`Table.pockets`
-      order) in bin k; ignored unless the agent shoots at the 8 |
-    | 6 (9-ball), 7 (8-ball) | with `decisions=True`: the decision entry. On a shot that may be a push out
+    | 6 | 8-ball: the called pocket (WPA 1.6: every shot but the break calls a ball and a pocket): [-1, 1]
+      cut into six equal bins, pocket k (`Table.pockets` order) in bin k; with `calling="eight_only"` read
+      only when the agent shoots at the 8 |
+    | 7 | 8-ball: the called ball, [-1, 1] cut into as many equal bins as there are legal targets
+      (`Game.called_targets`, ascending), the k-th in bin k; only the called ball in the called pocket keeps
+      the table (and on an open table decides the groups); not there with `calling="eight_only"` |
+    | 6 (9-ball), 8 (8-ball) | with `decisions=True`: the decision entry. On a shot that may be a push out
       (the shot right after a legal 9-ball break, WPA 2.4), > 0 declares one; when the agent has a decision
       to make (the observation's flags), the step is that decision: the entry cuts [-1, 1] into as many
       equal bins as the decision has options (`rules.DECISIONS` order: after a push out "shoot", "pass";
@@ -152,7 +157,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
       "rerack_opponent_breaks"; after the 8 on the break "spot_eight", "rebreak"), option k in bin k, and the
       other entries are ignored (`Game.encode_decision` / `decode_decision`). The built-in opponents decide
       by their `choose` |
-    | last | with `elevation=True` (7 entries in 9-ball, 8 in 8-ball; one more with `decisions`): the cue's
+    | last | with `elevation=True` (7 entries in 9-ball, 9 in 8-ball; one more with `decisions`): the cue's
       elevation, 85 deg * a for a > 0, a level cue for a <= 0 (`PoolBreakEnv`'s); a jump over a blocking
       ball is legal (the WPA's jump shot: made by elevating the cue), a ball driven off the table a foul
       (WPA 6.5, 6.1 for the cue ball). The built-in opponents cue level |
@@ -244,8 +249,8 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         self.max_shots = check_env_options(render_mode, self.metadata["render_modes"], max_shots)
         self.rule_options = dict(rule_options or {})
         self.elevation, self.decisions = bool(elevation), bool(decisions)
-        self.game = Game(game, table, physics, noise, layout=env_layout(game, self.elevation, self.decisions),
-                         **self.rule_options)
+        layout = env_layout(game, self.elevation, self.decisions, self.rule_options.get("calling"))
+        self.game = Game(game, table, physics, noise, layout=layout, **self.rule_options)
         self.table, self.physics, self.noise = self.game.table, self.game.physics, self.game.noise
         self.agent_breaks, self.shaping, self.hotseat = bool(agent_breaks), bool(shaping), bool(hotseat)
         self.n_balls = self.game.n_balls

@@ -45,8 +45,9 @@ _LEVEL = {
     "cue_spin": ActionLayout("cue_spin", 4, spin=True),
     "nine_ball": ActionLayout("nine_ball", 6, spin=True, placement=True),
     "snooker": ActionLayout("snooker", 6, spin=True, placement=True),  # entries 4-5 map onto the D
+    # 8-ball with `calling="eight_only"`: a pocket, read at the 8 only.
     "eight_ball": ActionLayout("eight_ball", 7, spin=True, placement=True, called_pocket=True),
-    # `Game("eight_ball", layout="eight_ball_call", calling="ball_and_pocket")`: a ball and a pocket every shot.
+    # 8-ball by default (`calling="ball_and_pocket"`, WPA 1.6): a ball and a pocket every shot but the break.
     "eight_ball_call": ActionLayout("eight_ball_call", 8, spin=True, placement=True, called_pocket=True,
                                     called_ball=True),
     # 10-ball: every shot but the break calls a ball (any on the table) and a pocket (WPA Ten Ball 5).
@@ -55,6 +56,8 @@ _LEVEL = {
     "nine_ball_decide": ActionLayout("nine_ball_decide", 7, spin=True, placement=True, decision=True),
     "eight_ball_decide": ActionLayout("eight_ball_decide", 8, spin=True, placement=True, called_pocket=True,
                                       decision=True),
+    "eight_ball_call_decide": ActionLayout("eight_ball_call_decide", 9, spin=True, placement=True,
+                                           called_pocket=True, called_ball=True, decision=True),
     "ten_ball_decide": ActionLayout("ten_ball_decide", 9, spin=True, placement=True, called_pocket=True,
                                     called_ball=True, decision=True),
 }
@@ -63,12 +66,14 @@ LAYOUTS = {**_LEVEL, **{name + ELEVATED: replace(layout, name=name + ELEVATED, s
                         for name, layout in _LEVEL.items()}}
 
 
-def env_layout(game: str, elevation: bool = False, decisions: bool = False) -> str | None:
+def env_layout(game: str, elevation: bool = False, decisions: bool = False, calling: str | None = None) -> str | None:
     """The action layout's name of a game env of `game` with the elevation entry and the
-    decision entry as asked (None: the mode's default)."""
+    decision entry as asked (None: the mode's default); 8-ball's has the called-ball entry
+    unless `calling` is "eight_only" (the rules' option; None: their default, ball and pocket)."""
     if not (elevation or decisions):
         return None
-    return game + ("_decide" if decisions else "") + (ELEVATED if elevation else "")
+    base = "eight_ball_call" if game == "eight_ball" and calling != "eight_only" else game
+    return base + ("_decide" if decisions else "") + (ELEVATED if elevation else "")
 
 
 def elevation_entry(entry: float) -> float:

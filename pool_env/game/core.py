@@ -175,12 +175,13 @@ class Game:
         if not isinstance(self.physics, Physics):
             raise TypeError(f"physics must be pool_env.physics.Physics, got {type(self.physics).__name__}")
         self.noise = noise_of(noise)
-        layout = self._mode.layout if layout is None else layout
+        layout = self._mode.default_layout(rule_options) if layout is None else layout
         if layout not in LAYOUTS:
             raise ValueError(f"unknown action layout {layout!r}; choose one of {', '.join(LAYOUTS)}")
         self.layout: ActionLayout = LAYOUTS[layout]
         if self.layout.placement != self._mode.placement:
             raise ValueError(f"layout {layout!r} does not fit the {mode} mode")
+        self._check_calling(layout, rule_options)
         if randomize_cue and self._mode.rules is not None:
             raise ValueError("randomize_cue is for the break and run modes (the rules place the cue ball)")
         if rule_options and self._mode.rules is None:
@@ -194,6 +195,17 @@ class Game:
         self.rng = np.random.default_rng(seed)
         self._balls, self._state, self._shots, self._over = None, None, 0, False
         self.reset()
+
+    def _check_calling(self, layout: str, rule_options: dict):
+        """8-ball: the layout has a called-ball entry exactly when every shot calls a ball (the
+        rules' `calling`); else actions could never call one (or would call one the rules ignore)."""
+        if self._mode.rules != "eight_ball":
+            return
+        calling = rule_options.get("calling", rules.EightBall.calling)
+        if self.layout.called_ball != (calling == "ball_and_pocket"):
+            fit = "an eight_ball_call" if calling == "ball_and_pocket" else "an eight_ball layout without the ball"
+            raise ValueError(f"layout {layout!r} does not fit 8-ball with calling={calling!r}: it takes {fit} "
+                             "layout (pool_env.game.env_layout names it)")
 
     # --- read-only state ----------------------------------------------------------------------
     @property

@@ -30,6 +30,13 @@ class Mode:
         """The mode's action layouts carry the ball-in-hand entries: a rules game with ball in hand."""
         return self.rules is not None and self.cue_in_hand
 
+    def default_layout(self, rule_options: dict) -> str:
+        """The action layout a `Game` of this mode gets when given none: 8-ball's names a ball
+        as well as a pocket unless its rules call the 8 only (`calling="eight_only"`)."""
+        if self.rules == "eight_ball" and rule_options.get("calling", rules.EightBall.calling) != "eight_only":
+            return "eight_ball_call"
+        return self.layout
+
     def rack(self, table, seed, cue_xy=None):
         """The starting balls, racked with `seed` (WPA racking for the rules' games)."""
         if self.rules == "nine_ball":
@@ -49,6 +56,7 @@ MODES = {
     "break": Mode("break", 16, None, one_shot=True, layout="cue", label="break"),
     "run": Mode("run", 16, None, one_shot=False, layout="cue", label="break and run"),
     "nine_ball": Mode("nine_ball", 10, "nine_ball", one_shot=False, layout="nine_ball", label="9-ball"),
+    # (the layout with `calling="eight_only"`; by default "eight_ball_call": `Mode.default_layout`)
     "eight_ball": Mode("eight_ball", 16, "eight_ball", one_shot=False, layout="eight_ball", label="8-ball"),
     "ten_ball": Mode("ten_ball", 11, "ten_ball", one_shot=False, layout="ten_ball", label="10-ball"),
     "three_cushion": Mode("three_cushion", 3, "three_cushion", one_shot=False, layout="cue_spin", label="three-cushion",

@@ -53,10 +53,11 @@ class PoolGameAEC(AECEnv):
       (the action's decision entry; no shot, no reward, the infos stay the last shot's) |
     | `rule_options`, `table`, `physics`, `render_mode`, `render_size` | | as PoolGameEnv's |
 
-    - **Actions** `action_space(agent)`: PoolGameEnv's Box(-1, 1, (6,)) for 9-ball, (7,) for
-      8-ball (force, tip offset, cue-ball placement used with ball in hand, 8-ball: the pocket
-      called for the 8). Every action is legal (no masks): values outside [-1, 1] are clipped
-      as PoolGameEnv clips them; a wrong shape or a non-finite entry raises ValueError.
+    - **Actions** `action_space(agent)`: PoolGameEnv's Box(-1, 1, (6,)) for 9-ball, (8,) for
+      8-ball (force, tip offset, cue-ball placement used with ball in hand, 8-ball: the
+      called pocket and ball; (7,), the 8's pocket only, with `calling="eight_only"`). Every
+      action is legal (no masks): values outside [-1, 1] are clipped as PoolGameEnv clips
+      them; a wrong shape or a non-finite entry raises ValueError.
     - **Observations** `observe(agent)`: `pool_env.game.game_observation` from that agent's
       side (PoolGameEnv's layout: his consecutive fouls first, his group, ball in hand only
       while he is to shoot); the last entry counts the shots of both players against `max_shots`.
@@ -101,8 +102,9 @@ class PoolGameAEC(AECEnv):
             raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
         self.max_shots = check_env_options(render_mode, self.metadata["render_modes"], max_shots)
         self.elevation, self.decisions = bool(elevation), bool(decisions)
-        self.game = Game(game, table, physics, noise, layout=env_layout(game, self.elevation, self.decisions),
-                         **dict(rule_options or {}))
+        options = dict(rule_options or {})
+        layout = env_layout(game, self.elevation, self.decisions, options.get("calling"))
+        self.game = Game(game, table, physics, noise, layout=layout, **options)
         self.table, self.physics = self.game.table, self.game.physics
         self.render_mode, self.shaping = render_mode, bool(shaping)
         self.render_size = (int(render_size[0]), int(render_size[1]))

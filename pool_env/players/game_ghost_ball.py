@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from .. import rules
-from ..game import GAME_BALLS, LAYOUTS, GameView, Shot, decode_game_observation, encode_action, placement_area
+from ..game import GAME_BALLS, LAYOUTS, GameView, Shot, decode_game_observation, encode_action, mode_of, placement_area
 from ..physics import BALL_RADIUS, Physics, Table
 from . import geometry as geo
 from .base import Agent, game_of
@@ -23,10 +23,12 @@ STRAIGHT_IN_BACKS = (0.15, 0.35)  # m: straight-in spots this far behind the obj
 PLACEMENT_TRIES = 6  # the best-ranked spots planned in full
 
 
-def callable_balls(view) -> tuple:
-    """The object balls on the table, ascending: what a 10-ball called-ball entry chooses among
-    (the first, the lowest, is the ball this player pots)."""
-    return tuple(int(b) for b in np.flatnonzero(view.on_table[1:]) + 1)
+def callable_balls(view, game: str) -> tuple:
+    """The balls a called-ball entry chooses among in the position `view` shows, ascending (as
+    `Game.called_targets` has them): in 8-ball the legal targets, in 10-ball every object ball
+    on the table (the first, the lowest, is the ball this player pots)."""
+    mask = view.legal_mask if game == "eight_ball" else view.on_table[1:]
+    return tuple(int(b) for b in np.flatnonzero(mask) + 1)
 
 
 class GameGhostBallAgent(Agent):
@@ -47,7 +49,7 @@ class GameGhostBallAgent(Agent):
         if game not in GAME_BALLS or game == "snooker":  # snooker's ghost-ball player: players.snooker
             raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
         self.game, self.n_balls = game, GAME_BALLS[game]
-        self.layout = LAYOUTS[game if layout is None else layout]  # the env's action layout (`act`)
+        self.layout = LAYOUTS[mode_of(game).default_layout({}) if layout is None else layout]  # the env's (`act`)
         self.table = Table.eight_foot() if table is None else table
         self.physics = Physics.standard() if physics is None else physics
         self.radius = radius
@@ -62,12 +64,12 @@ class GameGhostBallAgent(Agent):
 
     def act(self, observation) -> np.ndarray:
         view = decode_game_observation(observation, self.game, self.table)
-        return self.encode(self.decide(view), view.ball_in_hand, callable_balls(view))
+        return self.encode(self.decide(view), view.ball_in_hand, callable_balls(view, self.game))
 
     def act_batch(self, observations) -> list[np.ndarray]:
         """`act` of each observation, planned together (`decide_batch`): the same actions."""
         views = [decode_game_observation(observation, self.game, self.table) for observation in observations]
-        return [self.encode(shot, view.ball_in_hand, callable_balls(view))
+        return [self.encode(shot, view.ball_in_hand, callable_balls(view, self.game))
                 for shot, view in zip(self.decide_batch(views), views)]
 
     @property
@@ -97,7 +99,8 @@ class GameGhostBallAgent(Agent):
             xy, objects, legal = self.arrays([view])
             index, rows, k = self.planner.batch.plan_lie(xy[0], objects[0], legal[0], self.planner.arrival_speed)
             if k >= 0 and rows[k, SCORE] > -math.inf:
-                return Shot.aimed((rows[k, DX], rows[k, DY]), float(rows[k, SPEED]), pocket=int(index[k, 2]))
+                return Shot.aimed((rows[k, DX], rows[k, DY]), float(rows[k, SPEED]), pocket=int(index[k, 2]),
+                                  ball=int(index[k, 1]))
             return self.safety(xy[0], view.on_table, legal[0, 1:], None)
         if view.ball_in_hand is None or (np.all(view.on_table) and view.ball_in_hand == "behind_head_string"):
             return self.decide_batch([view])[0]  # a pocketed cue ball without ball in hand, or the break
@@ -122,7 +125,7 @@ class GameGhostBallAgent(Agent):
             rows, s, k = batch.plan_from(xy, objects, index, aims, cue[None], arrival)
             pot = None if s < 0 else pot_of(index[k], rows[k])
         if pot is not None:
-            return Shot.aimed(pot.direction, pot.speed, place=place, pocket=pot.pocket)
+            return Shot.aimed(pot.direction, pot.speed, place=place, pocket=pot.pocket, ball=pot.ball)
         trial = xy[0].copy()
         trial[0] = cue
         return self.safety(trial, view.on_table, legal[0, 1:], place)
@@ -155,7 +158,7 @@ class GameGhostBallAgent(Agent):
             elif spot is None and kind == "hand":  # no spot has a pot: from the area's middle
                 pot = self.best(np.vstack([cue[None], xy[q, 1:]]), view.on_table, view.legal_mask)
             if pot is not None:
-                shots.append(Shot.aimed(pot.direction, pot.speed, place=place, pocket=pot.pocket))
+                shots.append(Shot.aimed(pot.direction, pot.speed, place=place, pocket=pot.pocket, ball=pot.ball))
             else:
                 trial = xy[q].copy()
                 trial[0] = cue

@@ -13,7 +13,8 @@ from .. import __version__
 from ..physics import Physics
 
 FORMAT = "pool_env.saved_game"
-VERSION = 2  # 2: the numeric infos (codes, the pocketed mask)
+VERSION = 3  # 2: the numeric infos (codes, the pocketed mask); 3: 8-ball calls a ball and a pocket by default
+READS = (2, 3)  # the versions load_game reads (an older one upgraded: `upgrade`)
 CHECKED_INFO = ("foul", "pocketed", "winner", "end_reason", "turn_passed", "scratch")  # per step, when present
 
 
@@ -168,9 +169,9 @@ def load_game(path) -> dict:
         raise ValueError(f"{path} is not a saved game: {what}") from None
     if not isinstance(record, dict) or record.get("format") != FORMAT:
         raise ValueError(f"{path} is not a pool_env saved game (no format {FORMAT!r})")
-    if record.get("version") != VERSION:
+    if record.get("version") not in READS:
         raise ValueError(f"{path} has saved-game version {record.get('version')!r}; "
-                         f"this pool_env reads version {VERSION}")
+                         f"this pool_env reads versions {', '.join(map(str, READS))}")
     keys = ("env_id", "env_kwargs", "seed", "actions", "outcomes", "table", "physics")
     missing = [k for k in keys if k not in record]
     if missing:
@@ -178,7 +179,17 @@ def load_game(path) -> dict:
     if len(record["actions"]) != len(record["outcomes"]):
         raise ValueError(f"{path} is damaged: {len(record['actions'])} actions but {len(record['outcomes'])} "
                          "outcomes (one outcome per action)")
-    return record
+    return upgrade(record)
+
+
+def upgrade(record: dict) -> dict:
+    """A loaded record in this version's terms: a version-2 8-ball game was played when 8-ball
+    called only the 8 (`EightBall(calling="eight_only")`), so it gets that rule option, unless
+    it names a calling of its own."""
+    if record["version"] == 2 and record["env_kwargs"].get("game") == "eight_ball":
+        options = {"calling": "eight_only", **(record["env_kwargs"].get("rule_options") or {})}
+        record = {**record, "env_kwargs": {**record["env_kwargs"], "rule_options": options}}
+    return {**record, "version": VERSION}
 
 
 def replay(record: dict, env=None, on_step=None, until=None):

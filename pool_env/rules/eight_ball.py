@@ -46,18 +46,18 @@ class EightBall:
     gets: "ball_in_hand" (default, so a soft break never pays) or "table_in_position"
     ("accept_table"). After the 8 drops on the break the breaker (after a foul, the incoming
     player) decides (3.3(e)-(f)): "spot_eight" (the default) or "rebreak" (he breaks again).
-    `calling`: "eight_only" (default: the env's
-    action layouts name a pocket, not a ball): only the 8 is called, every other ball counts
+    `calling`: "ball_and_pocket" (default; WPA 1.6 and 3.4-3.5): every shot after the break
+    calls a ball and a pocket (`called_ball`, `called_pocket`), the shooter stays at the table
+    only when the called ball drops in the called pocket on a legal shot, and on an open table
+    that ball decides the groups (other balls that drop stay down and count for nothing); or
+    "eight_only" (the common simplification): only the 8 is called, every other ball counts
     wherever it drops, and on an open table the first ball to drop on a legal shot decides
-    the groups; or "ball_and_pocket" (WPA 1.6 and 3.4-3.5): every shot after the break calls
-    a ball and a pocket (`called_ball`, `called_pocket`), the shooter stays at the table only
-    when the called ball drops in the called pocket on a legal shot, and on an open table
-    that ball decides the groups (other balls that drop stay down and count for nothing).
+    the groups.
     See docs/rules.md for every deviation."""
 
     n_pockets: int = 6
     illegal_break: str = "ball_in_hand"
-    calling: str = "eight_only"
+    calling: str = "ball_and_pocket"
     name = "eight_ball"
     object_balls = frozenset(range(1, 16))
     money_ball = EIGHT
