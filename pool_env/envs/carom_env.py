@@ -10,6 +10,7 @@ from ..game import CAROM_OBSERVATION_SIZE, ELEVATED, Game, carom_observation, si
 from ..render.overlay import overlay
 from ..render.table import TableRenderer
 from .game_env import resolve_opponent
+from .obs_types import Observer
 
 AGENT, OPPONENT = 0, 1
 WINNERS = {None: -1, AGENT: 0, OPPONENT: 1}  # info["winner"]: -1 none (or a draw: info["draw"])
@@ -30,7 +31,10 @@ class ThreeCushionEnv(gym.Env):
     | `max_shots` | 200 | truncate after this many agent shots |
     | `elevation` | False | add the cue's elevation as the action's last entry (as the pool envs': masse, jumps) |
     | `table`, `physics` | the carom presets | |
-    | `render_mode`, `render_size` | None, (640, 360) | "rgb_array": `render()` is the table now, with the score |
+    | `render_mode`, `render_size` | None, (640, 360) | "rgb_array": `render()` is the table now, with the score;
+      "ansi": the text observation |
+    | `obs_type`, `obs_size`, `grayscale` | as `PoolBreakEnv` | `"state"` (below), `"pixels"`, `"dict"`, `"text"`
+      (docs/observations.md) |
 
     Action `Box(-1, 1, (4,))` (5 with `elevation`): the "cue_spin" layout (force as a fraction of MAX_FORCE, tip
     side and top as fractions of the miscue limit), striking the agent's own cue ball.
@@ -43,11 +47,12 @@ class ThreeCushionEnv(gym.Env):
     here: generic clients read it from every env). `env.unwrapped.step_records` holds the step's records.
     """
 
-    metadata = {"render_modes": ["rgb_array"], "render_fps": 30}
+    metadata = {"render_modes": ["rgb_array", "ansi"], "render_fps": 30}
 
     def __init__(self, opponent="carom_search", noise=None, points: int | None = 15, innings_limit: int | None = None,
                  equalizing: bool = True, agent_breaks: bool = True, max_shots: int = 200, table=None, physics=None,
-                 render_mode=None, elevation: bool = False, render_size=(640, 360)):
+                 render_mode=None, elevation: bool = False, render_size=(640, 360), obs_type="state", obs_size=(84, 84),
+                 grayscale=False):
         if render_mode not in (None, *self.metadata["render_modes"]):
             raise ValueError(f"ThreeCushion-v0's render modes are {self.metadata['render_modes']}, got {render_mode!r}")
         if isinstance(max_shots, bool) or not isinstance(max_shots, int) or max_shots < 1:
@@ -59,6 +64,10 @@ class ThreeCushionEnv(gym.Env):
         self.render_size, self.renderer = (int(render_size[0]), int(render_size[1])), None
         self.observation_space = spaces.Box(-1.0, 1.0, (CAROM_OBSERVATION_SIZE,), np.float32)
         self.action_space = spaces.Box(-1.0, 1.0, (self.game.layout.size,), np.float32)
+        self.observer = Observer(self, obs_type, type(self).observe, obs_size, grayscale,
+                                 carom_rules=self.game.state.rules)
+        self.observation_space, self.obs_type = self.observer.space, obs_type
+        self.text_observer = Observer(self, "text", None)  # render_mode="ansi"
         self.opponent, self._seeded_opponent, self.opponent_name = resolve_opponent(opponent, self)
         self.agent_shots, self.step_records = 0, []
 
@@ -83,6 +92,8 @@ class ThreeCushionEnv(gym.Env):
         """The table now (uint8 (H, W, 3)) with the game's line on it: who is to shoot, the score, the innings."""
         if self.render_mode is None:
             return None
+        if self.render_mode == "ansi":
+            return self.text_observer.observe(self)
         if self.renderer is None:
             t = self.game.table
             self.renderer = TableRenderer(t.length, t.width, t.pockets, float(np.max(self.game.balls.radii)),
@@ -106,7 +117,7 @@ class ThreeCushionEnv(gym.Env):
             self._seeded_opponent.reset(int(self.np_random.integers(2**31)))
         self.agent_shots, self.step_records = 0, []
         against, error = self._opponent_turn()
-        return self.observe(), self._info(0, against, error)
+        return self.observer.observe(self), self._info(0, against, error)
 
     def step(self, action):
         struck = self.strike(action)
@@ -125,13 +136,14 @@ class ThreeCushionEnv(gym.Env):
         self.agent_shots += 1
         self.step_records = [record]
         if record.error is not None:
-            return self.observe(), 0.0, False, True, self._info(0, 0, True)
+            return self.observer.observe(self), 0.0, False, True, self._info(0, 0, True)
         points = int(bool(record.ruling.point))
         against, error = (0, False) if self.opponent is None else self._opponent_turn()
         passed = self.game.shooter != AGENT
         terminated = self.game.over or (self.opponent is None and passed)
         truncated = error or (not terminated and self.agent_shots >= self.max_shots)
-        return self.observe(), float(points - against), terminated, truncated, self._info(points, against, error)
+        return (self.observer.observe(self), float(points - against), terminated, truncated,
+                self._info(points, against, error))
 
     def _opponent_turn(self):
         """The opponent's shots while it is to shoot: (its points, a shot failed)."""
