@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
@@ -99,3 +100,31 @@ def last_records(env) -> tuple:
 def agent_shots(env) -> int:
     shots = getattr(env, "shots", None)
     return env.agent_shots if shots is None else shots
+
+
+class TextCodes(gym.ObservationWrapper):
+    """A "text" env's observations as character codes, for learners that take only arrays (SB3's
+    checker and buffers refuse a Text space): uint8 (`TEXT_MAX_LENGTH`,), the text's ASCII codes
+    then zeros. `text_of(codes)` reads the text back."""
+
+    def __init__(self, env):
+        super().__init__(env)
+        if not isinstance(env.observation_space, spaces.Text):
+            raise ValueError(f"TextCodes wraps a text env (obs_type='text'), got {env.observation_space}")
+        self.observation_space = spaces.Box(0, 127, (TEXT_MAX_LENGTH,), np.uint8)
+
+    def observation(self, observation):
+        return text_codes(observation)
+
+
+def text_codes(text: str) -> np.ndarray:
+    """A description as `TextCodes` holds it."""
+    codes = np.zeros(TEXT_MAX_LENGTH, dtype=np.uint8)
+    raw = np.frombuffer(text.encode("ascii"), dtype=np.uint8)
+    codes[: len(raw)] = raw
+    return codes
+
+
+def text_of(codes) -> str:
+    """The description in a `TextCodes` observation."""
+    return bytes(np.asarray(codes, dtype=np.uint8)).rstrip(b"\0").decode("ascii")
