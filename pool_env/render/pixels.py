@@ -14,18 +14,17 @@ LUMA_WEIGHTS = (77, 150, 29)
 
 
 @njit(cache=True, nogil=True)
-def draw_scenes(background, prem, inv, xy, pocketed, geometry, out):
-    """The frames of n scenes into out (n, H, W, 3) uint8: the background, then each ball on the
-    table (in index order, later over earlier) as its sprite at its sub-pixel phase, exactly as
+def draw_scenes(prem, inv, xy, pocketed, geometry, out):
+    """The balls of n scenes onto out (n, H, W, 3) uint8, which holds the background: each ball on
+    the table (in index order, later over earlier) as its sprite at its sub-pixel phase, exactly as
     `TableRenderer.draw` blends it (float32: frame * (1 - alpha) + premultiplied + 0.5, truncated).
     xy (n, balls, 2) metres, pocketed (n, balls), geometry (cloth left, cloth top, pixels per
     metre, table width), prem and inv `TableRenderer.ball_sprites`."""
-    h_px, w_px = background.shape[0], background.shape[1]
+    h_px, w_px = out.shape[1], out.shape[2]
     phases, side = prem.shape[1], prem.shape[3]
     half = side // 2
     ox, oy, scale, width = geometry[0], geometry[1], geometry[2], geometry[3]
     for s in range(xy.shape[0]):
-        out[s] = background
         for b in range(xy.shape[1]):
             if pocketed[s, b]:
                 continue
@@ -96,7 +95,8 @@ class PixelFrames:
         if out is None:
             out = np.empty((n, *self.shape), dtype=np.uint8)
         rgb = out if not self.grayscale else np.empty((n, *self.shape[:2], 3), dtype=np.uint8)
-        draw_scenes(self.background, self.prem, self.inv, xy, pocketed, self.geometry, rgb)
+        rgb[...] = self.background  # NumPy's broadcast copy: several times numba's
+        draw_scenes(self.prem, self.inv, xy, pocketed, self.geometry, rgb)
         if self.grayscale:
             luma(rgb, self.weights, out)
         return out
