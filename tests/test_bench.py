@@ -193,3 +193,15 @@ def test_pooltool3d_blocker_is_cleared_exactly_when_the_apex_over_it_is_two_radi
                   "landing": [d + vx * apex, 0.0]}
         assert vx * vx >= g * 2.0 * r * scale
         assert p.clearance([flight], {"t": 2.0 * apex, "xy": flight["landing"]}, d)["verdict"] == verdict
+
+
+def test_pixels_bench_prints_batched_and_single_beside_the_target(capsys):
+    from pool_env.bench import pixels
+
+    assert pixels.main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    for what in ("84x84 RGB: batched, native vector env of 16", "84x84 RGB: single env", "TableRenderer.draw"):
+        assert what in out, what
+    assert ">= 10,000" in out
+    with pytest.raises(ValueError, match="num-envs"):
+        pixels.main(["--num-envs", "0"])

@@ -8,6 +8,7 @@ PROG = "python -m pool_env.bench"
 BENCHES = {
     "speed": "simulator speed against the targets (and pooltool when importable)",
     "env": "environment steps/s and rendering frames/s",
+    "pixels": "frames/s of the pixel observations: batched in the native vector env, single, the renderer's",
     "accuracy": "fixed-step methods against the exact engine: error vs wall time",
     "stability": "random-scene sweep checking the invariants after every event",
     "vector": "shots/s of the native vector env beside SB3's and Gymnasium's, and of simulate_batch",

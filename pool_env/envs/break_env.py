@@ -13,6 +13,7 @@ from ..physics import Balls, Table
 from ..render.playback import ShotPlayback
 from ..render.window import HumanWindow
 from .infos import check_info_mode, rich_info, shot_info
+from .obs_types import Observer
 
 SHAPING_CONTACT = 0.1  # shaping: + for hitting an object ball, - for missing them all
 SHAPING_SPREAD = 0.5  # shaping: weight of the spread gain on a table with pockets
@@ -232,7 +233,8 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
 
     | argument | default | meaning |
     | --- | --- | --- |
-    | `render_mode` | None | `"human"` (a window), `"rgb_array"` (the table now), `"rgb_array_list"` (the last shot) |
+    | `render_mode` | None | `"human"` (a window), `"rgb_array"` (the table now), `"rgb_array_list"` (the last shot), |
+    | | | `"ansi"` (the text observation) |
     | `table` | `Table.eight_foot()` | the table; `Table.seed()` is the report's pocketless one |
     | `physics` | `Physics.standard()` | the physics; `Physics.seed()` is the report's model |
     | `max_shots` | 1 | shots per episode |
@@ -243,6 +245,9 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
     | `render_size` | (640, 360) | (width, height) of rendered frames in pixels |
     | `scratch_penalty` | 1.0 | penalty for pocketing the cue ball |
     | `info_mode` | `"numeric"` | `"rich"` adds the shot records to `info` (above) |
+    | `obs_type` | `"state"` | `"state"` (above), `"pixels"`, `"dict"`, `"text"` (docs/observations.md) |
+    | `obs_size` | (84, 84) | (width, height) of `"pixels"` observations |
+    | `grayscale` | False | `"pixels"` in grayscale, (H, W, 1), instead of RGB (H, W, 3) |
 
     The balls are regulation pool balls (57.15 mm, 170 g) on every table.
 
@@ -314,10 +319,11 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
     `python -m pool_env.play` plays with the mouse (docs/play.md).
     """
 
-    metadata = {"render_modes": ["human", "rgb_array", "rgb_array_list"], "render_fps": 30}
+    metadata = {"render_modes": ["human", "rgb_array", "rgb_array_list", "ansi"], "render_fps": 30}
 
     def __init__(self, render_mode=None, table=None, physics=None, max_shots=1, spin=False, randomize_cue=False,
-                 shaping=False, render_size=(640, 360), scratch_penalty=1.0, info_mode="numeric", elevation=False):
+                 shaping=False, render_size=(640, 360), scratch_penalty=1.0, info_mode="numeric", elevation=False,
+                 obs_type="state", obs_size=(84, 84), grayscale=False):
         self.info_mode = check_info_mode(info_mode)
         self.max_shots = check_env_options(render_mode, self.metadata["render_modes"], max_shots)
         self.render_mode = render_mode
@@ -338,6 +344,9 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
 
         self.action_space = spaces.Box(-1.0, 1.0, (self.game.layout.size,), np.float32)
         self.observation_space = spaces.Box(-1.0, 1.0, (3 * N_BALLS + 1,), np.float32)
+        self.observer = Observer(self, obs_type, type(self).observation, obs_size, grayscale)
+        self.observation_space, self.obs_type = self.observer.space, obs_type
+        self.text_observer = Observer(self, "text", None)  # render_mode="ansi"
 
         self._started = False
         self._shots = 0
@@ -355,7 +364,7 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
         info = self.begin(seed=seed, options=options)
         if self.render_mode == "human":
             self._show([self.playback.frame()])
-        return self.observation(), info
+        return self.observer.observe(self), info
 
     def begin(self, seed=None, options=None) -> dict:
         """`reset` without building the observation (a vector env builds all of its sub-envs'
@@ -377,6 +386,8 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
             return None
         if self.render_mode == "human":
             return self._show([self.playback.frame()])
+        if self.render_mode == "ansi":
+            return self.text_observer.observe(self)
         if self.render_mode == "rgb_array":
             return self.playback.frame()
         return self.playback.shot_frames()
@@ -420,7 +431,7 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
         return struck.balls
 
     def observation(self) -> np.ndarray:
-        """The observation now (see the class)."""
+        """The state observation now (see the class), whatever `obs_type` is."""
         return break_observation(self.game.balls, self._shots, self.max_shots, self.table)
 
     def step_shots(self, action, observe=True):
@@ -457,4 +468,4 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
         if self.info_mode == "rich":
             info = rich_info(info, self._records, record.error)
         self.playback.shot(record.result)
-        return self.observation() if observe else None, reward, bool(terminated), bool(truncated), info
+        return self.observer.observe(self) if observe else None, reward, bool(terminated), bool(truncated), info

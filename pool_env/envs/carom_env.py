@@ -12,6 +12,7 @@ from ..render.playback import ShotPlayback, step_shot_frames
 from ..render.window import HumanWindow
 from .break_env import can_render
 from .game_env import captioned, resolve_opponent, shot_caption
+from .obs_types import Observer
 
 AGENT, OPPONENT = 0, 1
 WINNERS = {None: -1, AGENT: 0, OPPONENT: 1}  # info["winner"]: -1 none (or a draw: info["draw"])
@@ -38,8 +39,10 @@ class ThreeCushionEnv(HumanWindow, gym.Env):
       three_cushion --two-players`); observations from player 0's side, rewards +1 per point of either |
     | `render_mode`, `render_size` | None, (640, 360) | "rgb_array": `render()` is the table now, with the score;
       "rgb_array_list": every frame of the last step's shots (`shot_frames`); "human": a pygame window that
-      plays every shot (no display: drawn offscreen, see `pool_env.render.window`) |
+      plays every shot (no display: drawn offscreen, see `pool_env.render.window`); "ansi": the text observation |
     | `overlay` | True | frames carry a line of text: the game, whose shot, the score and innings |
+    | `obs_type`, `obs_size`, `grayscale` | as `PoolBreakEnv` | `"state"` (below), `"pixels"`, `"dict"`, `"text"`
+      (docs/observations.md) |
 
     Action `Box(-1, 1, (4,))` (5 with `elevation`): the "cue_spin" layout (force as a fraction of MAX_FORCE, tip
     side and top as fractions of the miscue limit), striking the agent's own cue ball.
@@ -54,12 +57,12 @@ class ThreeCushionEnv(HumanWindow, gym.Env):
     plays it with the mouse.
     """
 
-    metadata = {"render_modes": ["human", "rgb_array", "rgb_array_list"], "render_fps": 30}
+    metadata = {"render_modes": ["human", "rgb_array", "rgb_array_list", "ansi"], "render_fps": 30}
 
     def __init__(self, opponent="carom_search", noise=None, points: int | None = 15, innings_limit: int | None = None,
                  equalizing: bool = True, agent_breaks: bool = True, max_shots: int = 200, table=None, physics=None,
                  render_mode=None, elevation: bool = False, render_size=(640, 360), overlay: bool = True,
-                 hotseat: bool = False):
+                 hotseat: bool = False, obs_type="state", obs_size=(84, 84), grayscale=False):
         if render_mode not in (None, *self.metadata["render_modes"]):
             raise ValueError(f"ThreeCushion-v0's render modes are {self.metadata['render_modes']}, got {render_mode!r}")
         if isinstance(max_shots, bool) or not isinstance(max_shots, int) or max_shots < 1:
@@ -72,6 +75,10 @@ class ThreeCushionEnv(HumanWindow, gym.Env):
             bool(hotseat)
         self.observation_space = spaces.Box(-1.0, 1.0, (CAROM_OBSERVATION_SIZE,), np.float32)
         self.action_space = spaces.Box(-1.0, 1.0, (self.game.layout.size,), np.float32)
+        self.observer = Observer(self, obs_type, type(self).observe, obs_size, grayscale,
+                                 carom_rules=self.game.state.rules)
+        self.observation_space, self.obs_type = self.observer.space, obs_type
+        self.text_observer = Observer(self, "text", None)  # render_mode="ansi"
         self.opponent, self.opponent_player, self.opponent_name = resolve_opponent(opponent, self)
         if self.hotseat and self.opponent is not None:
             raise ValueError("hotseat is two people at one table: it takes opponent=None")
@@ -115,6 +122,8 @@ class ThreeCushionEnv(HumanWindow, gym.Env):
         frames ("rgb_array_list"); shown in the window ("human"); None without a render mode."""
         if not can_render(self.render_mode, self._started):
             return None
+        if self.render_mode == "ansi":
+            return self.text_observer.observe(self)
         if self.render_mode == "rgb_array_list":
             return self.shot_frames()
         frame = self._annotate(self.playback.frame())
@@ -168,7 +177,7 @@ class ThreeCushionEnv(HumanWindow, gym.Env):
         against, error = self._opponent_turn()
         if self.render_mode == "human":
             self._show(self.shot_frames())
-        return self.observe(), self._info(0, against, error)
+        return self.observer.observe(self), self._info(0, against, error)
 
     def step(self, action):
         struck = self.strike(action)
@@ -192,13 +201,14 @@ class ThreeCushionEnv(HumanWindow, gym.Env):
         self.step_records = []
         self._played(record)
         if record.error is not None:
-            return self.observe(), 0.0, False, True, self._info(0, 0, True)
+            return self.observer.observe(self), 0.0, False, True, self._info(0, 0, True)
         points = int(bool(record.ruling.point))
         against, error = (0, False) if self.opponent is None else self._opponent_turn()
         passed = self.game.shooter != AGENT and not self.hotseat
         terminated = self.game.over or (self.opponent is None and passed)
         truncated = error or (not terminated and self.agent_shots >= self.max_shots)
-        return self.observe(), float(points - against), terminated, truncated, self._info(points, against, error)
+        return (self.observer.observe(self), float(points - against), terminated, truncated,
+                self._info(points, against, error))
 
     def _opponent_turn(self):
         """The opponent's shots while it is to shoot: (its points, a shot failed)."""

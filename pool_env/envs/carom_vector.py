@@ -64,4 +64,4 @@ class ThreeCushionVectorEnv(VectorEnv):
         infos: dict = {}
         for k, info in enumerate(info_list):
             infos = self._add_info(infos, info, k)
-        return np.stack(observations).astype(np.float32), infos
+        return self.envs[0].observer.stack(observations), infos

@@ -19,6 +19,7 @@ from ..render.window import HumanWindow
 from ..rules import codes
 from .break_env import StepsShots, can_render, check_env_options, check_reset_options, run_step
 from .infos import check_info_mode, no_shot_info, record_info, rich_info, score_info, winner_code
+from .obs_types import Observer
 
 SHAPING_BALL, SHAPING_FOUL = 0.1, 0.1  # shaping: + per ball the agent pockets legally, - per foul
 RESET_OPTIONS = ("balls", "ball_in_hand", "agent_breaks")
@@ -122,6 +123,8 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
       `{"calling": "eight_only"}`: 8-ball calls the 8's pocket only, and the action loses entry 7) |
     | `table`, `physics`, `render_mode`, `render_size` | as `PoolBreakEnv` | |
     | `info_mode` | `"numeric"` | `"rich"` adds the step's shot records to `info` (below) |
+    | `obs_type`, `obs_size`, `grayscale` | as `PoolBreakEnv` | `"state"` (below), `"pixels"`, `"dict"`, `"text"`
+      (docs/observations.md); `render_mode="ansi"` renders the text |
     | `overlay` | True | frames carry text: the game, whose shot, ball in hand, the called pocket; at the end
       of each shot the rules' messages (fouls, the winner) |
     | `hotseat` | False | with `opponent=None`: two people at one table, each step the shot of whoever is to
@@ -236,12 +239,12 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
     `python -m pool_env.play --game nine_ball --opponent ghost_ball` plays a game with the mouse.
     """
 
-    metadata = {"render_modes": ["human", "rgb_array", "rgb_array_list"], "render_fps": 30}
+    metadata = {"render_modes": ["human", "rgb_array", "rgb_array_list", "ansi"], "render_fps": 30}
 
     def __init__(self, game="nine_ball", opponent="ghost_ball", render_mode=None, table=None, physics=None,
                  noise=None, agent_breaks=True, shaping=False, max_shots=100, rule_options=None,
                  render_size=(640, 360), overlay=True, hotseat=False, info_mode="numeric", elevation=False,
-                 decisions=False):
+                 decisions=False, obs_type="state", obs_size=(84, 84), grayscale=False):
         self.info_mode = check_info_mode(info_mode)
         if game not in GAME_BALLS:
             raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
@@ -256,6 +259,9 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         self.n_balls = self.game.n_balls
         self.action_space = spaces.Box(-1.0, 1.0, (self.game.layout.size,), np.float32)
         self.observation_space = spaces.Box(-1.0, 1.0, (game_observation_size(game, self.decisions),), np.float32)
+        self.observer = Observer(self, obs_type, type(self).observation, obs_size, grayscale, self.decisions)
+        self.observation_space, self.obs_type = self.observer.space, obs_type
+        self.text_observer = Observer(self, "text", None)  # render_mode="ansi"
         self.opponent = opponent
         self._opponent, self._opponent_player, self._opponent_name = resolve_opponent(opponent, self)
         if self._opponent is None and not self.agent_breaks:
@@ -278,7 +284,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         info = self.begin(seed=seed, options=options)
         if self.render_mode == "human":
             self._show(self.shot_frames())
-        return self.observation(), info
+        return self.observer.observe(self), info
 
     def begin(self, seed=None, options=None) -> dict:
         """`reset` without building the observation (a vector env builds all of its sub-envs'
@@ -316,6 +322,8 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
             return None
         if self.render_mode == "human":
             return self._show([self._annotate(self.playback.frame())])
+        if self.render_mode == "ansi":
+            return self.text_observer.observe(self)
         return self._annotate(self.playback.frame()) if self.render_mode == "rgb_array" else self.shot_frames()
 
     def shot_frames(self, fps=None) -> list[np.ndarray]:
@@ -371,7 +379,8 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         return tuple(self._step_records)
 
     def observation(self, viewer: int = 0) -> np.ndarray:
-        """The observation now from player `viewer`'s side (0: the agent's, the env's own)."""
+        """The state observation now from player `viewer`'s side (0: the agent's), whatever `obs_type` is:
+        a callable opponent is given its side's."""
         return game_observation(self.game.balls, self.game.state, viewer, self._shots, self.max_shots, self.table,
                                 self.decisions)
 
@@ -484,7 +493,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
             reward += 1.0 if game.winner == 0 else -1.0
         self._done = terminated or truncated
         info = self._agent_info or no_shot_info(game.balls, game.ball_in_hand, self._error)
-        return self.observation() if observe else None, float(reward), bool(terminated), bool(truncated), \
+        return self.observer.observe(self) if observe else None, float(reward), bool(terminated), bool(truncated), \
             self._info(info, self._step_records)
 
     def _info(self, shot: dict, records) -> dict:

@@ -111,7 +111,8 @@ class PoolVectorEnv(VectorEnv):
         self.action_space = batch_space(self.single_action_space, self.num_envs)
 
         n = self.num_envs
-        self._obs_size = self.single_observation_space.shape[0]
+        self.obs_type, self.observer = first.obs_type, first.observer  # "pixels": every frame in one call
+        self._obs_size = self.single_observation_space.shape[0] if self.obs_type == "state" else None
         self._autoreset_envs = np.zeros(n, dtype=np.bool_)  # which sub-envs' episodes ended last step
         self._elapsed = [0] * n  # steps in the current episode (max_episode_steps)
 
@@ -197,7 +198,9 @@ class PoolVectorEnv(VectorEnv):
             else:
                 entries[k] = [info]
         if finals:
-            for final, obs in zip(finals, self._observe(final_balls)):
+            final_obs = self._observe(final_balls) if self.obs_type == "state" else \
+                [self.observer.one(state) for state in final_balls]
+            for final, obs in zip(finals, final_obs):
                 final["final_obs"] = obs
         terminations = np.array(terminations, dtype=np.bool_)
         truncations = np.array(truncations, dtype=np.bool_)
@@ -233,16 +236,19 @@ class PoolVectorEnv(VectorEnv):
                 env.batch_opponent = False
         return done
 
-    @staticmethod
-    def _state_of(env):
+    def _state_of(self, env):
         """What `_observe` builds a sub-env's observation from."""
+        if self.obs_type != "state":
+            return self.observer.capture(env)
         return env.balls, env.shots, env.max_shots
 
     def _observe(self, states=None):
         """Observations (m, 49) of m states (balls, shots taken, max_shots), all at once; by
-        default the sub-envs' now."""
+        default the sub-envs' now. Another `obs_type`: its batch (pixels: one compiled call)."""
         if states is None:
             states = [self._state_of(env) for env in self.envs]
+        if self.obs_type != "state":
+            return self.observer.batch(states)
         out = np.empty((len(states), self._obs_size), dtype=np.float32)
         balls, shots, max_shots = zip(*states)
         break_observations(np.array([b.xy for b in balls]), np.array([b.pocketed for b in balls]), np.array(shots),
@@ -343,12 +349,14 @@ class PoolGameVectorEnv(PoolVectorEnv):
 
     env_class = PoolGameEnv
 
-    @staticmethod
-    def _state_of(env):
-        return env.observation()
+    def _state_of(self, env):
+        return env.observation() if self.obs_type == "state" else self.observer.capture(env)
 
     def _observe(self, states=None):
-        """Observations (m, size) of m sub-env states (each its own observation), stacked."""
+        """Observations (m, size) of m sub-env states (each its own observation), stacked; another
+        `obs_type`: its batch."""
         if states is None:
             states = [self._state_of(env) for env in self.envs]
+        if self.obs_type != "state":
+            return self.observer.batch(states)
         return np.stack(states).astype(np.float32, copy=False)

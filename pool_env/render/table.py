@@ -216,6 +216,25 @@ class TableRenderer:
         row = self._oy + (self.width - xy[:, 1]) * self.scale
         return np.stack([col, row], axis=1)
 
+    # --- what a batched rasteriser (render.pixels) draws from ------------------------------
+    @property
+    def background(self) -> np.ndarray:
+        """The table without balls, uint8 (H, W, 3), read-only: every frame starts from it."""
+        view = self._background.view()
+        view.flags.writeable = False
+        return view
+
+    @property
+    def sprite_half(self) -> int:
+        """A ball sprite's half side in pixels (its side is 2 * half + 1)."""
+        return self._half
+
+    def ball_sprites(self, count: int) -> tuple[np.ndarray, np.ndarray]:
+        """The sprites of balls 0..count-1 stacked, float32: premultiplied RGB (count, P, P, S, S, 3)
+        and 1 - alpha (count, P, P, S, S, 1), P sub-pixel phases per axis, S the sprite's side."""
+        sprites = [self._sprites_for(idx) for idx in range(count)]
+        return np.stack([s.prem for s in sprites]), np.stack([s.inv for s in sprites])
+
     # --- static background -----------------------------------------------------
     def _render_background(self) -> np.ndarray:
         w_px, h_px = self.size
