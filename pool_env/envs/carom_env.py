@@ -10,6 +10,7 @@ from ..game import CAROM_OBSERVATION_SIZE, ELEVATED, Game, carom_observation, si
 from ..render.overlay import overlay
 from ..render.table import TableRenderer
 from .game_env import resolve_opponent
+from .infos import sampled_info
 
 AGENT, OPPONENT = 0, 1
 WINNERS = {None: -1, AGENT: 0, OPPONENT: 1}  # info["winner"]: -1 none (or a draw: info["draw"])
@@ -47,14 +48,14 @@ class ThreeCushionEnv(gym.Env):
 
     def __init__(self, opponent="carom_search", noise=None, points: int | None = 15, innings_limit: int | None = None,
                  equalizing: bool = True, agent_breaks: bool = True, max_shots: int = 200, table=None, physics=None,
-                 render_mode=None, elevation: bool = False, render_size=(640, 360)):
+                 render_mode=None, elevation: bool = False, render_size=(640, 360), randomize=None):
         if render_mode not in (None, *self.metadata["render_modes"]):
             raise ValueError(f"ThreeCushion-v0's render modes are {self.metadata['render_modes']}, got {render_mode!r}")
         if isinstance(max_shots, bool) or not isinstance(max_shots, int) or max_shots < 1:
             raise ValueError(f"max_shots must be an integer >= 1, got {max_shots!r}")
         self.game = Game("three_cushion", table=table, physics=physics, noise=noise, points=points,
                          innings_limit=innings_limit, equalizing=equalizing,
-                         layout="cue_spin" + (ELEVATED if elevation else ""))
+                         layout="cue_spin" + (ELEVATED if elevation else ""), randomize=randomize)
         self.agent_breaks, self.max_shots, self.render_mode = bool(agent_breaks), max_shots, render_mode
         self.render_size, self.renderer = (int(render_size[0]), int(render_size[1])), None
         self.observation_space = spaces.Box(-1.0, 1.0, (CAROM_OBSERVATION_SIZE,), np.float32)
@@ -106,7 +107,7 @@ class ThreeCushionEnv(gym.Env):
             self._seeded_opponent.reset(int(self.np_random.integers(2**31)))
         self.agent_shots, self.step_records = 0, []
         against, error = self._opponent_turn()
-        return self.observe(), self._info(0, against, error)
+        return self.observe(), {**self._info(0, against, error), **sampled_info(self.game)}
 
     def step(self, action):
         struck = self.strike(action)
