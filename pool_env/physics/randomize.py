@@ -176,11 +176,12 @@ def _mouth_columns(table):
     return at_x & at_y, ~(at_x & at_y)
 
 
-def table_with(table: Table, values: dict) -> Table:
-    """`table` with the TABLE_NAMES in `values` replaced (a new, checked Table)."""
+def table_with(table: Table, values: dict, masks=None) -> Table:
+    """`table` with the TABLE_NAMES in `values` replaced (a new, checked Table); `masks` its
+    (corner, side) pockets if known (`_mouth_columns`)."""
     if not values:
         return table
-    corner, side = _mouth_columns(table)
+    corner, side = _mouth_columns(table) if masks is None else masks
     entries = table.pocket_entries.copy()
     if "corner_mouth" in values:
         entries[corner, 2] = values["corner_mouth"]
@@ -210,6 +211,7 @@ class Randomization:
             draw_of(unknown[0], None)  # raises, naming it
         self.table, self.physics, self.n_balls = table, physics, int(n_balls)
         self.by_name = {d.name: d for d in self.draws}
+        self._masks = _mouth_columns(table)  # which pockets a corner or side mouth sizes, found once
         self._check()
 
     def _check(self):
@@ -239,7 +241,7 @@ class Randomization:
             drawn = d.sample(rng, self.n_balls if per_ball else None)
             values[d.name] = tuple(float(v) for v in drawn) if per_ball else float(drawn)
         physics = dataclasses.replace(self.physics, **{k: v for k, v in values.items() if k in PHYSICS_NAMES})
-        table = table_with(self.table, {k: v for k, v in values.items() if k in TABLE_NAMES})
+        table = table_with(self.table, {k: v for k, v in values.items() if k in TABLE_NAMES}, self._masks)
         radii = np.array(values["ball_radius"]) if "ball_radius" in values else None
         masses = np.array(values["ball_mass"]) if "ball_mass" in values else None
         return Sample(table, physics, radii, masses, values)
