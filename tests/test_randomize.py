@@ -186,3 +186,22 @@ def test_the_drawn_ball_sizes_make_a_rack_without_overlaps_that_plays():
     assert record.error is None
     assert len(set(game.balls.radii.tolist())) == 16
     assert set(PHYSICS_NAMES) >= {"mu_s", "mu_r", "mu_sp", "e_b", "e_c", "f_c"}
+
+
+def test_the_equipment_observation_carries_the_draw_and_reads_back():
+    from pool_env.envs.equipment import EquipmentObservation
+
+    env = EquipmentObservation(gym.make("PoolBreak-v0", randomize="default"))
+    obs, info = env.reset(seed=3)
+    randomization = env.randomization
+    assert obs.shape == env.observation_space.shape == (49 + randomization.size,)
+    assert randomization.size == 6 + 3 + 2 * 16
+    assert env.observation_space.contains(obs)
+    back = randomization.unscaled(obs[49:])
+    assert back["mu_s"] == pytest.approx(info["physics"]["mu_s"], rel=1e-6)
+    assert np.allclose(back["ball_mass"], info["ball_mass"], rtol=1e-6)
+    assert back.keys() == env.unwrapped.game.sample.values.keys()
+    after = env.step(np.array([0.9, 0.1], np.float32))[0]
+    assert env.observation_space.contains(after) and np.array_equal(after[49:], obs[49:])  # drawn at reset only
+    with pytest.raises(TypeError, match="randomize="):
+        EquipmentObservation(gym.make("PoolBreak-v0"))

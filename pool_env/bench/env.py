@@ -138,7 +138,7 @@ def main(argv=None) -> int:
             note = f"{steps} agent shots (and the opponent's), {episodes} games" + (
                 f", {failures} failed shots" if failures else "")
             rows.append((f"{env_id} vs {opponent} steps/s", cpu, wall, None, note))
-    for env_id in ("PoolBreak-v0", "PoolBreakRun-v0"):
+    for env_id in ("PoolBreak-v0", "PoolBreakRun-v0", "PoolNineBall-v0"):  # a reset every 1, ~3, ~20+ steps
         on, on_wall, off, ratio = _randomized_ratio(env_id, 2 * args.seconds, args.seed)
         verdict = "ok" if ratio >= RANDOMIZE_TARGET else "MISS"
         rows.append((f"{env_id} steps/s, randomize='default'", on, on_wall, None,

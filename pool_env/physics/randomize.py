@@ -252,6 +252,18 @@ class Randomization:
         parts = [np.atleast_1d(d.scaled(sample.values[d.name])) for d in self.draws]
         return np.concatenate(parts).astype(np.float32)
 
+    def unscaled(self, scaled) -> dict:
+        """`scaled`'s decoder: the drawn values by name (per-ball names: tuples), from its [-1, 1] entries."""
+        scaled, values, at = np.asarray(scaled, dtype=np.float64), {}, 0
+        for d in self.draws:
+            n = self.n_balls if d.name in BALL_NAMES else 1
+            value = d.low + 0.5 * (scaled[at:at + n] + 1.0) * (d.high - d.low)
+            values[d.name] = tuple(value.tolist()) if n > 1 or d.name in BALL_NAMES else float(value[0])
+            at += n
+        if at != scaled.shape[0]:
+            raise ValueError(f"unscaled takes {at} entries (this spec's size), got {scaled.shape[0]}")
+        return values
+
     @property
     def size(self) -> int:
         """How many entries `scaled` returns."""
