@@ -205,3 +205,17 @@ def test_the_equipment_observation_carries_the_draw_and_reads_back():
     assert env.observation_space.contains(after) and np.array_equal(after[49:], obs[49:])  # drawn at reset only
     with pytest.raises(TypeError, match="randomize="):
         EquipmentObservation(gym.make("PoolBreak-v0"))
+
+
+def test_the_two_player_envs_draw_from_their_seed_too():
+    from pool_env.multiagent import nine_ball_v0, three_cushion_v0
+
+    env = nine_ball_v0.env(randomize="default")
+    env.reset(seed=4)
+    first = env.infos["player_0"]["physics"]
+    assert env.unwrapped.game.physics.mu_s == first["mu_s"] != Physics().mu_s
+    env.reset(seed=4)
+    assert env.infos["player_1"]["physics"] == first
+    carom = three_cushion_v0.env(randomize="default")
+    carom.reset(seed=0)
+    assert 0.0305 <= carom.unwrapped.game.balls.radii.min() <= carom.unwrapped.game.balls.radii.max() <= 0.03075

@@ -243,6 +243,8 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
     | `render_size` | (640, 360) | (width, height) of rendered frames in pixels |
     | `scratch_penalty` | 1.0 | penalty for pocketing the cue ball |
     | `info_mode` | `"numeric"` | `"rich"` adds the shot records to `info` (above) |
+    | `randomize` | None | `"default"` or a dict: physics, table and ball values drawn at every reset, in
+      reset's info (docs/randomization.md) |
 
     The balls are regulation pool balls (57.15 mm, 170 g) on every table.
 

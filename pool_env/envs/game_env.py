@@ -119,7 +119,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
     | `shaping` | False | add +0.1 per ball the agent pockets legally and -0.1 per agent foul |
     | `max_shots` | 100 | truncate after this many agent shots (a game of misses would never end) |
     | `rule_options` | None | the rule set's options (`NineBall(three_foul_rule=...)`, `EightBall(illegal_break=...)`) |
-    | `table`, `physics`, `render_mode`, `render_size` | as `PoolBreakEnv` | |
+    | `table`, `physics`, `render_mode`, `render_size`, `randomize` | as `PoolBreakEnv` | |
     | `info_mode` | `"numeric"` | `"rich"` adds the step's shot records to `info` (below) |
     | `overlay` | True | frames carry text: the game, whose shot, ball in hand, the called pocket; at the end
       of each shot the rules' messages (fouls, the winner) |

@@ -348,8 +348,9 @@ class Game:
     def reset(self, seed=None, *, rng=None, balls: Balls | None = None, breaker: int = 0,
               ball_in_hand: bool = False, state: rules.GameState | None = None) -> Game:
         """A new game: `seed` reseeds the noise generator (or `rng` replaces it); a rack drawn
-        from it (the cue ball's random start first, with `randomize_cue`, then the rack's seed,
-        drawn even when `balls` is given), `breaker` (0 or 1) to break. `balls` starts from a
+        from it (with `randomize`, the equipment's seed first; the cue ball's random start next,
+        with `randomize_cue`, then the rack's seed, drawn even when `balls` is given, whose sizes
+        stay theirs), `breaker` (0 or 1) to break. `balls` starts from a
         layout instead (`n_balls` balls at rest by number, the cue ball on the table; with rules
         an open table, the last ball on it, `ball_in_hand` anywhere if asked), `breaker` to
         shoot; or, with `state` (a `rules.GameState` of this game's rules whose `on_table` is
