@@ -379,9 +379,12 @@ class Game:
         return self
 
     def _rack(self, seed, cue_xy=None) -> Balls:
-        """The mode's rack, its balls sized as drawn (with `randomize`)."""
-        balls = self._mode.rack(self.table, seed, cue_xy)
-        return balls if self.sample is None else self.sample.sized(balls)
+        """The mode's rack, its balls sized as drawn (with `randomize`). A drawn table is the
+        base one's size (only its nose and mouths differ, far from the spots): the rack is laid on
+        the base table, whose layout is checked once, not at every draw."""
+        if self.sample is None:
+            return self._mode.rack(self.table, seed, cue_xy)
+        return self.sample.sized(self._mode.rack(self.base_table, seed, cue_xy))
 
     def _check_layout(self, balls, position=False):
         """A starting layout checked; a planner's `position` (with its state) may have the cue
