@@ -13,6 +13,8 @@ import pool_env  # noqa: F401  (registers the ids)
 
 STEP_TARGET = 1000.0  # steps/s, PoolBreak-v0 on one core
 FRAME_TARGET = 500.0  # frames/s at the default size
+RANDOMIZE_TARGET = 0.95  # steps/s with randomize="default" over without: at most 5 % slower
+SLICES = 10  # the on and off runs alternate in this many slices each, so a change of load hits both alike
 
 
 class _Clock:
@@ -50,6 +52,36 @@ def _steps_per_second(env_id, seconds, seed, **kwargs):
         wall, cpu = clock.wall(), clock.cpu()
     env.close()
     return steps / cpu, steps / wall, steps, episodes, failures
+
+
+def _randomized_ratio(env_id, seconds, seed):
+    """CPU steps/s of `env_id` with randomize="default" and without, measured in alternating
+    slices of one run (random actions, every episode's reset counted): (on per CPU s, on per
+    wall s, off per CPU s, the ratio of the CPU figures)."""
+    envs = {}
+    for on in (False, True):
+        env = gym.make(env_id, **({"randomize": "default"} if on else {}))
+        env.action_space.seed(seed)
+        env.reset(seed=seed)
+        env.step(env.action_space.sample())  # load the compiled engine before timing
+        env.reset(seed=seed)
+        envs[on] = [env, 0, 0.0, 0.0]  # env, steps, CPU s, wall s
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for _ in range(SLICES):
+            for entry in envs.values():
+                env, clock = entry[0], _Clock()
+                while clock.wall() < seconds / (2 * SLICES):
+                    _, _, terminated, truncated, _ = env.step(env.action_space.sample())
+                    entry[1] += 1
+                    if terminated or truncated:
+                        env.reset()
+                entry[2] += clock.cpu()
+                entry[3] += clock.wall()
+    on, off = (envs[k][1] / envs[k][2] for k in (True, False))
+    for entry in envs.values():
+        entry[0].close()
+    return on, envs[True][1] / envs[True][3], off, on / off
 
 
 def _frames_per_second(mode, seconds, seed, size):
@@ -106,6 +138,12 @@ def main(argv=None) -> int:
             note = f"{steps} agent shots (and the opponent's), {episodes} games" + (
                 f", {failures} failed shots" if failures else "")
             rows.append((f"{env_id} vs {opponent} steps/s", cpu, wall, None, note))
+    for env_id in ("PoolBreak-v0", "PoolBreakRun-v0", "PoolNineBall-v0"):  # a reset every 1, ~3, ~20+ steps
+        on, on_wall, off, ratio = _randomized_ratio(env_id, 2 * args.seconds, args.seed)
+        verdict = "ok" if ratio >= RANDOMIZE_TARGET else "MISS"
+        rows.append((f"{env_id} randomized steps/s", on, on_wall, None,
+                     f"{ratio:.3f} of the {off:.0f} without, in the same run (target >= {RANDOMIZE_TARGET}: "
+                     f"{verdict})"))
     for mode, what in (("rgb_array", "render() of the table"), ("rgb_array_list", "whole shots, per frame")):
         cpu, wall, frames = _frames_per_second(mode, args.seconds, args.seed, size)
         rows.append((f"{mode} frames/s at {size[0]}x{size[1]}", cpu, wall, FRAME_TARGET, f"{what}, {frames} frames"))

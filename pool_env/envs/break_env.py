@@ -12,7 +12,7 @@ from ..game import ELEVATED, N_BALLS, Game, StruckShot, break_observation, simul
 from ..physics import Balls, Table
 from ..render.playback import ShotPlayback
 from ..render.window import HumanWindow
-from .infos import check_info_mode, rich_info, shot_info
+from .infos import check_info_mode, rich_info, sampled_info, shot_info
 from .obs_types import Observer
 
 SHAPING_CONTACT = 0.1  # shaping: + for hitting an object ball, - for missing them all
@@ -248,6 +248,8 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
     | `obs_type` | `"state"` | `"state"` (above), `"pixels"`, `"dict"`, `"text"` (docs/observations.md) |
     | `obs_size` | (84, 84) | (width, height) of `"pixels"` observations |
     | `grayscale` | False | `"pixels"` in grayscale, (H, W, 1), instead of RGB (H, W, 3) |
+    | `randomize` | None | `"default"` or a dict: physics, table and ball values drawn at every reset, in
+      reset's info (docs/randomization.md) |
 
     The balls are regulation pool balls (57.15 mm, 170 g) on every table.
 
@@ -323,7 +325,7 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
 
     def __init__(self, render_mode=None, table=None, physics=None, max_shots=1, spin=False, randomize_cue=False,
                  shaping=False, render_size=(640, 360), scratch_penalty=1.0, info_mode="numeric", elevation=False,
-                 obs_type="state", obs_size=(84, 84), grayscale=False):
+                 obs_type="state", obs_size=(84, 84), grayscale=False, randomize=None):
         self.info_mode = check_info_mode(info_mode)
         self.max_shots = check_env_options(render_mode, self.metadata["render_modes"], max_shots)
         self.render_mode = render_mode
@@ -331,7 +333,7 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
         # The game: the break alone, or a run of shots until a scratch or the last ball.
         layout = ("cue_spin" if self.spin else "cue") + (ELEVATED if self.elevation else "")
         self.game = Game("break" if self.max_shots == 1 else "run", table, physics, layout=layout,
-                         randomize_cue=randomize_cue)
+                         randomize_cue=randomize_cue, randomize=randomize)
         self.table, self.physics = self.game.table, self.game.physics
         self.randomize_cue = bool(randomize_cue)
         self.shaping = bool(shaping)
@@ -375,10 +377,11 @@ class PoolBreakEnv(StepsShots, HumanWindow, gym.Env):
             self.game.reset(rng=self.np_random, balls=options.get("balls"))
         except ValueError as exc:
             raise ValueError(f"options['balls']: {exc}") from None
+        self.table, self.physics = self.game.table, self.game.physics  # drawn afresh with randomize
         quaternions = self.np_random.normal(size=(N_BALLS, 4))  # random orientations, made matrices when drawn
         self._started, self._shots, self._done, self._records = True, 0, False, ()
         self.playback.reset(self.game.balls, quaternions)
-        info = shot_info(None, self.game.balls)
+        info = {**shot_info(None, self.game.balls), **sampled_info(self.game)}
         return rich_info(info, (), None) if self.info_mode == "rich" else info
 
     def render(self):

@@ -12,6 +12,7 @@ from ..render.playback import ShotPlayback, step_shot_frames
 from ..render.window import HumanWindow
 from .break_env import can_render
 from .game_env import captioned, resolve_opponent, shot_caption
+from .infos import sampled_info
 from .obs_types import Observer
 
 AGENT, OPPONENT = 0, 1
@@ -62,14 +63,14 @@ class ThreeCushionEnv(HumanWindow, gym.Env):
     def __init__(self, opponent="carom_search", noise=None, points: int | None = 15, innings_limit: int | None = None,
                  equalizing: bool = True, agent_breaks: bool = True, max_shots: int = 200, table=None, physics=None,
                  render_mode=None, elevation: bool = False, render_size=(640, 360), overlay: bool = True,
-                 hotseat: bool = False, obs_type="state", obs_size=(84, 84), grayscale=False):
+                 hotseat: bool = False, obs_type="state", obs_size=(84, 84), grayscale=False, randomize=None):
         if render_mode not in (None, *self.metadata["render_modes"]):
             raise ValueError(f"ThreeCushion-v0's render modes are {self.metadata['render_modes']}, got {render_mode!r}")
         if isinstance(max_shots, bool) or not isinstance(max_shots, int) or max_shots < 1:
             raise ValueError(f"max_shots must be an integer >= 1, got {max_shots!r}")
         self.game = Game("three_cushion", table=table, physics=physics, noise=noise, points=points,
                          innings_limit=innings_limit, equalizing=equalizing,
-                         layout="cue_spin" + (ELEVATED if elevation else ""))
+                         layout="cue_spin" + (ELEVATED if elevation else ""), randomize=randomize)
         self.agent_breaks, self.max_shots, self.render_mode = bool(agent_breaks), max_shots, render_mode
         self.render_size, self.overlay, self.hotseat = (int(render_size[0]), int(render_size[1])), bool(overlay), \
             bool(hotseat)
@@ -177,7 +178,7 @@ class ThreeCushionEnv(HumanWindow, gym.Env):
         against, error = self._opponent_turn()
         if self.render_mode == "human":
             self._show(self.shot_frames())
-        return self.observer.observe(self), self._info(0, against, error)
+        return self.observer.observe(self), {**self._info(0, against, error), **sampled_info(self.game)}
 
     def step(self, action):
         struck = self.strike(action)

@@ -52,6 +52,9 @@ class ThreeCushionVectorEnv(VectorEnv):
                 playing.append(k)
         if playing:
             table, physics = self.envs[0].game.table, self.envs[0].game.physics
+            if self.envs[0].game.randomization is not None:  # each sub-env's own equipment
+                table = [self.envs[k].game.table for k in playing]
+                physics = [self.envs[k].game.physics for k in playing]
             for k, s, result in zip(playing, struck, simulate_struck_batch(struck, table, physics, self.threads)):
                 env = self.envs[k]
                 out[k] = env.finish(env.game.resolve(s, result))

@@ -18,7 +18,7 @@ from ..render.table import game_palette
 from ..render.window import HumanWindow
 from ..rules import codes
 from .break_env import StepsShots, can_render, check_env_options, check_reset_options, run_step
-from .infos import check_info_mode, no_shot_info, record_info, rich_info, score_info, winner_code
+from .infos import check_info_mode, no_shot_info, record_info, rich_info, sampled_info, score_info, winner_code
 from .obs_types import Observer
 
 SHAPING_BALL, SHAPING_FOUL = 0.1, 0.1  # shaping: + per ball the agent pockets legally, - per foul
@@ -121,7 +121,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
     | `max_shots` | 100 | truncate after this many agent shots (a game of misses would never end) |
     | `rule_options` | None | the rule set's options (`NineBall(three_foul_rule=...)`, `EightBall(illegal_break=...)`;
       `{"calling": "eight_only"}`: 8-ball calls the 8's pocket only, and the action loses entry 7) |
-    | `table`, `physics`, `render_mode`, `render_size` | as `PoolBreakEnv` | |
+    | `table`, `physics`, `render_mode`, `render_size`, `randomize` | as `PoolBreakEnv` | |
     | `info_mode` | `"numeric"` | `"rich"` adds the step's shot records to `info` (below) |
     | `obs_type`, `obs_size`, `grayscale` | as `PoolBreakEnv` | `"state"` (below), `"pixels"`, `"dict"`, `"text"`
       (docs/observations.md); `render_mode="ansi"` renders the text |
@@ -244,7 +244,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
     def __init__(self, game="nine_ball", opponent="ghost_ball", render_mode=None, table=None, physics=None,
                  noise=None, agent_breaks=True, shaping=False, max_shots=100, rule_options=None,
                  render_size=(640, 360), overlay=True, hotseat=False, info_mode="numeric", elevation=False,
-                 decisions=False, obs_type="state", obs_size=(84, 84), grayscale=False):
+                 decisions=False, obs_type="state", obs_size=(84, 84), grayscale=False, randomize=None):
         self.info_mode = check_info_mode(info_mode)
         if game not in GAME_BALLS:
             raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
@@ -253,7 +253,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         self.rule_options = dict(rule_options or {})
         self.elevation, self.decisions = bool(elevation), bool(decisions)
         layout = env_layout(game, self.elevation, self.decisions, self.rule_options.get("calling"))
-        self.game = Game(game, table, physics, noise, layout=layout, **self.rule_options)
+        self.game = Game(game, table, physics, noise, layout=layout, randomize=randomize, **self.rule_options)
         self.table, self.physics, self.noise = self.game.table, self.game.physics, self.game.noise
         self.agent_breaks, self.shaping, self.hotseat = bool(agent_breaks), bool(shaping), bool(hotseat)
         self.n_balls = self.game.n_balls
@@ -300,6 +300,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
                             ball_in_hand=bool(options.get("ball_in_hand", False)))
         except ValueError as exc:
             raise ValueError(f"options['balls']: {exc}") from None
+        self.table, self.physics = self.game.table, self.game.physics  # drawn afresh with randomize
         self._quaternions = self.np_random.normal(size=(self.n_balls, 4))
         opponent_seed = int(self.np_random.integers(2**63 - 1))
         if self._opponent_player is not None and hasattr(self._opponent_player, "reset"):
@@ -311,7 +312,8 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         self._reset_records, self._reset_error = tuple(self._step_records), self._error
         self._reset_truncation, self._truncation = self._truncation, None  # the next step ends the episode
         self._step_records = []
-        return self._info(no_shot_info(self.game.balls, self.game.ball_in_hand, self._error), self._reset_records)
+        info = {**no_shot_info(self.game.balls, self.game.ball_in_hand, self._error), **sampled_info(self.game)}
+        return self._info(info, self._reset_records)
 
     def _reset_turn(self):
         yield from self._opponent_turn()

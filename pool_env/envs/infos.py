@@ -89,3 +89,9 @@ def score_info(state) -> dict:
     points first, the fouls' penalty points included); empty for the pool games, which have none."""
     scores = getattr(state, "scores", None)
     return {} if scores is None else {"scores": np.array(scores, dtype=np.int64)}
+
+
+def sampled_info(game) -> dict:
+    """Reset's info entries of a game's randomized equipment (`physics`, `table`, and the
+    per-ball `ball_radius` and `ball_mass` when drawn); none without `randomize`."""
+    return {} if game.sample is None else game.sample.info()

@@ -229,12 +229,19 @@ class PoolVectorEnv(VectorEnv):
                     (asked if isinstance(item, OpponentDecision) else struck)[k] = item
                 for k, action in decide_all(asked).items():
                     struck[k] = steps[k].send(action)
-                results = simulate_struck_batch(list(struck.values()), self.table, self.physics, self.threads)
+                results = simulate_struck_batch(list(struck.values()), *self.equipment(struck), self.threads)
                 outcomes = dict(zip(struck, results))
         finally:
             for env in self.envs:
                 env.batch_opponent = False
         return done
+
+    def equipment(self, ks):
+        """(table, physics) to simulate sub-envs `ks`' shots on: the vector env's own, or with
+        randomized sub-envs each one's (sequences, one per shot)."""
+        if self.envs[0].game.randomization is None:
+            return self.table, self.physics
+        return [self.envs[k].game.table for k in ks], [self.envs[k].game.physics for k in ks]
 
     def _state_of(self, env):
         """What `_observe` builds a sub-env's observation from."""

@@ -9,6 +9,7 @@ import numpy as np
 
 from .. import rules
 from ..physics import BALL_RADIUS, Balls, Physics, Result, SimulationError, Table, simulate, simulate_batch, strike
+from ..physics.randomize import Randomization, Sample
 from ..physics.simulate import check_on_table
 from .actions import (
     LAYOUTS,
@@ -162,11 +163,16 @@ class Game:
     "cue_spin" adds the tip); `randomize_cue` (break and run) starts the cue ball anywhere in
     x in [0.05 L, 0.25 L], y in [0.1 W, 0.9 W]; other keywords are the rule set's options
     (`NineBall(three_foul_rule=...)`, `EightBall(illegal_break=...)`).
+
+    `randomize` (None, "default" or a dict: `physics.randomize.Randomization`) draws the physics,
+    table and ball parameters afresh at every `reset`, from the game's generator (one draw of it,
+    before the rack's; None draws nothing, so the games stay as without); `table` and `physics`
+    are then the drawn ones, `base_table` and `base_physics` those given, `sample` the draw.
     """
 
     def __init__(self, mode: str = "nine_ball", table: Table | None = None, physics: Physics | None = None,
                  noise=None, seed=None, layout: str | None = None, randomize_cue: bool = False,
-                 decisions: bool | None = None, **rule_options):
+                 decisions: bool | None = None, randomize=None, **rule_options):
         self._mode: Mode = mode_of(mode)
         self.table = self._mode.table() if table is None else table
         if not isinstance(self.table, Table):
@@ -192,6 +198,10 @@ class Game:
         self.rule_options = dict(rule_options)
         if self._mode.rules is not None:
             rules.new_game(self._mode.rules, **self.rule_options)  # bad options raise here
+        self.base_table, self.base_physics = self.table, self.physics
+        self.randomization = None if randomize is None else Randomization(
+            randomize, self.table, self.physics, self._mode.balls, self._mode.equipment)
+        self.sample: Sample | None = None
         self.rng = np.random.default_rng(seed)
         self._balls, self._state, self._shots, self._over = None, None, 0, False
         self.reset()
@@ -271,16 +281,17 @@ class Game:
             raise ValueError("no decision is pending: the shooter shoots (play)")
         state = rules.decide(self._state, option)
         if state.is_break and not self._state.is_break:
-            self._balls = self._mode.rack(self.table, int(self.rng.integers(2**63 - 1)))
+            self._balls = self._rack(int(self.rng.integers(2**63 - 1)))
         self._state = state
         return state
 
     @property
     def calls_pocket(self) -> bool:
-        """The shooter must call a pocket (`Shot.pocket`) for this shot: 8-ball, shooting at
-        the 8 (WPA 1.6: the 8 is called; not on the break)."""
+        """The shooter must call a pocket (`Shot.pocket`) for this shot: every shot but the
+        break in 10-ball and in 8-ball with called shots (WPA 1.6); with `calling="eight_only"`
+        only shooting at the 8."""
         state = self._state
-        if self._mode.rules == "ten_ball":  # every shot but the break (WPA Ten Ball 5)
+        if self._mode.rules == "ten_ball" or self.layout.called_ball:  # every shot but the break (Ten Ball 5, 1.6)
             return state.winner is None and not state.is_break
         return (self._mode.rules == "eight_ball" and state.winner is None and not state.is_break
                 and self.legal_targets == frozenset({8}))
@@ -350,8 +361,9 @@ class Game:
     def reset(self, seed=None, *, rng=None, balls: Balls | None = None, breaker: int = 0,
               ball_in_hand: bool = False, state: rules.GameState | None = None) -> Game:
         """A new game: `seed` reseeds the noise generator (or `rng` replaces it); a rack drawn
-        from it (the cue ball's random start first, with `randomize_cue`, then the rack's seed,
-        drawn even when `balls` is given), `breaker` (0 or 1) to break. `balls` starts from a
+        from it (with `randomize`, the equipment's seed first; the cue ball's random start next,
+        with `randomize_cue`, then the rack's seed, drawn even when `balls` is given, whose sizes
+        stay theirs), `breaker` (0 or 1) to break. `balls` starts from a
         layout instead (`n_balls` balls at rest by number, the cue ball on the table; with rules
         an open table, the last ball on it, `ball_in_hand` anywhere if asked), `breaker` to
         shoot; or, with `state` (a `rules.GameState` of this game's rules whose `on_table` is
@@ -362,10 +374,13 @@ class Game:
             self.rng = np.random.default_rng(seed)
         if breaker not in (0, 1) or isinstance(breaker, (bool, np.bool_)):
             raise ValueError(f"breaker must be 0 or 1, got {breaker!r}")
+        if self.randomization is not None:  # the equipment first: the rack stands on it
+            self.sample = self.randomization.sample(np.random.default_rng(int(self.rng.integers(2**63 - 1))))
+            self.table, self.physics = self.sample.table, self.sample.physics
         cue_xy = self._cue_start() if self.randomize_cue else None
         rack_seed = int(self.rng.integers(2**63 - 1))
         if balls is None:
-            self._balls = self._mode.rack(self.table, rack_seed, cue_xy)
+            self._balls = self._rack(rack_seed, cue_xy)
             state = rules.new_game(self._mode.rules, breaker=breaker, **self.rule_options) if self.has_rules else None
         else:
             self._balls = self._check_layout(balls, position=state is not None)
@@ -375,6 +390,14 @@ class Game:
                 state = self._open_table(balls, breaker, ball_in_hand)
         self._state, self._shots, self._over = state, 0, False
         return self
+
+    def _rack(self, seed, cue_xy=None) -> Balls:
+        """The mode's rack, its balls sized as drawn (with `randomize`). A drawn table is the
+        base one's size (only its nose and mouths differ, far from the spots): the rack is laid on
+        the base table, whose layout is checked once, not at every draw."""
+        if self.sample is None:
+            return self._mode.rack(self.table, seed, cue_xy)
+        return self.sample.sized(self._mode.rack(self.base_table, seed, cue_xy))
 
     def _check_layout(self, balls, position=False):
         """A starting layout checked; a planner's `position` (with its state) may have the cue
@@ -634,11 +657,16 @@ def simulate_struck(struck: StruckShot, table: Table, physics: Physics):
         return exc
 
 
-def simulate_struck_batch(struck, table: Table, physics: Physics, threads: int | None = None) -> list:
-    """`simulate_struck` of many shots on one table, the playable ones in one `simulate_batch` call."""
+def simulate_struck_batch(struck, table, physics, threads: int | None = None) -> list:
+    """`simulate_struck` of many shots on one table (or a table and physics per shot: sequences
+    as long as `struck`), the playable ones in one `simulate_batch` call."""
     playable = [k for k, s in enumerate(struck) if not isinstance(s.balls, Exception)]
     out = [s.balls for s in struck]
     if playable:
+        if not isinstance(table, Table):
+            table = [table[k] for k in playable]
+        if not isinstance(physics, Physics):
+            physics = [physics[k] for k in playable]
         for k, result in zip(playable, simulate_batch([struck[k].balls for k in playable], table, physics,
                                                       threads=threads)):
             out[k] = result
@@ -646,14 +674,14 @@ def simulate_struck_batch(struck, table: Table, physics: Physics, threads: int |
 
 
 def play_batch(games, shots, threads: int | None = None) -> list[ShotRecord]:
-    """`games[k].play(shots[k])` for every k, the simulations in one `simulate_batch` call when
-    the games share a table and physics (else one call per game). The records, in order."""
+    """`games[k].play(shots[k])` for every k, the simulations in one `simulate_batch` call (each
+    on its game's table and physics). The records, in order."""
     games, shots = list(games), list(shots)
     if len(games) != len(shots):
         raise ValueError(f"play_batch needs one shot per game, got {len(games)} games and {len(shots)} shots")
     struck = [game.strike(shot) for game, shot in zip(games, shots)]
     if games and all(g.table is games[0].table and g.physics == games[0].physics for g in games):
         results = simulate_struck_batch(struck, games[0].table, games[0].physics, threads)
-    else:
-        results = [simulate_struck(s, g.table, g.physics) for s, g in zip(struck, games)]
+    else:  # randomized equipment, or games on other tables: each shot on its game's
+        results = simulate_struck_batch(struck, [g.table for g in games], [g.physics for g in games], threads)
     return [game.resolve(s, r) for game, s, r in zip(games, struck, results)]

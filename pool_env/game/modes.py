@@ -24,6 +24,7 @@ class Mode:
     table: Callable[[], Table] = Table.eight_foot  # the table a Game of this mode gets when given none
     physics: Callable[[], Physics] = Physics.standard  # ... and its physics
     cue_in_hand: bool = True  # the rules give ball in hand (the layout has placement entries); False: carom
+    equipment: str = "pool"  # whose measured ranges randomize="default" draws from (physics.randomize.DEFAULTS)
 
     @property
     def placement(self) -> bool:
@@ -60,9 +61,10 @@ MODES = {
     "eight_ball": Mode("eight_ball", 16, "eight_ball", one_shot=False, layout="eight_ball", label="8-ball"),
     "ten_ball": Mode("ten_ball", 11, "ten_ball", one_shot=False, layout="ten_ball", label="10-ball"),
     "three_cushion": Mode("three_cushion", 3, "three_cushion", one_shot=False, layout="cue_spin", label="three-cushion",
-                          table=Table.carom, physics=Physics.carom, cue_in_hand=False),
+                          table=Table.carom, physics=Physics.carom, cue_in_hand=False, equipment="carom"),
     # 0 the cue ball, 1-15 the reds, 16-21 yellow, green, brown, blue, pink, black (rules.snooker_spots).
-    "snooker": Mode("snooker", 22, "snooker", one_shot=False, layout="snooker", label="snooker", table=Table.snooker),
+    "snooker": Mode("snooker", 22, "snooker", one_shot=False, layout="snooker", label="snooker", table=Table.snooker,
+                    equipment="snooker"),
 }
 RULES_MODES = tuple(name for name, mode in MODES.items() if mode.rules is not None)
 

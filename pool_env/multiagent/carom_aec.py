@@ -29,14 +29,14 @@ class ThreeCushionAEC(AECEnv):
     metadata = {"name": "three_cushion_v0", "render_modes": [], "is_parallelizable": False, "render_fps": 30}
 
     def __init__(self, noise=None, points: int | None = 15, innings_limit: int | None = None, equalizing: bool = True,
-                 max_shots: int = 400, table=None, physics=None, render_mode=None):
+                 max_shots: int = 400, table=None, physics=None, render_mode=None, randomize=None):
         super().__init__()
         if render_mode is not None:
             raise ValueError(f"three_cushion_v0 has no render mode yet, got {render_mode!r}")
         if isinstance(max_shots, bool) or not isinstance(max_shots, int) or max_shots < 1:
             raise ValueError(f"max_shots must be an integer >= 1, got {max_shots!r}")
         self.game = Game("three_cushion", table=table, physics=physics, noise=noise, points=points,
-                         innings_limit=innings_limit, equalizing=equalizing)
+                         innings_limit=innings_limit, equalizing=equalizing, randomize=randomize)
         self.max_shots, self.render_mode = max_shots, None
         self.possible_agents = list(AGENTS)
         self.observation_spaces = {a: gym.spaces.Box(-1.0, 1.0, (CAROM_OBSERVATION_SIZE,), np.float32) for a in AGENTS}

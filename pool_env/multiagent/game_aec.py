@@ -10,7 +10,7 @@ from pettingzoo.utils import wrappers
 
 from ..envs.break_env import can_render, check_env_options, check_reset_options
 from ..envs.game_env import SHAPING_BALL, SHAPING_FOUL, PoolGameEnv, captioned, shot_caption
-from ..envs.infos import check_info_mode, no_shot_info, record_info, rich_info, score_info, winner_code
+from ..envs.infos import check_info_mode, no_shot_info, record_info, rich_info, sampled_info, score_info, winner_code
 from ..game import GAME_BALLS, Game, env_layout, game_observation, game_observation_size
 from ..render.overlay import overlay
 from ..render.playback import ShotPlayback
@@ -95,7 +95,7 @@ class PoolGameAEC(AECEnv):
 
     def __init__(self, game="nine_ball", render_mode=None, noise=None, shaping=False, max_shots=200,
                  rule_options=None, table=None, physics=None, render_size=(640, 360), info_mode="numeric",
-                 elevation=False, decisions=False):
+                 elevation=False, decisions=False, randomize=None):
         super().__init__()
         self.info_mode = check_info_mode(info_mode)
         if game not in GAME_BALLS:
@@ -104,7 +104,7 @@ class PoolGameAEC(AECEnv):
         self.elevation, self.decisions = bool(elevation), bool(decisions)
         options = dict(rule_options or {})
         layout = env_layout(game, self.elevation, self.decisions, options.get("calling"))
-        self.game = Game(game, table, physics, noise, layout=layout, **options)
+        self.game = Game(game, table, physics, noise, layout=layout, randomize=randomize, **options)
         self.table, self.physics = self.game.table, self.game.physics
         self.render_mode, self.shaping = render_mode, bool(shaping)
         self.render_size = (int(render_size[0]), int(render_size[1]))
@@ -139,6 +139,7 @@ class PoolGameAEC(AECEnv):
             self.np_random, self.np_random_seed = seeding.np_random(seed)
         self.game.reset(rng=self.np_random, balls=options.get("balls"), breaker=options["breaker"],
                         ball_in_hand=bool(options.get("ball_in_hand", False)))
+        self.table, self.physics = self.game.table, self.game.physics  # drawn afresh with randomize
         quaternions = self.np_random.normal(size=(self.game.n_balls, 4))
         self.np_random.integers(2**63 - 1)  # the single-agent env's opponent seed: the same stream of draws
         self.playback.reset(self.game.balls, quaternions)
@@ -148,7 +149,8 @@ class PoolGameAEC(AECEnv):
         self._cumulative_rewards = dict.fromkeys(AGENTS, 0.0)
         self.terminations = dict.fromkeys(AGENTS, False)
         self.truncations = dict.fromkeys(AGENTS, False)
-        info = self._info(no_shot_info(self.game.balls, self.game.ball_in_hand), self.game.shooter, None)
+        info = self._info({**no_shot_info(self.game.balls, self.game.ball_in_hand), **sampled_info(self.game)},
+                          self.game.shooter, None)
         self.infos = {agent: dict(info) for agent in AGENTS}
         self.agent_selection = AGENTS[self.game.shooter]
 

@@ -28,9 +28,25 @@ def _pool(threads):
         return _pools[threads]
 
 
-def simulate_batch(balls_list, table: Table, physics: Physics | None = None, max_events: int | None = None,
+def per_scene(value, n: int, kind, name: str) -> list:
+    """`value` (one `kind`, or a sequence of n of them: one per scene) as a list of n."""
+    if isinstance(value, kind):
+        return [value] * n
+    values = list(value)
+    if len(values) != n:
+        raise ValueError(f"simulate_batch: {len(values)} {name}s for {n} scenes (one, or one per scene)")
+    for k, v in enumerate(values):
+        if not isinstance(v, kind):
+            raise TypeError(f"simulate_batch: {name} {k} must be pool_env.physics.{kind.__name__}, "
+                            f"got {type(v).__name__}")
+    return values
+
+
+def simulate_batch(balls_list, table, physics=None, max_events: int | None = None,
                    threads: int | None = None) -> list[Result | Exception]:
-    """Simulate many independent scenes (a sequence of `Balls`, already struck) on one table.
+    """Simulate many independent scenes (a sequence of `Balls`, already struck) on one table, or
+    on a table and physics each (`table`, `physics`: a sequence with one per scene: randomized
+    equipment; scene k is then `simulate(balls_list[k], table[k], physics[k])`, the same bits).
 
     Returns one entry per scene, in order: its `Result`, exactly what `simulate(balls, table,
     physics, max_events=max_events)` returns (bit-identical, whatever the number of threads:
@@ -45,6 +61,8 @@ def simulate_batch(balls_list, table: Table, physics: Physics | None = None, max
     """
     physics = Physics.standard() if physics is None else physics
     scenes = list(balls_list)
+    tables = per_scene(table, len(scenes), Table, "table")
+    physics = per_scene(physics, len(scenes), Physics, "physics")
     threads = max(1, min(os.cpu_count() or 1, len(scenes))) if threads is None else int(threads)
     if threads < 1:
         raise ValueError(f"threads must be >= 1, got {threads!r}")
@@ -54,7 +72,7 @@ def simulate_batch(balls_list, table: Table, physics: Physics | None = None, max
     def run(start):
         for k in range(start, min(start + chunk, len(scenes))):
             try:
-                out[k] = simulate(scenes[k], table, physics, max_events=max_events)
+                out[k] = simulate(scenes[k], tables[k], physics[k], max_events=max_events)
             except (ValueError, TypeError, RuntimeError) as exc:  # reported per scene: SimulationError is one
                 out[k] = exc
 

@@ -184,6 +184,7 @@ def scene_of(balls, physics, table):
 
 
 _REACH = {}
+REACH_CACHE = 64  # entries kept at most
 
 
 def reach_of(balls, table, cushion):
@@ -195,6 +196,8 @@ def reach_of(balls, table, cushion):
     key = (len(balls), balls.radius, table.cushion_height, cushion)
     reach = _REACH.get(key)
     if reach is None:
+        if len(_REACH) >= REACH_CACHE:  # randomized nose heights: every table another key
+            _REACH.clear()
         reach = _REACH[key] = np.full(key[0], cushion_reach(balls.radius, table.cushion_height, cushion))
     return reach
 

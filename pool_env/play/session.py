@@ -13,7 +13,7 @@ from ..physics import BALL_RADIUS
 from ..records.saved import record_game, save_game
 from ..render.window import import_pygame
 from ..rules import cue_ball
-from .aim import clamp_tip, shot_action
+from .aim import clamp_tip, first_hit, shot_action
 from .animation import PendingStep, StepAnimation
 from .games import NAMES, TABLE_SIZE, TWO_SIDED, make_env
 
@@ -82,15 +82,25 @@ class PlaySession:
 
     @property
     def needs_call(self) -> bool:
-        """The shooter must call a pocket (the game's `calls_pocket`: 8-ball, at the 8, not the break)."""
+        """The shooter must call a pocket (the game's `calls_pocket`: every shot but the break in
+        10-ball and 8-ball)."""
         return not self.done and not self.busy and self.base.game.calls_pocket
 
     @property
-    def called_ball(self) -> int:
-        """The ball a clicked pocket calls: the 8 in 8-ball; in 10-ball the lowest on the table,
-        the ball a shot calls when it names none (`Game.called_targets`)."""
+    def called_ball(self):
+        """The ball a clicked pocket calls: in 10-ball the lowest on the table (the ball a shot
+        calls when it names none, `Game.called_targets`); in 8-ball the legal target the aim
+        line hits first (the 8 when it is the only one), None while the aim hits none."""
         targets = self.base.game.called_targets
-        return targets[0] if self.game == "ten_ball" and targets else 8
+        if self.game == "ten_ball" or len(targets) <= 1:
+            return targets[0] if targets else 8
+        if self.drag is None:
+            return None
+        back = np.asarray(self.drag) - np.asarray(self.cue_xy)
+        if not back.any():
+            return None
+        _, hit = first_hit(self.base.balls, self.cue_xy, -back / math.hypot(*back), self.base.table, self.cue_index)
+        return hit if hit in targets else None
 
     def restart(self, seed=None):
         """A new game (seed `seed`, default the next one)."""
@@ -165,7 +175,9 @@ class PlaySession:
         xy = self.to_world(pos)
         pocket = self._pocket_at(xy)
         if self.needs_call and pocket is not None:
-            self.called, self.note = pocket, f"{self.called_ball} called in pocket {pocket}"
+            ball = self.called_ball
+            ball = "the ball you aim at" if ball is None else f"the {ball}"
+            self.called, self.note = pocket, f"{ball} called in pocket {pocket}"
         elif self.in_hand is not None and math.dist(xy, self.cue_xy) <= 2 * BALL_RADIUS:
             self.placing = True
         else:
@@ -211,7 +223,8 @@ class PlaySession:
         power = float(np.hypot(head[0], head[1]))
         place = tuple(self.cue_xy) if self.in_hand is not None else None
         mass = float(self.base.balls.masses[self.cue_index])
-        shot = Shot.aimed(head[0:2], power * MAX_SPEED, tuple(self.tip), place, self.called, mass=mass)
+        ball = self.called_ball if self.needs_call else None
+        shot = Shot.aimed(head[0:2], power * MAX_SPEED, tuple(self.tip), place, self.called, mass=mass, ball=ball)
         return self.base.game.encode(shot)
 
     def update(self):
@@ -376,7 +389,8 @@ class PlaySession:
         if self.needs_call:
             called = self.called is not None
             ball = self.called_ball
-            lines.append(f"{ball} called in pocket {self.called}" if called else f"click a pocket to call the {ball}")
+            ball = "the ball you aim at" if ball is None else f"the {ball}"
+            lines.append(f"{ball} called in pocket {self.called}" if called else f"click a pocket to call {ball}")
         return lines + self.lines
 
     def table_frame(self):

@@ -29,6 +29,20 @@ def describe_table(table) -> dict:
             "side_pocket": dataclasses.asdict(table.side_pocket)}
 
 
+def base_equipment(base) -> tuple:
+    """(table, physics) an env was made with: its game's before randomization draws, else its own."""
+    game = getattr(base, "game", None)
+    if game is not None and hasattr(game, "base_table"):
+        return game.base_table, game.base_physics
+    return base.table, base.physics
+
+
+def sampled_equipment(base) -> dict | None:
+    """The equipment an env's randomization drew at its last reset, as JSON keeps it; None without."""
+    sample = getattr(getattr(base, "game", None), "sample", None)
+    return None if sample is None else json.loads(json.dumps(sample.info(), default=np.ndarray.tolist))
+
+
 RECORDED = "recorded"  # env_kwargs["opponent"] of a game whose opponent's actions are in the file
 
 
@@ -87,6 +101,9 @@ class GameRecorder:
     def record(self) -> dict:
         """The saved game."""
         out = {**self.header, "actions": self.actions, "outcomes": self.outcomes}
+        sampled = sampled_equipment(self.base)
+        if sampled is not None:  # randomize: what the seed drew, checked on replay
+            out["sampled"] = sampled
         if self.opponent_actions is not None:
             out["opponent_actions"] = self.opponent_actions
         return out
@@ -119,15 +136,22 @@ def _header(env, seed, env_id=None, kwargs=None) -> dict:
         kwargs = dict(spec.kwargs) if spec is not None else {}
     scalar = (str, int, float, bool, type(None))
     for key, value in kwargs.items():
+        if key == "randomize" and isinstance(value, dict):
+            try:
+                json.dumps(value)
+            except (TypeError, ValueError):
+                raise ValueError(f"env kwarg randomize={value!r} cannot be saved: only names and numbers") from None
+            continue
         if not (isinstance(value, scalar) or isinstance(value, (tuple, list)) and all(isinstance(v, scalar)
                                                                                     for v in value)):
             raise ValueError(f"env kwarg {key}={value!r} cannot be saved: only names and numbers replay "
                              "(an opponent must be a built-in player's name, or record its actions: "
                              "record_opponent=True)")
     env_id = env_id if env_id is not None else (spec.id if spec else None)
+    table, physics = base_equipment(base)
     return {"format": FORMAT, "version": VERSION, "pool_env": __version__, "env_id": env_id,
-            "env_kwargs": json.loads(json.dumps(kwargs)), "seed": seed, "table": describe_table(base.table),
-            "physics": dataclasses.asdict(base.physics)}
+            "env_kwargs": json.loads(json.dumps(kwargs)), "seed": seed, "table": describe_table(table),
+            "physics": dataclasses.asdict(physics)}
 
 
 def make_env(record: dict, **kwargs):
@@ -201,9 +225,12 @@ def replay(record: dict, env=None, on_step=None, until=None):
     base = env.unwrapped
     # A field the saved game predates (the slate's e_t and mu_t) was played at its default.
     saved_physics = {**dataclasses.asdict(Physics()), **record["physics"]}
-    if describe_table(base.table) != record["table"] or dataclasses.asdict(base.physics) != saved_physics:
+    table, physics = base_equipment(base)
+    if describe_table(table) != record["table"] or dataclasses.asdict(physics) != saved_physics:
         raise ReplayMismatch("the env's table or physics differ from the saved game's")
     env.reset(seed=record["seed"])
+    if record.get("sampled") is not None and sampled_equipment(base) != record["sampled"]:
+        raise ReplayMismatch("the equipment randomize drew at reset differs from the saved game's")
     steps = record["actions"] if until is None else record["actions"][:until]
     for k, action in enumerate(steps):
         obs, reward, terminated, truncated, info = env.step(np.asarray(action, dtype=np.float32))

@@ -1,0 +1,270 @@
+"""Domain randomization: a validated spec of physics, table and ball parameters to draw, and the draws."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from .config import Physics
+from .objects import BALL_MASS, BALL_RADIUS, CAROM_MASS, CAROM_RADIUS, Balls, Table
+from .snooker import SNOOKER_BALL_MASS, SNOOKER_BALL_RADIUS
+
+INCH, OUNCE = 0.0254, 0.028349523125
+
+# The Physics coefficients a spec may draw (every float field: the model names and `spin` stay).
+PHYSICS_NAMES = tuple(f.name for f in dataclasses.fields(Physics) if f.type in (float, "float"))
+# The table's equipment: the cushion nose's height and the corner and side (middle) pockets' mouths.
+TABLE_NAMES = ("cushion_height", "corner_mouth", "side_mouth")
+# Per ball: every ball draws its own radius and mass.
+BALL_NAMES = ("ball_radius", "ball_mass")
+NAMES = PHYSICS_NAMES + TABLE_NAMES + BALL_NAMES
+
+# Measured cloth, ball and cushion values, in D. G. Alciatore's table of typical pool-equipment
+# properties ("Pool and billiards physics resources", billiards.colostate.edu; the same ranges
+# as the appendix of "The Illustrated Principles of Pool and Billiards"): ball-cloth sliding
+# friction 0.15-0.4, rolling resistance 0.005-0.015, spin deceleration 5-15 rad/s^2 (mu_sp =
+# 2 R alpha / (5 g): 0.0058-0.0175 for a 2.25 in ball), ball-ball restitution 0.92-0.98,
+# ball-rail restitution 0.6-0.9. The cushion's friction (f_c) 0.1-0.3 brackets our 0.2 (Han
+# 2005's fitted values lie there); the slate's e_t and mu_t are left fixed (one value, no range).
+CLOTH = {"mu_s": (0.15, 0.4), "mu_r": (0.005, 0.015), "mu_sp": (0.0058, 0.0175), "e_b": (0.92, 0.98)}
+# WPA Equipment Specifications: balls 2.25 in (+-0.005 in) across and 5.5-6 oz; corner mouths
+# 4.5-4.625 in, side mouths 5-5.125 in; the cushion nose at 62.5-64.5 % of the ball's diameter.
+POOL = {**CLOTH, "e_c": (0.6, 0.9), "f_c": (0.1, 0.3),
+        "cushion_height": (0.625 * 2 * BALL_RADIUS, 0.645 * 2 * BALL_RADIUS),
+        "corner_mouth": (4.5 * INCH, 4.625 * INCH), "side_mouth": (5.0 * INCH, 5.125 * INCH),
+        "ball_radius": (BALL_RADIUS - 0.0025 * INCH, BALL_RADIUS + 0.0025 * INCH),
+        "ball_mass": (5.5 * OUNCE, 6.0 * OUNCE)}
+# UMB Sports Rules 2.1-2.2: balls 61-61.5 mm across and 205-220 g, the cushion nose 37 +- 1 mm
+# high. The carom cushion's restitution and grip (e_c 0.85, f_c 0.5) have no measured spread we
+# know of: 0.75-0.9 and 0.4-0.6 are our bracket around them. No pockets.
+CAROM = {**CLOTH, "e_c": (0.75, 0.9), "f_c": (0.4, 0.6), "cushion_height": (0.036, 0.038),
+         "ball_radius": (0.0305, CAROM_RADIUS), "ball_mass": (0.205, 0.220)}
+# WPBSA Section 1 Rule 2: balls 52.5 mm (+-0.05 mm) across, a set's weights within 3 g (our
+# spread: 3 g around SNOOKER_BALL_MASS). The pockets and cushion of `Table.snooker` stay fixed.
+SNOOKER = {**CLOTH, "e_c": (0.6, 0.9), "f_c": (0.1, 0.3),
+           "ball_radius": (SNOOKER_BALL_RADIUS - 0.000025, SNOOKER_BALL_RADIUS + 0.000025),
+           "ball_mass": (SNOOKER_BALL_MASS - 0.0015, SNOOKER_BALL_MASS + 0.0015)}
+DEFAULTS = {"pool": POOL, "carom": CAROM, "snooker": SNOOKER}
+REGULATION = {"pool": (BALL_RADIUS, BALL_MASS), "carom": (CAROM_RADIUS, CAROM_MASS),
+              "snooker": (SNOOKER_BALL_RADIUS, SNOOKER_BALL_MASS)}
+
+
+@dataclasses.dataclass(frozen=True)
+class Draw:
+    """One parameter's distribution: uniform on [low, high], or normal(mean, sd) clipped to it."""
+
+    name: str
+    low: float
+    high: float
+    mean: float | None = None
+    sd: float | None = None
+
+    def sample(self, rng: np.random.Generator, size=None):
+        if self.sd is None:
+            return rng.uniform(self.low, self.high, size)
+        return np.clip(rng.normal(self.mean, self.sd, size), self.low, self.high)
+
+    def scaled(self, value):
+        """`value` mapped from [low, high] onto [-1, 1]."""
+        return 2.0 * (np.asarray(value, dtype=np.float64) - self.low) / (self.high - self.low) - 1.0
+
+
+def _number(name, value, what):
+    try:
+        value = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"randomize[{name!r}]: {what} must be a number, got {value!r}") from None
+    if not math.isfinite(value):
+        raise ValueError(f"randomize[{name!r}]: {what} must be finite, got {value!r}")
+    return value
+
+
+def _pair(name, value, what):
+    if isinstance(value, (str, bytes, dict)) or not hasattr(value, "__len__") or len(value) != 2:
+        raise ValueError(f"randomize[{name!r}]: {what} must be a pair of numbers, got {value!r}")
+    return _number(name, value[0], what + "[0]"), _number(name, value[1], what + "[1]")
+
+
+def draw_of(name: str, value) -> Draw:
+    """The `Draw` a spec entry means: (low, high) uniform, {"uniform": (low, high)}, or
+    {"normal": (mean, sd), "clip": (low, high)}. ValueError naming what is wrong."""
+    if name not in NAMES:
+        raise ValueError(f"randomize: unknown parameter {name!r}; choose among {', '.join(NAMES)}")
+    mean = sd = None
+    if isinstance(value, dict):
+        keys = set(value)
+        if keys == {"uniform"}:
+            low, high = _pair(name, value["uniform"], "uniform")
+        elif keys == {"normal", "clip"}:
+            mean, sd = _pair(name, value["normal"], "normal")
+            low, high = _pair(name, value["clip"], "clip")
+            if not sd > 0:
+                raise ValueError(f"randomize[{name!r}]: the normal's sd must be > 0, got {sd!r}")
+            if not low <= mean <= high:
+                raise ValueError(f"randomize[{name!r}]: the normal's mean {mean} is outside its clip [{low}, {high}]")
+        else:
+            raise ValueError(f"randomize[{name!r}]: a dict is {{'uniform': (low, high)}} or "
+                             f"{{'normal': (mean, sd), 'clip': (low, high)}}, got keys {sorted(keys)}")
+    else:
+        low, high = _pair(name, value, "the range")
+    if not low < high:
+        raise ValueError(f"randomize[{name!r}]: the range [{low}, {high}] is empty or inverted (low < high "
+                         "needed; a fixed value belongs in Physics or Table)")
+    return Draw(name, low, high, mean, sd)
+
+
+@dataclasses.dataclass(frozen=True)
+class Sample:
+    """One draw: the table and physics to play on, every ball's radius and mass (None: the rack's
+    own), and the drawn values by name (per-ball names: a tuple, one per ball)."""
+
+    table: Table
+    physics: Physics
+    radii: np.ndarray | None
+    masses: np.ndarray | None
+    values: dict
+
+    def info(self) -> dict:
+        """What reset's info reports: `physics` (every Physics coefficient), `table` (the
+        TABLE_NAMES), and `ball_radius`/`ball_mass` arrays when those are drawn. Plain floats."""
+        out = {"physics": {name: float(getattr(self.physics, name)) for name in PHYSICS_NAMES},
+               "table": table_values(self.table)}
+        for name, arr in (("ball_radius", self.radii), ("ball_mass", self.masses)):
+            if arr is not None:
+                out[name] = np.array(arr, dtype=np.float64)
+        return out
+
+    def sized(self, balls: Balls) -> Balls:
+        """`balls` (a rack) with the drawn radii and masses. Larger balls need more room: the
+        layout is spread about its centre by the largest radius over the smallest given one,
+        which scales every gap at least as much as any ball grew (no new overlaps)."""
+        if self.radii is None and self.masses is None:
+            return balls
+        radii = balls.radii if self.radii is None else self.radii
+        masses = balls.masses if self.masses is None else self.masses
+        xy = balls.xy
+        grow = float(np.max(radii) / np.min(balls.radii))
+        if grow > 1.0:
+            on = ~balls.pocketed
+            centre = xy[on].mean(axis=0)
+            xy = xy.copy()
+            xy[on] = centre + (xy[on] - centre) * grow
+        return Balls(xy, radius=radii, mass=masses, pocketed=balls.pocketed)
+
+
+def table_values(table: Table) -> dict:
+    """The TABLE_NAMES of a table: its cushion height, and its first corner and side mouths
+    (the mouths only when it has such pockets)."""
+    corner, side = _mouth_columns(table)
+    out = {"cushion_height": float(table.cushion_height)}
+    if corner.any():
+        out["corner_mouth"] = float(table.pocket_entries[corner][0, 2])
+    if side.any():
+        out["side_mouth"] = float(table.pocket_entries[side][0, 2])
+    return out
+
+
+def _mouth_columns(table):
+    """Masks of the corner pockets and the side pockets among `table.pocket_entries`."""
+    entries = table.pocket_entries
+    if not entries.size:
+        return np.zeros(0, dtype=bool), np.zeros(0, dtype=bool)
+    at_x = np.isclose(entries[:, 0], 0.0) | np.isclose(entries[:, 0], table.length)
+    at_y = np.isclose(entries[:, 1], 0.0) | np.isclose(entries[:, 1], table.width)
+    return at_x & at_y, ~(at_x & at_y)
+
+
+def table_with(table: Table, values: dict, masks=None) -> Table:
+    """`table` with the TABLE_NAMES in `values` replaced (a new, checked Table); `masks` its
+    (corner, side) pockets if known (`_mouth_columns`)."""
+    if not values:
+        return table
+    corner, side = _mouth_columns(table) if masks is None else masks
+    entries = table.pocket_entries.copy()
+    if "corner_mouth" in values:
+        entries[corner, 2] = values["corner_mouth"]
+    if "side_mouth" in values:
+        entries[side, 2] = values["side_mouth"]
+    return Table(table.length, table.width, entries.tolist(), values.get("cushion_height", table.cushion_height),
+                 table.corner_pocket, table.side_pocket)
+
+
+class Randomization:
+    """A checked spec of what to draw at each reset, bound to a game's table, physics and balls.
+
+    `spec`: a dict {name: range or distribution} (see `draw_of`; names in NAMES), or "default"
+    (DEFAULTS[equipment]: the measured ranges). Every parameter's whole range must make a valid
+    Physics and Table and balls that stand above the cushion nose: ValueError otherwise, here."""
+
+    def __init__(self, spec, table: Table, physics: Physics, n_balls: int, equipment: str = "pool"):
+        if isinstance(spec, str):
+            if spec != "default":
+                raise ValueError(f"randomize must be None, 'default' or a dict of ranges, got {spec!r}")
+            spec = DEFAULTS[equipment]
+        if not isinstance(spec, dict) or not spec:
+            raise ValueError(f"randomize must be None, 'default' or a non-empty dict of ranges, got {spec!r}")
+        self.draws = tuple(draw_of(name, spec[name]) for name in NAMES if name in spec)
+        unknown = sorted(set(spec) - set(NAMES), key=str)
+        if unknown:
+            draw_of(unknown[0], None)  # raises, naming it
+        self.table, self.physics, self.n_balls = table, physics, int(n_balls)
+        self.by_name = {d.name: d for d in self.draws}
+        self._masks = _mouth_columns(table)  # which pockets a corner or side mouth sizes, found once
+        self._check()
+
+    def _check(self):
+        for end in ("low", "high"):
+            values = {d.name: getattr(d, end) for d in self.draws}
+            phys = {k: v for k, v in values.items() if k in PHYSICS_NAMES}
+            try:
+                dataclasses.replace(self.physics, **phys)
+                table = table_with(self.table, {k: v for k, v in values.items() if k in TABLE_NAMES})
+            except ValueError as exc:
+                raise ValueError(f"randomize: the ranges' {end} ends make an invalid game: {exc}") from None
+        lowest = self.by_name["ball_radius"].low if "ball_radius" in self.by_name else None
+        highest_nose = self.by_name["cushion_height"].high if "cushion_height" in self.by_name \
+            else self.table.cushion_height
+        if lowest is not None and not 2.0 * lowest > highest_nose:
+            raise ValueError(f"randomize: balls of radius {lowest} m would pass under a cushion nose "
+                             f"{highest_nose} m high (2 R > cushion_height needed)")
+        if "corner_mouth" in self.by_name or "side_mouth" in self.by_name:
+            if not table.pocket_entries.size:
+                raise ValueError("randomize: the table has no pockets to size")
+
+    def sample(self, rng: np.random.Generator) -> Sample:
+        """Every parameter drawn, in NAMES order (per-ball names: one draw per ball)."""
+        values = {}
+        for d in self.draws:
+            per_ball = d.name in BALL_NAMES
+            drawn = d.sample(rng, self.n_balls if per_ball else None)
+            values[d.name] = tuple(float(v) for v in drawn) if per_ball else float(drawn)
+        physics = dataclasses.replace(self.physics, **{k: v for k, v in values.items() if k in PHYSICS_NAMES})
+        table = table_with(self.table, {k: v for k, v in values.items() if k in TABLE_NAMES}, self._masks)
+        radii = np.array(values["ball_radius"]) if "ball_radius" in values else None
+        masses = np.array(values["ball_mass"]) if "ball_mass" in values else None
+        return Sample(table, physics, radii, masses, values)
+
+    def scaled(self, sample: Sample) -> np.ndarray:
+        """The drawn values mapped from their ranges onto [-1, 1] (float32), in NAMES order,
+        per-ball names one entry per ball: what an observation may carry."""
+        parts = [np.atleast_1d(d.scaled(sample.values[d.name])) for d in self.draws]
+        return np.concatenate(parts).astype(np.float32)
+
+    def unscaled(self, scaled) -> dict:
+        """`scaled`'s decoder: the drawn values by name (per-ball names: tuples), from its [-1, 1] entries."""
+        scaled, values, at = np.asarray(scaled, dtype=np.float64), {}, 0
+        for d in self.draws:
+            n = self.n_balls if d.name in BALL_NAMES else 1
+            value = d.low + 0.5 * (scaled[at:at + n] + 1.0) * (d.high - d.low)
+            values[d.name] = tuple(value.tolist()) if n > 1 or d.name in BALL_NAMES else float(value[0])
+            at += n
+        if at != scaled.shape[0]:
+            raise ValueError(f"unscaled takes {at} entries (this spec's size), got {scaled.shape[0]}")
+        return values
+
+    @property
+    def size(self) -> int:
+        """How many entries `scaled` returns."""
+        return sum(self.n_balls if d.name in BALL_NAMES else 1 for d in self.draws)
