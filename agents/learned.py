@@ -281,7 +281,7 @@ class LearnedPlayer(Agent):
         game = game_of(env)
         if not game.has_rules:
             raise TypeError("the learned player plays the games (PoolNineBall-v0, PoolEightBall-v0)")
-        return cls(game.mode, table=game.table, physics=game.physics, **options)
+        return cls(game.mode, table=game.base_table, physics=game.base_physics, **options)
 
     def act(self, observation) -> np.ndarray:
         m, d = menu(self.search, observation, self.game, self.net.layout)

@@ -195,9 +195,9 @@ class SearchAgent(Agent):
         """For a game env (PoolNineBall-v0, PoolEightBall-v0, the PettingZoo AEC envs), PoolBreakRun-v0 or a Game."""
         game = game_of(env)
         if game.has_rules:
-            return cls(game=game.mode, table=game.table, physics=game.physics, noise=game.noise,
+            return cls(game=game.mode, table=game.base_table, physics=game.base_physics, noise=game.noise,
                        rule_options=game.rule_options, decisions=game.layout.decision, **options)
-        return cls(game=None, table=game.table, physics=game.physics, spin=game.layout.spin, **options)
+        return cls(game=None, table=game.base_table, physics=game.base_physics, spin=game.layout.spin, **options)
 
     def reset(self, seed: int | None = None) -> None:
         if seed is not None:

@@ -126,5 +126,5 @@ def value_player(env, seed=None, **options) -> ValueSearchAgent:
     game = game_of(env)
     if not game.has_rules:
         raise TypeError("search+value plays the 9-ball game (PoolNineBall-v0)")
-    return ValueSearchAgent(game.mode, table=game.table, physics=game.physics, noise=game.noise,
+    return ValueSearchAgent(game.mode, table=game.base_table, physics=game.base_physics, noise=game.noise,
                             rule_options=game.rule_options, seed=0 if seed is None else seed, **options)

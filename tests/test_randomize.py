@@ -73,6 +73,25 @@ def test_draws_are_deterministic_by_seed_and_differ_between_seeds():
     assert drawn(5)[0] != drawn(6)[0]
 
 
+@pytest.mark.parametrize("env_id", ["PoolNineBall-v0", "PoolEightBall-v0", "ThreeCushion-v0", "Snooker-v0"])
+def test_episodes_against_a_built_in_opponent_repeat_by_seed(env_id):
+    # The opponent plans on the equipment the env was made with, never on a draw (a draw made
+    # while the env was built came from no seed: two envs of one seed then played apart).
+    def episode():
+        env = gym.make(env_id, randomize="default")
+        env.action_space.seed(3)
+        env.reset(seed=100)
+        out = []
+        for _ in range(3):
+            obs, reward, terminated, truncated, _ = env.step(env.action_space.sample())
+            out.append((obs.tobytes(), reward))
+            if terminated or truncated:
+                break
+        return out
+
+    assert episode() == episode()
+
+
 def test_without_randomize_nothing_is_drawn_and_the_rack_is_unchanged():
     plain = Game("nine_ball", seed=4)
     assert plain.sample is None and plain.table is plain.base_table

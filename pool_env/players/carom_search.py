@@ -47,9 +47,9 @@ class CaromSearchAgent(Agent):
             raise ValueError(f"carom_search plays three-cushion, not {game.mode!r}")
         if directions < 1 or shortlist < 1 or draws < 1:
             raise ValueError("directions, shortlist and draws must be >= 1")
-        self.planner = Game("three_cushion", table=game.table, physics=game.physics, noise=game.noise,
+        self.planner = Game("three_cushion", table=game.base_table, physics=game.base_physics, noise=game.noise,
                             layout=game.layout.name, **game.rule_options)
-        self.radius, self.mass = game.balls.radius, game.balls.mass
+        self.radius, self.mass = self.planner.balls.radius, self.planner.balls.mass  # nominal, not a draw
         self.directions, self.speeds, self.tips = int(directions), tuple(speeds), tuple(tips)
         self.shortlist, self.draws = int(shortlist), int(draws)
         self.rng = np.random.default_rng(seed)

@@ -60,7 +60,7 @@ class GameGhostBallAgent(Agent):
     def from_env(cls, env, **kwargs) -> GameGhostBallAgent:
         """For a game env, a two-player env or a `pool_env.game.Game` of 9-ball or 8-ball."""
         game = game_of(env)
-        return cls(game=game.mode, table=game.table, physics=game.physics, layout=game.layout.name, **kwargs)
+        return cls(game=game.mode, table=game.base_table, physics=game.base_physics, layout=game.layout.name, **kwargs)
 
     def act(self, observation) -> np.ndarray:
         view = decode_game_observation(observation, self.game, self.table)

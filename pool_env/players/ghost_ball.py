@@ -64,7 +64,7 @@ class BreakAgent(Agent):
     def from_env(cls, env, **kwargs) -> BreakAgent:
         """For a break env (or its `Game`)."""
         game = game_of(env)
-        return cls(table=game.table, spin=game.layout.spin, **kwargs)
+        return cls(table=game.base_table, spin=game.layout.spin, **kwargs)
 
     def act(self, observation) -> np.ndarray:
         xy, on_table = decode_observation(observation, self.table)
@@ -164,7 +164,7 @@ class GhostBallAgent(Agent):
     def from_env(cls, env, **kwargs) -> GhostBallAgent:
         """For a break env (or its `Game`)."""
         game = game_of(env)
-        return cls(table=game.table, physics=game.physics, spin=game.layout.spin, **kwargs)
+        return cls(table=game.base_table, physics=game.base_physics, spin=game.layout.spin, **kwargs)
 
     def act(self, observation) -> np.ndarray:
         xy, on_table = decode_observation(observation, self.table)

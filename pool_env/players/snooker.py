@@ -39,9 +39,9 @@ class SnookerPlayer(Agent):
         if not isinstance(game, Game) or game.mode != "snooker":
             raise ValueError(f"SnookerPlayer plays a snooker Game, got {game!r}")
         self.game = game
-        self.planner = Game("snooker", table=game.table, physics=game.physics, noise=game.noise,
+        self.planner = Game("snooker", table=game.base_table, physics=game.base_physics, noise=game.noise,
                             layout=game.layout.name, **game.rule_options)
-        self.pockets = pockets_of(game.table)
+        self.pockets = pockets_of(game.base_table)
         self.rng = np.random.default_rng(seed)
 
     @classmethod
