@@ -179,6 +179,28 @@ class Balls:
         xy_new[k], pocketed[k] = (x, y), False
         return Balls._trusted(xy_new, self.v, self.w, pocketed, self, self.air)
 
+    def sized(self, radii, masses) -> Balls:
+        """These balls with each ball's radius and mass replaced ((N,) arrays, finite and > 0).
+        Larger balls need more room: the balls on the table are spread about their centre by
+        g, the largest new radius over the smallest old one. Every centre distance grows by g
+        and every sum of two radii by at most g, so the gap between two balls (distance minus
+        radii) is at least g times what it was: balls apart stay apart (no check needed), and
+        these balls, checked when made, overlap by at most g times the contact tolerance."""
+        n = len(self)
+        radius, new_radii = _per_ball(radii, n, "radius")
+        mass, new_masses = _per_ball(masses, n, "mass")
+        xy = self.xy
+        grow = float(np.max(new_radii) / np.min(self._radii))
+        if grow > 1.0:
+            on = ~self.pocketed
+            centre = xy[on].mean(axis=0)
+            xy = xy.copy()
+            xy[on] = centre + (xy[on] - centre) * grow
+        out = Balls.__new__(Balls)
+        out.radius, out.mass = radius, mass
+        out._set(xy, self.v, self.w, self.pocketed, new_radii, new_masses, self.air)
+        return out
+
     def energy(self) -> float:
         """Kinetic energy (translation, vz included, and rotation) of the balls on the table (J)."""
         kinetic = kinetic_energy(self.v, self.w, self._radii, self._masses) + 0.5 * self._masses * self.air[:, 1] ** 2

@@ -142,16 +142,8 @@ class Sample:
         which scales every gap at least as much as any ball grew (no new overlaps)."""
         if self.radii is None and self.masses is None:
             return balls
-        radii = balls.radii if self.radii is None else self.radii
-        masses = balls.masses if self.masses is None else self.masses
-        xy = balls.xy
-        grow = float(np.max(radii) / np.min(balls.radii))
-        if grow > 1.0:
-            on = ~balls.pocketed
-            centre = xy[on].mean(axis=0)
-            xy = xy.copy()
-            xy[on] = centre + (xy[on] - centre) * grow
-        return Balls(xy, radius=radii, mass=masses, pocketed=balls.pocketed)
+        return balls.sized(balls.radii if self.radii is None else self.radii,
+                           balls.masses if self.masses is None else self.masses)
 
 
 def table_values(table: Table) -> dict:
@@ -171,9 +163,15 @@ def _mouth_columns(table):
     entries = table.pocket_entries
     if not entries.size:
         return np.zeros(0, dtype=bool), np.zeros(0, dtype=bool)
-    at_x = np.isclose(entries[:, 0], 0.0) | np.isclose(entries[:, 0], table.length)
-    at_y = np.isclose(entries[:, 1], 0.0) | np.isclose(entries[:, 1], table.width)
+    at_x = _near(entries[:, 0], 0.0) | _near(entries[:, 0], table.length)
+    at_y = _near(entries[:, 1], 0.0) | _near(entries[:, 1], table.width)
     return at_x & at_y, ~(at_x & at_y)
+
+
+def _near(a, b):
+    """np.isclose(a, b) with its default tolerances, for finite values, without its set-up
+    (this runs at every randomized reset)."""
+    return np.abs(a - b) <= 1e-8 + 1e-5 * abs(b)
 
 
 def table_with(table: Table, values: dict, masks=None) -> Table:
