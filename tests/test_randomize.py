@@ -226,6 +226,28 @@ def test_the_equipment_observation_carries_the_draw_and_reads_back():
         EquipmentObservation(gym.make("PoolBreak-v0"))
 
 
+@pytest.mark.parametrize("env_id", ["PoolBreak-v0", "PoolNineBall-v0", "ThreeCushion-v0"])
+def test_the_vector_equipment_observation_gives_each_sub_env_its_own_draw(env_id):
+    from pool_env.envs.equipment import EquipmentVectorObservation
+
+    kwargs = {"opponent": "random"} if env_id == "PoolNineBall-v0" else {}
+    envs = EquipmentVectorObservation(gym.make_vec(env_id, 3, vectorization_mode="vector_entry_point",
+                                                   randomize="default", **kwargs))
+    obs, infos = envs.reset(seed=7)
+    n = envs.env.single_observation_space.shape[0]
+    assert obs.shape == (3, n + envs.randomization.size) and envs.observation_space.contains(obs)
+    for k in range(3):  # each row reads back to the physics its sub-env's info reports
+        drawn = envs.randomization.unscaled(obs[k, n:])
+        assert drawn["mu_s"] == pytest.approx(infos["physics"]["mu_s"][k], abs=1e-6)
+    assert len({round(float(v), 6) for v in obs[:, n]}) == 3  # three draws, three rows
+    obs, *_ = envs.step(envs.action_space.sample())
+    assert envs.observation_space.contains(obs)
+    with pytest.raises(TypeError, match="vector_entry_point"):
+        EquipmentVectorObservation(gym.make_vec(env_id, 2, vectorization_mode="sync", randomize="default", **kwargs))
+    with pytest.raises(TypeError, match="randomize="):
+        EquipmentVectorObservation(gym.make_vec(env_id, 2, vectorization_mode="vector_entry_point", **kwargs))
+
+
 def test_the_two_player_envs_draw_from_their_seed_too():
     from pool_env.multiagent import nine_ball_v0, three_cushion_v0
 
