@@ -21,9 +21,8 @@ TABLE_NAMES = ("cushion_height", "corner_mouth", "side_mouth")
 BALL_NAMES = ("ball_radius", "ball_mass")
 NAMES = PHYSICS_NAMES + TABLE_NAMES + BALL_NAMES
 
-# Measured cloth, ball and cushion values, in D. G. Alciatore's table of typical pool-equipment
-# properties ("Pool and billiards physics resources", billiards.colostate.edu; the same ranges
-# as the appendix of "The Illustrated Principles of Pool and Billiards"): ball-cloth sliding
+# Measured cloth, ball and cushion values, in D. G. Alciatore's approximate pool-equipment
+# properties (billiards.colostate.edu/threads/physics.html, "physical properties"): ball-cloth sliding
 # friction 0.15-0.4, rolling resistance 0.005-0.015, spin deceleration 5-15 rad/s^2 (mu_sp =
 # 2 R alpha / (5 g): 0.0058-0.0175 for a 2.25 in ball), ball-ball restitution 0.92-0.98,
 # ball-rail restitution 0.6-0.9. The cushion's friction (f_c) 0.1-0.3 brackets our 0.2 (Han
