@@ -311,16 +311,13 @@ class Table:
         side_shape = _shape(side_pocket, PocketShape.side, "side_pocket")
         set_("corner_pocket", corner_shape)
         set_("side_pocket", side_shape)
-        # Each side: start corner, direction along it, inward normal, length, depth across
-        # the table from it.
-        sides = [((0.0, 0.0), (1.0, 0.0), (0.0, 1.0), L, W), ((L, W), (-1.0, 0.0), (0.0, -1.0), L, W),
-                 ((0.0, W), (0.0, -1.0), (1.0, 0.0), W, L), ((L, 0.0), (0.0, 1.0), (-1.0, 0.0), W, L)]
+        sides = _sides(L, W)
         cuts = [[] for _ in sides]
-        built = []
-        for number, pocket in enumerate(pockets):
-            built.append(_place_pocket(number, pocket, sides, cuts, (corner_shape, side_shape), (L, W)))
+        entries = [_pocket_entry(k, p) for k, p in enumerate(pockets)]
+        built = [_place_pocket(k, entry, sides, cuts, (corner_shape, side_shape), (L, W))
+                 for k, entry in enumerate(entries)]
         # The pockets as given, (x, y, mouth) each: what Table(...) needs to build this table again.
-        set_("pocket_entries", as_rows([_pocket_entry(k, p) for k, p in enumerate(pockets)], 3))
+        set_("pocket_entries", as_rows(entries, 3))
         rails = []
         for s, (start, along, normal, span, _) in enumerate(sides):
             pos = 0.0
@@ -406,32 +403,18 @@ class Table:
                    side_pocket=snooker.MIDDLE_POCKET)
 
 
-def _place_pocket(number, pocket, sides, cuts, shapes, size):
-    """Pocket `number`'s jaws, facings and opening (pocket_shape.build_pocket), checked to fit
-    the table; appends the stretch of each rail its mouth cuts to `cuts`."""
-    x, y, mouth = _pocket_entry(number, pocket)
-    (corner_shape, side_shape), (L, W) = shapes, size
-    touching = []
-    for s, (start, along, _, span, _) in enumerate(sides):
-        rel = (x - start[0]) * along[0] + (y - start[1]) * along[1]
-        off = (x - start[0]) * along[1] - (y - start[1]) * along[0]
-        if abs(off) < PLACEMENT_SLACK and -PLACEMENT_SLACK <= rel <= span + PLACEMENT_SLACK:
-            touching.append((s, rel))
-    if not touching:
-        raise ValueError(f"pocket {number} at ({x}, {y}) is not on a rail or corner of the table")
-    corner = len(touching) == 2
-    shape = corner_shape if corner else side_shape
+def _place_pocket(number, entry, sides, cuts, shapes, size):
+    """Pocket `number`'s jaws, facings and opening (pocket_shape.build_pocket) from its checked
+    (x, y, mouth) `entry`, checked to fit the table; appends the stretch of each rail its mouth
+    cuts to `cuts`."""
+    x, y, mouth = entry
+    touching, corner, shape, trim, room, axis = _placement(number, x, y, shapes, size)
     half = mouth / math.sqrt(2.0) if corner else mouth / 2.0
-    # The nose rail stops on the rounded tip, this far past the jaw point.
-    trim = shape.jaw_radius / math.tan(math.radians(0.5 * shape.cut_angle))
-    # The room the mouth has: along each rail it sits on, to the far end of the rail
-    # (at a corner) or to the nearer end (on a rail); across the table, the depth.
-    room = min(min(sides[s][3] if corner else min(rel, sides[s][3] - rel), sides[s][4]) for s, rel in touching)
     # The jaw points and their rounded tips must lie on the rail(s).
     if half + trim >= room:
         widest = (room - trim) * (math.sqrt(2.0) if corner else 2.0)
         raise ValueError(
-            f"pocket {number} at ({x}, {y}) has a {mouth} m mouth, too wide for the {L} x {W} m table: "
+            f"pocket {number} at ({x}, {y}) has a {mouth} m mouth, too wide for the {size[0]} x {size[1]} m table: "
             f"its jaw points must lie on the rail{'s' if corner else ''} it sits on and its mouth must not "
             f"reach past the opposite rail, so its mouth can be at most {widest:.4g} m"
         )
@@ -443,10 +426,43 @@ def _place_pocket(number, pocket, sides, cuts, shapes, size):
             jaw_points.append((start[0] + edge * along[0], start[1] + edge * along[1]))
             noses.append((sign * along[0], sign * along[1]))
         cuts[s].append((max(rel - half - trim, 0.0), min(rel + half + trim, span), number))
+    return build_pocket(number, jaw_points, noses, axis, shape, mouth)
+
+
+@functools.lru_cache(maxsize=256)
+def _placement(number, x, y, shapes, size):
+    """What of pocket `number`'s place does not depend on its mouth (a randomized table keeps
+    its pockets' places, so each is worked out once): the (side, distance along it) of each
+    rail it sits on, whether it is a corner pocket, its shape, the trim of the nose rail past
+    its jaw points, the room its mouth has and its axis off the table."""
+    (corner_shape, side_shape), (L, W) = shapes, size
+    sides = _sides(L, W)
+    touching = []
+    for s, (start, along, _, span, _) in enumerate(sides):
+        rel = (x - start[0]) * along[0] + (y - start[1]) * along[1]
+        off = (x - start[0]) * along[1] - (y - start[1]) * along[0]
+        if abs(off) < PLACEMENT_SLACK and -PLACEMENT_SLACK <= rel <= span + PLACEMENT_SLACK:
+            touching.append((s, rel))
+    if not touching:
+        raise ValueError(f"pocket {number} at ({x}, {y}) is not on a rail or corner of the table")
+    corner = len(touching) == 2
+    shape = corner_shape if corner else side_shape
+    # The nose rail stops on the rounded tip, this far past the jaw point.
+    trim = shape.jaw_radius / math.tan(math.radians(0.5 * shape.cut_angle))
+    # The room the mouth has: along each rail it sits on, to the far end of the rail
+    # (at a corner) or to the nearer end (on a rail); across the table, the depth.
+    room = min(min(sides[s][3] if corner else min(rel, sides[s][3] - rel), sides[s][4]) for s, rel in touching)
     normals = [sides[s][2] for s, _ in touching]
     ax, ay = -sum(n[0] for n in normals), -sum(n[1] for n in normals)
     norm = math.hypot(ax, ay)
-    return build_pocket(number, jaw_points, noses, (ax / norm, ay / norm), shape, mouth)
+    return tuple(touching), corner, shape, trim, room, (ax / norm, ay / norm)
+
+
+def _sides(L, W):
+    """Each side of an L x W table: start corner, direction along it, inward normal, length, depth
+    across the table from it."""
+    return [((0.0, 0.0), (1.0, 0.0), (0.0, 1.0), L, W), ((L, W), (-1.0, 0.0), (0.0, -1.0), L, W),
+            ((0.0, W), (0.0, -1.0), (1.0, 0.0), W, L), ((L, 0.0), (0.0, 1.0), (-1.0, 0.0), W, L)]
 
 
 def _shape(value, default, name):

@@ -35,6 +35,7 @@ nose height h, sin theta = h/R - 1), a jaw tip at reach + jaw_radius from the ti
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 
 import numpy as np
@@ -102,8 +103,7 @@ def build_pocket(number, jaw_points, noses, axis, shape, mouth):
     points and the axis)."""
     (p1, p2), (u1, u2), (ax, ay) = jaw_points, noses, axis
     mx, my = 0.5 * (p1[0] + p2[0]), 0.5 * (p1[1] + p2[1])
-    alpha = math.radians(shape.cut_angle)
-    tan_half = math.tan(0.5 * alpha)
+    cos_cut, sin_cut, t, c = _jaw_constants(shape)
     opening_radius = 0.5 * mouth if shape.opening_radius is None else shape.opening_radius
     depth_end = shape.shelf + opening_radius
     ox, oy = mx + depth_end * ax, my + depth_end * ay
@@ -112,13 +112,11 @@ def build_pocket(number, jaw_points, noses, axis, shape, mouth):
         # Unit vector across the table from this jaw (its rail's inward normal) and the facing
         # direction: the nose turned by the cut angle towards the cushion's side.
         nx, ny = _inward(ux, uy, ax, ay)
-        fx, fy = math.cos(alpha) * ux - math.sin(alpha) * nx, math.cos(alpha) * uy - math.sin(alpha) * ny
+        fx, fy = cos_cut * ux - sin_cut * nx, cos_cut * uy - sin_cut * ny
         along = fx * ax + fy * ay
         if along <= 0.0:
             raise ValueError(f"pocket {number}: a {shape.cut_angle} degree cut sends the facing back onto the table")
-        t = shape.jaw_radius / tan_half  # jaw point to each tangent point
         bx, by = _unit(ux + fx, uy + fy)  # into the cushion's wedge, halving it
-        c = shape.jaw_radius / math.sin(0.5 * alpha)
         tips.append((px + c * bx, py + c * by, shape.jaw_radius))
         nose_ends.append((px + t * ux, py + t * uy))
         end = depth_end / along
@@ -144,6 +142,16 @@ def build_pocket(number, jaw_points, noses, axis, shape, mouth):
     reach = max(math.hypot(x - mx, y - my) + r for x, y, r in points)
     return {"facings": facings, "tips": tips, "nose_ends": nose_ends, "opening": opening,
             "reach": (mx, my, reach), "mouth": (p1[0], p1[1], p2[0], p2[1], ax, ay)}
+
+
+@functools.lru_cache(maxsize=64)
+def _jaw_constants(shape):
+    """What a jaw of `shape` needs of its cut angle alpha: cos alpha, sin alpha, the distance t
+    from the jaw point to each tangent point of the rounded tip (r / tan(alpha / 2)) and from
+    the jaw point to the tip's centre (r / sin(alpha / 2)); worked out once per shape."""
+    alpha = math.radians(shape.cut_angle)
+    return (math.cos(alpha), math.sin(alpha), shape.jaw_radius / math.tan(0.5 * alpha),
+            shape.jaw_radius / math.sin(0.5 * alpha))
 
 
 def _entry(facing, opening):
