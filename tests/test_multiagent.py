@@ -332,3 +332,43 @@ def test_a_copy_of_a_game_under_way_continues_exactly(copier):
         assert np.array_equal(env.observe("player_0"), twin.observe("player_0"))
         assert env.rewards == twin.rewards
         assert {a: named(i) for a, i in env.infos.items()} == {a: named(i) for a, i in twin.infos.items()}
+
+
+@pytest.mark.parametrize("obs_type", ["pixels", "dict"])
+@pytest.mark.parametrize("name", ["nine_ball_v0", "eight_ball_v0", "snooker_v0", "three_cushion_v0"])
+def test_api_test_passes_for_the_observation_types(name, obs_type):
+    module = importlib.import_module(f"pool_env.multiagent.{name}")
+    env = module.env(obs_type=obs_type)
+    api_test(WithoutApiTestsProbe(env), num_cycles=40)
+    assert env.observation_space("player_0") is env.observation_space("player_1")
+
+
+@pytest.mark.parametrize("obs_type", ["pixels", "dict"])
+def test_the_two_player_observation_types_are_the_single_agent_envs(obs_type):
+    # The same seed racks the same table in both envs; player_0 sees what PoolNineBall-v0's agent sees.
+    import gymnasium as gym
+
+    single, _ = gym.make("PoolNineBall-v0", obs_type=obs_type).reset(seed=5)
+    env = nine_ball_v0.env(obs_type=obs_type)
+    env.reset(seed=5)
+    mine = env.observe("player_0")
+    if obs_type == "pixels":
+        assert mine.shape == (84, 84, 3) and np.array_equal(mine, single)
+        assert np.array_equal(env.observe("player_1"), mine)  # a frame is the same from either side
+    else:
+        assert mine.keys() == single.keys() and all(np.array_equal(mine[k], single[k]) for k in mine)
+
+
+def test_the_text_observation_tells_each_player_whose_shot_it_was():
+    env = nine_ball_v0.env(obs_type="text")
+    env.reset(seed=0)
+    assert "last shot: none yet" in env.observe("player_0")
+    assert "to shoot: the agent" in env.observe("player_0") and "to shoot: the opponent" in env.observe("player_1")
+    env.step(np.array([1.0, 0.0, 0.0, 0.0, 0.0, 0.0], dtype=np.float32))  # player_0 breaks
+    # A full break meets the 1 ball first (WPA 2.2: it is racked at the apex, on the foot spot).
+    contact = env.unwrapped.last_record.outcome.first_contact
+    mine, theirs = env.observe("player_0"), env.observe("player_1")
+    assert "both players' shots 1 of 200" in mine
+    assert "by the agent:" in mine and "by the opponent:" in theirs
+    assert contact == 1 and "first contact: ball 1" in mine and "first contact: ball 1" in theirs
+    assert env.observation_space("player_0").contains(mine)

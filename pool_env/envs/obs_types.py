@@ -31,11 +31,12 @@ class Observer:
     `one(captured)` makes it, `batch(captured_list)` makes many at once, as the vector env's
     batched space holds them (pixels: one compiled call for every frame).
 
-    `state(env)` is the env's state vector (its "state" observation); `records(env)` the last
-    step's `ShotRecord`s; `shots(env)` the agent's shots this episode."""
+    `state(env)` is the env's state vector (its "state" observation, in `state_space`, by default
+    the env's `observation_space`). A two-player env observes from either player's side: it
+    makes that player's state vector itself and hands it to `one` ("state", "dict")."""
 
     def __init__(self, env, obs_type: str, state, obs_size=(84, 84), grayscale=False, decisions=False,
-                 carom_rules=None):
+                 carom_rules=None, state_space=None):
         self.obs_type, self.state = check_obs_type(obs_type), state
         game = env.game
         self.mode, self.max_shots = game.mode, env.max_shots
@@ -49,7 +50,7 @@ class Observer:
         elif obs_type == "text":
             self.space = text_space()
         else:
-            self.space = env.observation_space
+            self.space = env.observation_space if state_space is None else state_space
 
     def capture(self, env):
         if self.obs_type == "pixels":

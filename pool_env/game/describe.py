@@ -102,14 +102,15 @@ def describe_state(game, agent: int = 0) -> list[str]:
     return lines
 
 
-def describe(game, records, shots: int, max_shots: int, agent: int = 0) -> str:
+def describe(game, records, shots: int, max_shots: int, agent: int = 0, counted: str = "agent's shots") -> str:
     """The text observation: the table, the last step's shots (`records`, `ShotRecord`s), the
     rules' state and the balls now (positions in metres from the corner at x = y = 0, x along the
-    length), all in the characters of `TEXT_CHARSET`."""
+    length), all in the characters of `TEXT_CHARSET`, from the side of player `agent` ("the
+    agent"; the other is "the opponent"); `counted` names what `shots` counts against `max_shots`."""
     table, balls, mode = game.table, game.balls, game.mode
     who = lambda record: "agent" if record.shooter == agent else "opponent"  # noqa: E731
     lines = [f"{game.label}, table {table.length:.3f} m x {table.width:.3f} m inside the cushion noses, "
-             f"agent's shots {shots} of {max_shots}" + (f"; player {agent} is the agent" if game.state else "")]
+             f"{counted} {shots} of {max_shots}" + (f"; player {agent} is the agent" if game.state else "")]
     if len(table.pockets):
         lines.append("pockets (x, y in m): " + "; ".join(f"{k} ({x:.3f}, {y:.3f})" for k, (x, y, _)
                                                          in enumerate(np.asarray(table.pockets).tolist())))

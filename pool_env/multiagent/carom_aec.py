@@ -7,7 +7,9 @@ import numpy as np
 from gymnasium.utils import seeding
 from pettingzoo import AECEnv
 
+from ..envs.obs_types import Observer
 from ..game import CAROM_OBSERVATION_SIZE, Game, carom_observation
+from ..game.describe import describe
 
 AGENTS = ("player_0", "player_1")
 
@@ -21,7 +23,8 @@ class ThreeCushionAEC(AECEnv):
     Arguments: `noise`, `points` (15), `innings_limit`, `equalizing`, `max_shots` (400 in all),
     `table`, `physics`. Actions `Box(-1, 1, (4,))` (the "cue_spin" layout, striking the
     shooter's own cue ball); observations `pool_env.game.carom_observation` from each agent's
-    side. Rewards: +1 to the shooter per point, -1 to the other. The game's end terminates
+    side (`obs_type`, `obs_size`, `grayscale`: as ThreeCushion-v0's, "state" and "dict" from the
+    observing agent's side). Rewards: +1 to the shooter per point, -1 to the other. The game's end terminates
     both agents; the shot limit or a shot that could not be simulated truncates them. Infos
     (both agents): `shooter`, `point`, `scores`, `innings`, `winner` (-1 none, else k of
     `player_k`), `draw`, `error`."""
@@ -29,7 +32,8 @@ class ThreeCushionAEC(AECEnv):
     metadata = {"name": "three_cushion_v0", "render_modes": [], "is_parallelizable": False, "render_fps": 30}
 
     def __init__(self, noise=None, points: int | None = 15, innings_limit: int | None = None, equalizing: bool = True,
-                 max_shots: int = 400, table=None, physics=None, render_mode=None, randomize=None):
+                 max_shots: int = 400, table=None, physics=None, render_mode=None, randomize=None, obs_type="state",
+                 obs_size=(84, 84), grayscale=False):
         super().__init__()
         if render_mode is not None:
             raise ValueError(f"three_cushion_v0 has no render mode yet, got {render_mode!r}")
@@ -39,7 +43,11 @@ class ThreeCushionAEC(AECEnv):
                          innings_limit=innings_limit, equalizing=equalizing, randomize=randomize)
         self.max_shots, self.render_mode = max_shots, None
         self.possible_agents = list(AGENTS)
-        self.observation_spaces = {a: gym.spaces.Box(-1.0, 1.0, (CAROM_OBSERVATION_SIZE,), np.float32) for a in AGENTS}
+        state = gym.spaces.Box(-1.0, 1.0, (CAROM_OBSERVATION_SIZE,), np.float32)
+        self.observer = Observer(self, obs_type, None, obs_size, grayscale, carom_rules=self.game.state.rules,
+                                 state_space=state)
+        self.obs_type, self.last_record = obs_type, None
+        self.observation_spaces = dict.fromkeys(AGENTS, self.observer.space)
         self.action_spaces = {a: gym.spaces.Box(-1.0, 1.0, (self.game.layout.size,), np.float32) for a in AGENTS}
         self.np_random, self.shots, self._started, self.agents = None, 0, False, []
 
@@ -56,7 +64,7 @@ class ThreeCushionAEC(AECEnv):
         if seed is not None or self.np_random is None:
             self.np_random, _ = seeding.np_random(seed)
         self.game.reset(rng=self.np_random, breaker=int(options.get("breaker", 0)))
-        self.shots, self._started, self.agents = 0, True, list(AGENTS)
+        self.shots, self._started, self.agents, self.last_record = 0, True, list(AGENTS), None
         self.rewards = dict.fromkeys(AGENTS, 0.0)
         self._cumulative_rewards = dict.fromkeys(AGENTS, 0.0)
         self.terminations = dict.fromkeys(AGENTS, False)
@@ -72,7 +80,7 @@ class ThreeCushionAEC(AECEnv):
             self._was_dead_step(action)
             return
         record = self.game.play(action)
-        self.shots += 1
+        self.shots, self.last_record = self.shots + 1, record
         self._cumulative_rewards[agent] = 0.0
         self.rewards = dict.fromkeys(AGENTS, 0.0)
         point = record.error is None and bool(record.ruling.point)
@@ -96,8 +104,19 @@ class ThreeCushionAEC(AECEnv):
     def observe(self, agent):
         if not self._started:
             raise RuntimeError("call reset() before observe()")
+        viewer = AGENTS.index(agent)
+        if self.obs_type == "pixels":  # the same frame from either side
+            return self.observer.observe(self)
+        if self.obs_type == "text":  # from the observer's side ("the agent"), both players' shots counted
+            return describe(self.game, self.step_records, self.shots, self.max_shots, viewer, "both players' shots")
         g = self.game
-        return carom_observation(g.balls, g.state, AGENTS.index(agent), self.shots, self.max_shots, g.table)
+        return self.observer.one(carom_observation(g.balls, g.state, viewer, self.shots, self.max_shots, g.table))
+
+    @property
+    def step_records(self) -> tuple:
+        """The last shot's `ShotRecord` as a one-tuple (none before the first shot): what the
+        "text" observation describes."""
+        return () if self.last_record is None else (self.last_record,)
 
     def render(self):
         gym.logger.warn("three_cushion_v0 has no render mode yet")

@@ -11,7 +11,9 @@ from pettingzoo.utils import wrappers
 from ..envs.break_env import can_render, check_env_options, check_reset_options
 from ..envs.game_env import SHAPING_BALL, SHAPING_FOUL, PoolGameEnv, captioned, shot_caption
 from ..envs.infos import check_info_mode, no_shot_info, record_info, rich_info, sampled_info, score_info, winner_code
+from ..envs.obs_types import Observer
 from ..game import GAME_BALLS, Game, env_layout, game_observation, game_observation_size
+from ..game.describe import describe
 from ..render.overlay import overlay
 from ..render.playback import ShotPlayback
 from ..render.table import game_palette
@@ -51,7 +53,9 @@ class PoolGameAEC(AECEnv):
     | `info_mode` | `"numeric"` | `"rich"` adds the shot's record to the infos |
     | `decisions` | False | decision turns, as PoolGameEnv's: the deciding player's turn is his decision
       (the action's decision entry; no shot, no reward, the infos stay the last shot's) |
-    | `rule_options`, `table`, `physics`, `render_mode`, `render_size` | | as PoolGameEnv's |
+    | `obs_type` | `"state"` | `"state"`, `"pixels"`, `"dict"` or `"text"`, with `obs_size` and `grayscale`,
+      as PoolGameEnv's (docs/observations.md); "state" and "dict" from the observing agent's side |
+    | `rule_options`, `table`, `physics`, `render_mode`, `render_size`, `randomize` | | as PoolGameEnv's |
 
     - **Actions** `action_space(agent)`: PoolGameEnv's Box(-1, 1, (6,)) for 9-ball, (8,) for
       8-ball (force, tip offset, cue-ball placement used with ball in hand, 8-ball: the
@@ -95,7 +99,8 @@ class PoolGameAEC(AECEnv):
 
     def __init__(self, game="nine_ball", render_mode=None, noise=None, shaping=False, max_shots=200,
                  rule_options=None, table=None, physics=None, render_size=(640, 360), info_mode="numeric",
-                 elevation=False, decisions=False, randomize=None):
+                 elevation=False, decisions=False, randomize=None, obs_type="state", obs_size=(84, 84),
+                 grayscale=False):
         super().__init__()
         self.info_mode = check_info_mode(info_mode)
         if game not in GAME_BALLS:
@@ -112,8 +117,10 @@ class PoolGameAEC(AECEnv):
                                      deferred=render_mode is not None, palette=game_palette(game))
         self.possible_agents = list(AGENTS)
         space = gym.spaces.Box(-1.0, 1.0, (self.game.layout.size,), np.float32)
-        size = game_observation_size(game, self.decisions)
-        self.observation_spaces = dict.fromkeys(AGENTS, gym.spaces.Box(-1.0, 1.0, (size,), np.float32))
+        state = gym.spaces.Box(-1.0, 1.0, (game_observation_size(game, self.decisions),), np.float32)
+        self.observer = Observer(self, obs_type, None, obs_size, grayscale, self.decisions, state_space=state)
+        self.obs_type = obs_type
+        self.observation_spaces = dict.fromkeys(AGENTS, self.observer.space)
         self.action_spaces = dict.fromkeys(AGENTS, space)
         self.agents = []
         self.np_random, self.np_random_seed = None, None
@@ -233,8 +240,18 @@ class PoolGameAEC(AECEnv):
         if not self._started:
             raise RuntimeError("call reset() before observe()")
         viewer = AGENTS.index(self._check_agent(agent))
-        return game_observation(self.game.balls, self.game.state, viewer, self.shots, self.max_shots, self.table,
-                                self.decisions)
+        if self.obs_type == "pixels":  # the same frame from either side
+            return self.observer.observe(self)
+        if self.obs_type == "text":  # from the observer's side ("the agent"), both players' shots counted
+            return describe(self.game, self.step_records, self.shots, self.max_shots, viewer, "both players' shots")
+        return self.observer.one(game_observation(self.game.balls, self.game.state, viewer, self.shots,
+                                                  self.max_shots, self.table, self.decisions))
+
+    @property
+    def step_records(self) -> tuple:
+        """The last shot's `ShotRecord` as a one-tuple (none before the first shot): what the
+        "text" observation describes."""
+        return () if self.last_record is None else (self.last_record,)
 
     def render(self):
         if not can_render(self.render_mode, self._started):
