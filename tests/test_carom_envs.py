@@ -77,6 +77,33 @@ def test_the_pettingzoo_api_test_passes():
     api_test(WithoutProbe(three_cushion_v0.env(points=2, innings_limit=5)), num_cycles=200)
 
 
+@pytest.mark.skipif(pettingzoo is None, reason="needs pettingzoo")
+def test_the_two_player_env_renders_the_table_and_the_last_shot():
+    from pettingzoo.test import render_test
+
+    from pool_env.multiagent import three_cushion_v0
+
+    def make(render_mode=None):  # render_test opens "human" only to read the metadata: no window here
+        return three_cushion_v0.env(render_mode=None if render_mode == "human" else render_mode, points=2,
+                                    innings_limit=3)
+
+    render_test(make, {"rgb_array_list": lambda frames: all(f.ndim == 3 and f.dtype == np.uint8 for f in frames)})
+    env = three_cushion_v0.env(render_mode="rgb_array_list", render_size=(320, 180))
+    env.reset(seed=0)
+    (start,) = env.render()
+    assert start.shape == (180, 320, 3) and start.dtype == np.uint8
+    env.step(np.array([0.8, 0.3, 0.0, 0.0], dtype=np.float32))
+    frames = env.render()
+    assert len(frames) > 2 and not np.array_equal(frames[0], frames[-1])  # the balls moved
+    record = env.unwrapped.last_record
+    assert np.array_equal(record.balls_after.xy, env.unwrapped.game.balls.xy)
+    still = three_cushion_v0.env(render_mode="rgb_array")
+    still.reset(seed=0)
+    assert still.render().shape == (360, 640, 3)
+    with pytest.raises(ValueError, match="render_mode"):
+        three_cushion_v0.env(render_mode="human")
+
+
 def test_a_saved_game_replays_and_a_changed_one_does_not():
     from pool_env.players import RandomAgent
     from pool_env.records.saved import ReplayMismatch

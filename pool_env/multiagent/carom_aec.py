@@ -7,9 +7,13 @@ import numpy as np
 from gymnasium.utils import seeding
 from pettingzoo import AECEnv
 
+from ..envs.break_env import can_render, check_env_options
+from ..envs.game_env import captioned, shot_caption
 from ..envs.obs_types import Observer
 from ..game import CAROM_OBSERVATION_SIZE, Game, carom_observation
 from ..game.describe import describe
+from ..render.overlay import overlay
+from ..render.playback import ShotPlayback
 
 AGENTS = ("player_0", "player_1")
 
@@ -27,21 +31,22 @@ class ThreeCushionAEC(AECEnv):
     observing agent's side). Rewards: +1 to the shooter per point, -1 to the other. The game's end terminates
     both agents; the shot limit or a shot that could not be simulated truncates them. Infos
     (both agents): `shooter`, `point`, `scores`, `innings`, `winner` (-1 none, else k of
-    `player_k`), `draw`, `error`."""
+    `player_k`), `draw`, `error`. `render_mode` "rgb_array" (the table now, with the score and
+    innings) or "rgb_array_list" (the last shot's frames, captioned), at `render_size`."""
 
-    metadata = {"name": "three_cushion_v0", "render_modes": [], "is_parallelizable": False, "render_fps": 30}
+    metadata = {"name": "three_cushion_v0", "render_modes": ["rgb_array", "rgb_array_list"], "is_parallelizable": False,
+                "render_fps": 30}
 
     def __init__(self, noise=None, points: int | None = 15, innings_limit: int | None = None, equalizing: bool = True,
                  max_shots: int = 400, table=None, physics=None, render_mode=None, randomize=None, obs_type="state",
-                 obs_size=(84, 84), grayscale=False):
+                 obs_size=(84, 84), grayscale=False, render_size=(640, 360)):
         super().__init__()
-        if render_mode is not None:
-            raise ValueError(f"three_cushion_v0 has no render mode yet, got {render_mode!r}")
-        if isinstance(max_shots, bool) or not isinstance(max_shots, int) or max_shots < 1:
-            raise ValueError(f"max_shots must be an integer >= 1, got {max_shots!r}")
+        self.max_shots = check_env_options(render_mode, self.metadata["render_modes"], max_shots)
         self.game = Game("three_cushion", table=table, physics=physics, noise=noise, points=points,
                          innings_limit=innings_limit, equalizing=equalizing, randomize=randomize)
-        self.max_shots, self.render_mode = max_shots, None
+        self.render_mode, self.render_size = render_mode, (int(render_size[0]), int(render_size[1]))
+        self.playback = ShotPlayback(self.game.table, self.render_size, self.metadata["render_fps"],
+                                     deferred=render_mode is not None, palette="carom")
         self.possible_agents = list(AGENTS)
         state = gym.spaces.Box(-1.0, 1.0, (CAROM_OBSERVATION_SIZE,), np.float32)
         self.observer = Observer(self, obs_type, None, obs_size, grayscale, carom_rules=self.game.state.rules,
@@ -62,8 +67,12 @@ class ThreeCushionAEC(AECEnv):
         if set(options) - {"breaker"}:
             raise ValueError(f"three_cushion_v0's reset takes only the 'breaker' option, got {sorted(options)}")
         if seed is not None or self.np_random is None:
-            self.np_random, _ = seeding.np_random(seed)
+            self.np_random, self.np_random_seed = seeding.np_random(seed)
         self.game.reset(rng=self.np_random, breaker=int(options.get("breaker", 0)))
+        # The balls' markers (only the frames show them), from a generator of their own: the game's
+        # draws stay the same whether or not the env renders.
+        quaternions = np.random.default_rng(self.np_random_seed).normal(size=(len(self.game.balls), 4))
+        self.playback.reset(self.game.balls, quaternions)
         self.shots, self._started, self.agents, self.last_record = 0, True, list(AGENTS), None
         self.rewards = dict.fromkeys(AGENTS, 0.0)
         self._cumulative_rewards = dict.fromkeys(AGENTS, 0.0)
@@ -81,6 +90,9 @@ class ThreeCushionAEC(AECEnv):
             return
         record = self.game.play(action)
         self.shots, self.last_record = self.shots + 1, record
+        if record.error is None:  # the playback follows the shot
+            self.playback.shot(record.result)
+            self.playback.place(record.balls_after)
         self._cumulative_rewards[agent] = 0.0
         self.rewards = dict.fromkeys(AGENTS, 0.0)
         point = record.error is None and bool(record.ruling.point)
@@ -119,7 +131,26 @@ class ThreeCushionAEC(AECEnv):
         return () if self.last_record is None else (self.last_record,)
 
     def render(self):
-        gym.logger.warn("three_cushion_v0 has no render mode yet")
+        """"rgb_array": the table now with the game's line (whose shot or the result, the score,
+        the innings); "rgb_array_list": the last shot's frames, captioned (the starting frame
+        before the first shot); None without a render mode."""
+        if not can_render(self.render_mode, self._started):
+            return None
+        record = self.last_record
+        if self.render_mode == "rgb_array" or record is None or record.error is not None:
+            frame = overlay(self.playback.frame(), [self._line()])
+            return frame if self.render_mode == "rgb_array" else [frame]
+        caption = shot_caption(self.game, record, AGENTS[record.shooter])
+        return captioned([self.playback.shot_frames()], [(caption, list(record.ruling.messages))])
+
+    def _line(self) -> str:
+        state = self.game.state
+        if state.ended:
+            who = "a draw" if state.winner is None else f"{AGENTS[state.winner]} wins"
+        else:
+            who = f"{AGENTS[state.shooter]} to shoot"
+        return (f"three-cushion: {who}, score {state.scores[0]}-{state.scores[1]}, "
+                f"innings {state.innings[0]}-{state.innings[1]}")
 
     def close(self):
-        pass
+        self.playback.close()
