@@ -287,14 +287,14 @@ def test_pocketless_table_rewards_the_spread():
 
 
 def test_simulation_failure_truncates_with_error(monkeypatch):
-    import pool_env.game.core as game_core
+    import pool_env.game.batch as game_batch
 
     def broken(*args, **kwargs):
         raise SimulationError("simulation exceeded the event cap of 1 events")
 
     env = PoolBreakEnv(max_shots=5)
     obs0, _ = env.reset(seed=0)
-    monkeypatch.setattr(game_core, "simulate", broken)
+    monkeypatch.setattr(game_batch, "simulate", broken)
     with pytest.warns(UserWarning, match="event cap"):
         obs, reward, terminated, truncated, info = env.step(BREAK)
     assert (reward, terminated, truncated) == (0.0, False, True)

@@ -289,7 +289,7 @@ def test_threads_do_not_change_results():
 
 
 def test_a_failed_shot_truncates_only_its_sub_env(monkeypatch):
-    import pool_env.game.core as game_core
+    import pool_env.game.batch as game_batch
 
     def second_fails(balls_list, *args, **kwargs):
         out = simulate_batch(balls_list, *args, **kwargs)
@@ -302,7 +302,7 @@ def test_a_failed_shot_truncates_only_its_sub_env(monkeypatch):
     ref.reset(seed=0)
     actions = np.array([[1.0, 0.0], [1.0, 0.0], [0.3, 0.2]], np.float32)
     ref_out = ref.step(actions)
-    monkeypatch.setattr(game_core, "simulate_batch", second_fails)
+    monkeypatch.setattr(game_batch, "simulate_batch", second_fails)
     with pytest.warns(UserWarning, match="event cap"):
         obs, rewards, terminations, truncations, infos = envs.step(actions)
     assert (rewards[1], terminations[1], truncations[1]) == (0.0, False, True)

@@ -14,8 +14,9 @@ from .actions import (
     encoded_entries,
     env_layout,
 )
+from .batch import play_batch, simulate_struck, simulate_struck_batch
 from .carom_observation import CAROM_OBSERVATION_SIZE, CaromView, carom_observation, decode_carom_observation
-from .core import Game, GameSnapshot, ShotRecord, StruckShot, play_batch, simulate_struck, simulate_struck_batch
+from .core import Game
 from .modes import MODES, RULES_MODES, Mode, mode_of
 from .observation import (
     GAME_BALLS,
@@ -31,6 +32,7 @@ from .observation import (
 )
 from .placement import place_cue_ball, placement_area
 from .shot import CONTACT_TIME, MAX_FORCE, MAX_SPEED, MAX_TIP_OFFSET, NOISE_PRESETS, Shot, noise_of, noisy_shot
+from .shot_record import GameSnapshot, ShotRecord, StruckShot
 from .snooker_observation import SnookerView, decode_snooker_observation, snooker_observation
 
 __all__ = [

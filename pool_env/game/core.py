@@ -3,12 +3,11 @@
 from __future__ import annotations
 
 import copy
-from dataclasses import dataclass
 
 import numpy as np
 
 from .. import rules
-from ..physics import BALL_RADIUS, Balls, Physics, Result, SimulationError, Table, simulate, simulate_batch, strike
+from ..physics import BALL_RADIUS, Balls, Physics, Table, strike
 from ..physics.randomize import Randomization, Sample
 from ..physics.simulate import check_on_table
 from .actions import (
@@ -21,107 +20,15 @@ from .actions import (
     encode_decision,
     encoded_entries,
 )
+from .batch import SHOT_ERRORS, simulate_struck, simulate_struck_batch
 from .modes import Mode, mode_of
 from .placement import area_centre, place_cue_ball, placement_area
 from .shot import CONTACT_TIME, Shot, noise_of, noisy_shot
+from .shot_record import GameSnapshot, ShotRecord, StruckShot
 
-SHOT_ERRORS = (SimulationError, ValueError)  # a shot that cannot be struck or simulated: recorded, not raised
 CUE_AREA = ((0.05, 0.25), (0.1, 0.9))  # randomize_cue: the cue ball's start, as fractions of L and W
 CALLING_RULES = ("eight_ball", "ten_ball")  # the games whose shots call a pocket (and a ball)
 CUE_TRIES = 1000  # draws of a random cue spot before falling back to the head spot
-
-
-@dataclass(eq=False, slots=True)
-class StruckShot:
-    """A shot ready to simulate (`Game.strike`): who shoots, what he meant (`shot`, and the
-    `action` it was read from, if any), his ball in hand, the called pocket (and ball), the balls at rest
-    with the cue ball placed (`placed`), the cue's force, tip and elevation as executed (noise
-    included), and `balls`, the struck balls to simulate, or the ValueError striking raised. Read-only by
-    convention (not frozen: it is made for every shot, and a frozen dataclass is slow to make)."""
-
-    shot: Shot
-    shooter: int
-    ball_in_hand: str | None
-    called_pocket: int | None
-    placed: Balls
-    force: tuple
-    tip: tuple
-    balls: Balls | Exception
-    action: tuple | None = None
-    elevation: float = 0.0
-    called_ball: int | None = None
-    push_out: bool = False
-
-
-@dataclass(eq=False, slots=True)
-class ShotRecord:
-    """What one shot did (`Game.play`, `Game.evaluate`).
-
-    `shooter`, `shot`, `action`, `ball_in_hand`, `called_pocket`, `called_ball`, `force`, `tip`
-    and `elevation` (executed) as in `StruckShot`; `balls_before` the balls at rest before the strike (the cue ball
-    placed) and `state_before` the rules' state then, `balls_after` at rest after it
-    (spotted balls back on the table); `result` the
-    physics `Result` (events, trajectories, stats); `ruling` the rules' `Ruling` and
-    `state_after` the next `rules.GameState` (None in the break and run modes); `over` the
-    game ended with this shot; `error` why the shot could not be simulated (then `result` is
-    None, the game did not change and the balls are `balls_before`). Read-only by convention."""
-
-    shooter: int
-    shot: Shot
-    action: tuple | None
-    ball_in_hand: str | None
-    called_pocket: int | None
-    force: tuple
-    tip: tuple
-    balls_before: Balls
-    state_before: rules.GameState | None
-    balls_after: Balls
-    result: Result | None
-    ruling: rules.Ruling | None
-    state_after: rules.GameState | None
-    over: bool
-    error: str | None = None
-    judged: rules.ShotOutcome | None = None
-    elevation: float = 0.0
-    called_ball: int | None = None
-
-    @property
-    def outcome(self) -> rules.ShotOutcome | None:
-        """What the rules see of the shot (`rules.ShotOutcome`, read once); None for a failed shot."""
-        if self.judged is None and self.result is not None:
-            self.judged = rules.read_outcome(self.state_before, self.result)
-        return self.judged
-
-    @property
-    def pocketed(self) -> tuple:
-        """The object balls that dropped, in the order they dropped."""
-        return () if self.outcome is None else self.outcome.pocketed
-
-    @property
-    def scratch(self) -> bool:
-        """The cue ball dropped."""
-        return bool(self.result is not None and self.result.final.pocketed[0])
-
-    @property
-    def foul(self) -> str | None:
-        return None if self.ruling is None else self.ruling.foul
-
-    @property
-    def events(self) -> list:
-        return [] if self.result is None else self.result.events
-
-
-@dataclass(frozen=True)
-class GameSnapshot:
-    """A game's whole state (`Game.snapshot`), the noise generator's included; `Game.restore`
-    puts it back exactly. `key` names the game it belongs to (mode, table, physics, noise, rules)."""
-
-    key: tuple
-    balls: Balls
-    state: rules.GameState | None
-    shots: int
-    over: bool
-    rng_state: dict
 
 
 def table_key(table: Table) -> tuple:
@@ -644,44 +551,3 @@ class Game:
         twin = np.random.Generator(type(self.rng.bit_generator)())
         twin.bit_generator.state = copy.deepcopy(self.rng.bit_generator.state)
         return twin
-
-
-def simulate_struck(struck: StruckShot, table: Table, physics: Physics):
-    """The `Result` of a struck shot, or the SimulationError or ValueError it raised (a shot
-    that could not be struck passes its ValueError on)."""
-    if isinstance(struck.balls, Exception):
-        return struck.balls
-    try:
-        return simulate(struck.balls, table, physics)
-    except SHOT_ERRORS as exc:
-        return exc
-
-
-def simulate_struck_batch(struck, table, physics, threads: int | None = None) -> list:
-    """`simulate_struck` of many shots on one table (or a table and physics per shot: sequences
-    as long as `struck`), the playable ones in one `simulate_batch` call."""
-    playable = [k for k, s in enumerate(struck) if not isinstance(s.balls, Exception)]
-    out = [s.balls for s in struck]
-    if playable:
-        if not isinstance(table, Table):
-            table = [table[k] for k in playable]
-        if not isinstance(physics, Physics):
-            physics = [physics[k] for k in playable]
-        for k, result in zip(playable, simulate_batch([struck[k].balls for k in playable], table, physics,
-                                                      threads=threads)):
-            out[k] = result
-    return out
-
-
-def play_batch(games, shots, threads: int | None = None) -> list[ShotRecord]:
-    """`games[k].play(shots[k])` for every k, the simulations in one `simulate_batch` call (each
-    on its game's table and physics). The records, in order."""
-    games, shots = list(games), list(shots)
-    if len(games) != len(shots):
-        raise ValueError(f"play_batch needs one shot per game, got {len(games)} games and {len(shots)} shots")
-    struck = [game.strike(shot) for game, shot in zip(games, shots)]
-    if games and all(g.table is games[0].table and g.physics == games[0].physics for g in games):
-        results = simulate_struck_batch(struck, games[0].table, games[0].physics, threads)
-    else:  # randomized equipment, or games on other tables: each shot on its game's
-        results = simulate_struck_batch(struck, [g.table for g in games], [g.physics for g in games], threads)
-    return [game.resolve(s, r) for game, s, r in zip(games, struck, results)]
