@@ -24,6 +24,7 @@ from pool_env.game import (
 from pool_env.physics import BALL_RADIUS, Physics, Table
 from pool_env.players import Agent, GhostBallAgent, game_of
 
+from .match import alternate, run_episode
 from .search_candidates import Candidate, CandidateShots
 from .search_plan import SearchPlanner
 from .search_position import balls_of, decode, game_state, legal_mask
@@ -291,27 +292,33 @@ def head_to_head(games: int = 20, seed: int = 0, env_id: str = "PoolNineBall-v0"
     broke and won in its first turn), seconds per decision (median, p95)."""
     wins = breaks = runs = 0
     seconds = []
-    for k in range(games):
-        env = gym.make(env_id, opponent="ghost_ball", noise=noise, agent_breaks=k % 2 == 0)
-        agent = SearchAgent.from_env(env, seed=seed + k, **options)
-        obs, info = env.reset(seed=seed + k)
-        first_turn, done = True, info["winner"] >= 0  # the opponent broke and ran out in reset
-        while not done:
-            obs, _, terminated, truncated, info = env.step(agent.act(obs))
-            seconds.append(agent.last_stats["seconds"])
-            done = terminated or truncated
-            if not done and info["opponent_shots"]:
-                first_turn = False
-        won = info.get("winner") == 0  # the agent is player 0 (-1: no winner)
+    for game_seed, agent_breaks, _ in alternate(range(seed, seed + games), True, False):
+        won, first_turn = _head_to_head_game(env_id, noise, game_seed, agent_breaks, seconds, options)
         wins += won
-        breaks += k % 2 == 0
-        runs += won and first_turn and k % 2 == 0
-        env.close()
+        breaks += agent_breaks
+        runs += won and first_turn and agent_breaks
     lo, hi = wilson(wins, games)
     return {"games": games, "wins": wins, "win_rate": wins / max(games, 1), "ci95": (lo, hi),
             "breaks": breaks, "break_and_runs": runs, "break_and_run_rate": runs / max(breaks, 1),
             "decisions": len(seconds), "median_seconds": float(np.median(seconds)) if seconds else 0.0,
             "p95_seconds": float(np.percentile(seconds, 95)) if seconds else 0.0}
+
+
+def _head_to_head_game(env_id: str, noise, seed: int, agent_breaks: bool, seconds: list, options: dict) -> tuple:
+    """One game of `head_to_head` on `seed`: (the agent won, it won in its first turn); each
+    decision's seconds appended to `seconds`."""
+    env = gym.make(env_id, opponent="ghost_ball", noise=noise, agent_breaks=agent_breaks)
+    agent = SearchAgent.from_env(env, seed=seed, **options)
+    opponent_shot = []
+
+    def stepped(step):
+        seconds.append(agent.last_stats["seconds"])
+        if not (step.terminated or step.truncated) and step.info["opponent_shots"]:
+            opponent_shot.append(True)
+
+    end = run_episode(env, agent.act, seed, stepped, skip_finished=True)  # the opponent may run out in reset
+    env.close()
+    return end.info.get("winner") == 0, not opponent_shot  # the agent is player 0 (-1: no winner)
 
 
 def clear_rate(episodes: int = 20, seed: int = 0, **options) -> dict:
@@ -321,11 +328,7 @@ def clear_rate(episodes: int = 20, seed: int = 0, **options) -> dict:
     for k in range(episodes):
         env = gym.make("PoolBreakRun-v0")
         agent = SearchAgent.from_env(env, seed=seed + k, **options)
-        obs, _ = env.reset(seed=seed + k)
-        done, info = False, {}
-        while not done:
-            obs, _, terminated, truncated, info = env.step(agent.act(obs))
-            done = terminated or truncated
+        info = run_episode(env, agent.act, seed + k).info
         cleared += info["balls_left"] == 0 and not info["scratch"]
         balls.append(15 - info["balls_left"])
         env.close()
