@@ -565,6 +565,7 @@ def play_games(agent, args: Args, run: Run, seeds) -> dict:
     step of the env (never played inside its reset) and its break-and-runs count as they happen."""
 
     from agents import RandomAgent
+    from agents.match import alternate, env_winner, run_episode
     from pool_env.players.game_ghost_ball import GameGhostBallAgent
 
     as_agent = quiet_env(args.env_id, **run.env_kwargs)  # the agent breaks; args.opponent replies
@@ -572,21 +573,16 @@ def play_games(agent, args: Args, run: Run, seeds) -> dict:
     other = (GameGhostBallAgent.from_env(as_opponent) if args.opponent == "ghost_ball"
              else RandomAgent(as_opponent.action_space, seed=0))
     games = []
-    for k, seed in enumerate(seeds):
-        breaks = k % 2 == 0
-        env, breaker = (as_agent, agent) if breaks else (as_opponent, other)
-        for player in (agent, other):
-            if hasattr(player, "reset"):
-                player.reset(seed=int(seed))
-        obs, _ = env.reset(seed=int(seed))
-        done, shots, info = False, 0, {}
-        while not done:
-            obs, _, terminated, truncated, info = env.step(breaker.act(obs))
-            done = terminated or truncated
-            shots += 1 + info["opponent_shots"]
-        # info["winner"] is the env's player number (its agent is 0; -1: none); as_opponent's agent is the other
-        winner = {0: "agent", 1: "opponent"}.get(info["winner"] if breaks else 1 - info["winner"])
-        games.append({"seed": int(seed), "agent_breaks": breaks, "winner": winner, "shots": shots})
+    for seed, breaker, other_name in alternate(seeds, "agent", "opponent"):
+        env, player = (as_agent, agent) if breaker == "agent" else (as_opponent, other)
+        for each in (agent, other):
+            if hasattr(each, "reset"):
+                each.reset(seed=int(seed))
+        steps = []
+        end = run_episode(env, player.act, int(seed), steps.append)
+        shots = sum(1 + step.info["opponent_shots"] for step in steps)  # both players' shots
+        games.append({"seed": int(seed), "agent_breaks": breaker == "agent",
+                      "winner": env_winner(end.info, breaker, other_name), "shots": shots})
     as_agent.close()
     as_opponent.close()
     return {**game_summary(games), "per_episode": games}

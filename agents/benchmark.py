@@ -16,8 +16,9 @@ from pool_env.players import make_player as registry_player
 
 from .benchmark_tasks import BENCHMARK_VERSION, GAME_MAX_SHOTS, TASK_NAMES, TINY_GAMES, TINY_TASKS, Task, select_tasks
 from .learned import LearnedPlayer, ValueNet
+from .match import alternate, player_seed, points, run_episode
 from .stats import wilson
-from .tournament import Timed, display_name, percent, play_game, player_seed, player_stats, step_shots, strip_timings
+from .tournament import Timed, display_name, percent, play_game, player_stats, step_shots, strip_timings
 
 AGENT, OPPONENT = "agent", "opponent"  # the names the records use (a player may meet itself)
 METRICS = ("games", "wins", "draws", "win_rate", "ci95", "balls_per_turn", "break_and_runs", "breaks",
@@ -72,12 +73,12 @@ def play_practice(task: Task, players: dict, timers: dict, seed: int) -> dict:
                       max_shots=1 if task.kind == "break" else GAME_MAX_SHOTS)
     if hasattr(players[AGENT], "reset"):
         players[AGENT].reset(seed=player_seed(seed, 0))
-    obs, info = env.reset(seed=seed)
-    shots, done = [], False
-    while not done:
-        obs, _, terminated, truncated, info = env.step(timers[AGENT](obs))
-        done = terminated or truncated
-        shots += step_shots(env.step_records, AGENT, OPPONENT)
+    shots = []
+
+    def stepped(step):
+        shots.extend(step_shots(env.step_records, AGENT, OPPONENT))
+
+    info = run_episode(env, timers[AGENT], seed, stepped).info
     env.close()
     won = info["winner"] == 0  # the 9 pocketed legally: on the break, or the rack cleared
     kept = task.kind == "break" and not info["turn_passed"] and not info["error"] and info["foul"] == 0
@@ -90,12 +91,11 @@ def play_task(task: Task, players: dict, games: int) -> tuple[list[dict], Timed]
     and the agent's timer."""
     timers = {name: Timed(player, name) for name, player in players.items()}
     records = []
-    for k, seed in enumerate(task.seeds(games)):
+    for seed, breaker, other in alternate(task.seeds(games), AGENT, OPPONENT):
         if task.kind == "game":
-            breaker, other = (AGENT, OPPONENT) if k % 2 == 0 else (OPPONENT, AGENT)
             record = play_game(task.game, breaker, other, players, timers, seed, task.noise_option,
                                max_shots=GAME_MAX_SHOTS)
-            record["score"] = {AGENT: 1.0, None: 0.5}.get(record["winner"], 0.0)
+            record["score"] = points(record["winner"], AGENT)
         else:
             record = play_practice(task, players, timers, seed)
         records.append(record)

@@ -9,6 +9,8 @@ import numpy as np
 
 from pool_env.players import Agent, BreakAgent, GhostBallAgent, RandomAgent
 
+from .match import run_episode
+
 Z95 = 1.959964  # two-sided 95 % normal quantile
 
 
@@ -29,19 +31,18 @@ def play_episode(env, agent, seed: int) -> dict:
     if hasattr(agent, "reset"):
         agent.reset(seed=seed)
     act = agent.act if hasattr(agent, "act") else agent
-    obs, _ = env.reset(seed=seed)
-    reward, pocketed, shots, scratches, errors = 0.0, 0, 0, 0, 0
-    done = False
-    while not done:
-        obs, r, terminated, truncated, info = env.step(act(obs))
-        done = terminated or truncated
-        reward += r
-        pocketed += int(info["pocketed"][1:].sum())  # the object balls of the mask
-        shots += 1
-        scratches += int(info["scratch"])
-        errors += int(info["error"])
-    return {"seed": int(seed), "reward": reward, "pocketed": pocketed, "shots": shots, "scratches": scratches,
-            "cleared": bool(info["balls_left"] == 0), "errors": errors}
+    tally = {"reward": 0.0, "pocketed": 0, "shots": 0, "scratches": 0, "errors": 0}
+
+    def count(step):
+        tally["reward"] += step.reward
+        tally["pocketed"] += int(step.info["pocketed"][1:].sum())  # the object balls of the mask
+        tally["shots"] += 1
+        tally["scratches"] += int(step.info["scratch"])
+        tally["errors"] += int(step.info["error"])
+
+    end = run_episode(env, act, seed, count)
+    return {"seed": int(seed), "reward": tally["reward"], "pocketed": tally["pocketed"], "shots": tally["shots"],
+            "scratches": tally["scratches"], "cleared": bool(end.info["balls_left"] == 0), "errors": tally["errors"]}
 
 
 def _spread(values) -> dict:

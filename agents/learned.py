@@ -16,7 +16,9 @@ from pool_env.players import geometry as geo
 from pool_env.players.planner import D1, D2, DN, DX, DY, OK, SCORE, SCRATCH, SPEED
 
 from .learned_features import contact_frame, outcome_features, roll_at_contact
-from .search import ARRIVALS, Candidate, SearchAgent, decode, game_state, legal_mask, racked
+from .search import SearchAgent
+from .search_candidates import ARRIVALS, Candidate
+from .search_position import decode, game_state, legal_mask, racked
 
 WEIGHTS = Path(__file__).with_name("weights")  # the shipped networks, one file per game
 KINDS = ("pot", "safety", "kick", "break")

@@ -10,39 +10,18 @@ from pathlib import Path
 
 import numpy as np
 
-from pool_env.game import Game, game_observation
+from pool_env.game import Game
 from pool_env.players import GameGhostBallAgent
 
 from .learned import KINDS, LAYOUT, LearnedPlayer, ValueNet, menu
+from .match import alternate, play_game, points
 from .search import SearchAgent, balls_of, game_state
 from .stats import wilson
 
-MAX_SHOTS = 100  # each player's shots in a game, as the game envs' max_shots
 ROUND_SEEDS = 100_000  # round r's games are seeded seed + r * ROUND_SEEDS + k (train.py's games start at 1,000,000)
 EVAL_NOISES = (None, "olympiad")  # the recipe's evaluations: the published figures
 BREAK_COLUMNS, BREAK_HIDDEN, BREAK_EPOCHS = 12, (32,), 60  # the break net: its inputs, layers, epochs
 EXPLORE = 0.25  # share of the data games' shots played by a random menu candidate (positions off the usual path)
-
-
-def observe(game: Game, counts) -> np.ndarray:
-    """The shooter's observation, as the game envs give it."""
-    return game_observation(game.balls, game.state, game.shooter, counts[game.shooter], MAX_SHOTS, game.table)
-
-
-def play_game(game: Game, players, seed: int, breaker: int, on_decision=None) -> int | None:
-    """One game on `game` (reset with `seed`, `breaker` breaking) between two players with `act`;
-    `on_decision(observation, shooter)` may return an action to play instead. The winner (0, 1) or None."""
-    game.reset(seed=seed, breaker=breaker)
-    counts = [0, 0]
-    while not game.over and max(counts) < MAX_SHOTS:
-        obs = observe(game, counts)
-        who = game.shooter
-        action = on_decision(obs, who) if on_decision is not None else None
-        record = game.play(players[who].act(obs) if action is None else action)
-        counts[who] += 1
-        if record.error is not None:
-            return None
-    return game.winner
 
 
 def labels(search: SearchAgent, observation, game: str) -> tuple:
@@ -250,11 +229,9 @@ def match(player, game: str = "nine_ball", noise=None, games: int = 400, seed: i
     sim = Game(game, noise=noise)
     ghost = GameGhostBallAgent.from_env(sim)
     wins = 0.0
-    for k in range(games):
-        first = k % 2  # the player's seat: 0 breaks
-        players = (player, ghost) if first == 0 else (ghost, player)
-        winner = play_game(sim, players, seed + k, 0)
-        wins += 0.5 if winner is None else float(winner == first)
+    for game_seed, breaker, other in alternate(range(seed, seed + games), player, ghost):
+        winner = play_game(sim, (breaker, other), game_seed, 0)  # seat 0 breaks
+        wins += points(winner, 0 if breaker is player else 1)
     lo, hi = wilson(wins, games)
     return {"games": games, "wins": wins, "win_rate": wins / games, "ci95": (lo, hi)}
 

@@ -12,6 +12,7 @@ import time
 import gymnasium as gym
 
 import pool_env  # noqa: F401  (registers the ids)
+from agents.match import alternate, run_episode
 from agents.stats import wilson
 from pool_env.players import make_player
 
@@ -25,16 +26,11 @@ def match(player: str = "ghost_ball", opponent: str = "random", games: int = 400
     agents = {breaks: make_player(player, env.unwrapped, seed=seed) for breaks, env in envs.items()}
     wins = losses = cut = 0
     start = time.perf_counter()
-    for k in range(games):
-        breaks = k % 2 == 0
-        env, agent = envs[breaks], agents[breaks]
-        obs, _ = env.reset(seed=seed + k)
-        terminated = truncated = False
-        while not (terminated or truncated):
-            obs, reward, terminated, truncated, _ = env.step(agent.act(obs))
-        wins += terminated and reward > 0
-        losses += terminated and reward < 0
-        cut += truncated
+    for k, (game_seed, breaks, _) in enumerate(alternate(range(seed, seed + games), True, False)):
+        end = run_episode(envs[breaks], agents[breaks].act, game_seed)  # breaks: the agent breaks
+        wins += end.terminated and end.reward > 0
+        losses += end.terminated and end.reward < 0
+        cut += end.truncated
         if progress and (k + 1) % 50 == 0:
             progress(f"{k + 1}/{games} games, {wins} won, {time.perf_counter() - start:.0f} s")
     low, high = wilson(wins, games)

@@ -19,6 +19,7 @@ from pool_env.players import make_player as registry_player
 from pool_env.records.saved import RECORDED, GameRecorder, save_game
 from pool_env.rules import codes
 
+from .match import alternate, env_winner, player_seed, run_episode
 from .stats import wilson
 
 ELO_BASE, ELO_SCALE = 1500.0, 400.0  # ratings average ELO_BASE; a gap of ELO_SCALE is 10:1 odds
@@ -174,11 +175,6 @@ def make_players(specs: list[str], game: str, noise) -> tuple[dict, dict]:
 
 
 # --- playing -------------------------------------------------------------------------------------
-def player_seed(seed: int, slot: int) -> int:
-    """The seed a player's randomness gets for the game on `seed` (slot 0: the breaker, 1: the other)."""
-    return int(np.random.SeedSequence([int(seed), slot]).generate_state(1)[0])
-
-
 def play_game(game: str, breaker: str, other: str, players: dict, timers: dict, seed: int, noise,
               max_shots: int | None = None, save_to=None) -> dict:
     """One game on `seed`: the breaker is the env's agent (it breaks), the other its opponent, so each
@@ -192,20 +188,21 @@ def play_game(game: str, breaker: str, other: str, players: dict, timers: dict, 
             players[name].reset(seed=player_seed(seed, slot))
     env = game_env(game, opponent=timers[other], noise=noise, agent_breaks=True, max_shots=max_shots)
     recorder = None if save_to is None else game_recorder(env, seed, noise, max_shots)
-    obs, _ = env.reset(seed=seed)
-    shots, done, info, forfeit = [], False, {}, None
-    while not done:
-        try:
-            action = timers[breaker](obs)
-            action = action if recorder is None else recorder.action(action)
-            obs, reward, terminated, truncated, info = env.step(action)
-        except PlayerError as exc:  # the player that raised forfeits (this step's shots are lost)
-            forfeit = exc
-            break
+    shots = []
+
+    def act(obs):
+        action = timers[breaker](obs)
+        return action if recorder is None else recorder.action(action)
+
+    def stepped(step):
         if recorder is not None:
-            recorder.stepped(reward, terminated, truncated, info)
-        done = terminated or truncated
-        shots += step_shots(env.step_records, breaker, other)
+            recorder.stepped(*step)
+        shots.extend(step_shots(env.step_records, breaker, other))
+
+    try:
+        info, forfeit = run_episode(env, act, seed, stepped).info, None
+    except PlayerError as exc:  # the player that raised forfeits (this step's shots are lost)
+        forfeit = exc
     env.close()
     if recorder is not None:
         save_game(save_to, {**recorder.record(), "players": [breaker, other]})
@@ -213,7 +210,7 @@ def play_game(game: str, breaker: str, other: str, players: dict, timers: dict, 
         winner, reason = (other if forfeit.name == breaker else breaker), f"forfeit ({forfeit})"
         return {"seed": int(seed), "players": [breaker, other], "breaker": breaker, "winner": winner,
                 "end_reason": reason, "forfeit": forfeit.name, "shots": shots}
-    winner = {0: breaker, 1: other}.get(info.get("winner"))  # the agent is player 0; -1: no winner
+    winner = env_winner(info, breaker, other)
     if winner is not None:  # three-cushion's infos carry no end-reason code: its last ruling says
         reason = codes.decode("end_reason", info["end_reason"]) if "end_reason" in info \
             else env.step_records[-1].ruling.end_reason
@@ -249,10 +246,9 @@ def play_pairing(game: str, a: str, b: str, players: dict, timers: dict, games: 
     """Games k = 0 .. games - 1 of A against B on seeds seed + k; A breaks the even ones. With
     `save_games` (a folder) each is saved as <breaker>-vs-<other>-seed<seed>.json."""
     records = []
-    for k in range(games):
-        breaker, other = (a, b) if k % 2 == 0 else (b, a)
-        save_to = None if save_games is None else Path(save_games) / f"{breaker}-vs-{other}-seed{seed + k}.json"
-        records.append(play_game(game, breaker, other, players, timers, seed + k, noise, save_to=save_to))
+    for game_seed, breaker, other in alternate(range(seed, seed + games), a, b):
+        save_to = None if save_games is None else Path(save_games) / f"{breaker}-vs-{other}-seed{game_seed}.json"
+        records.append(play_game(game, breaker, other, players, timers, game_seed, noise, save_to=save_to))
     return records
 
 

@@ -14,7 +14,8 @@ import numpy as np
 from pool_env.game import Game
 
 from .learned import ValueNet
-from .learned_train import play_game, torch_mlp, value_net
+from .learned_train import torch_mlp, value_net
+from .match import alternate, play_game, player_seed, points
 from .search import SearchAgent
 from .stats import wilson
 from .value import POSITION_FEATURES, ValueSearchAgent, position_features, win_probability
@@ -24,11 +25,6 @@ DATA_SEED, EVAL_SEED = 0, 1_000_000  # game k of the data is seeded DATA_SEED + 
 HIDDEN = (32,)  # one tanh layer: more fit the games' noise (held-out log loss, docs/players.md)
 HELD_OUT = 0.1  # the share of the data games (the last ones) kept out of the fit to measure it
 OUTCOME_WEIGHT = 0.0  # the game's result in the fitted label, the rest the search's calibrated value (docs/players.md)
-
-
-def agent_seed(game_seed: int, seat: int) -> int:
-    """A player's seed for the game on `game_seed` (seat 0: the breaker): its own, whatever process plays it."""
-    return int(np.random.SeedSequence([int(game_seed), seat]).generate_state(1)[0])
 
 
 def self_play(games: int, seed: int = DATA_SEED, noise=NOISE, budget: int = 600, log=None) -> dict:
@@ -43,7 +39,7 @@ def self_play(games: int, seed: int = DATA_SEED, noise=NOISE, budget: int = 600,
     start = time.perf_counter()
     for k in range(games):
         for seat, player in enumerate(players):
-            player.reset(seed=agent_seed(seed + k, seat))
+            player.reset(seed=player_seed(seed + k, seat))
         positions, shooters, decided = [], [], []
 
         def on_decision(obs, who, positions=positions, shooters=shooters, decided=decided):
@@ -176,12 +172,11 @@ def versus(games: int, seed: int = EVAL_SEED, noise=NOISE, budget: int = 600, ne
     value = ValueSearchAgent(GAME, net=net, noise=noise, budget=budget, **(options or {}))
     plain = SearchAgent(GAME, noise=noise, budget=budget)
     out = []
-    for k in range(games):
-        players = (value, plain) if (seed + k) % 2 == 0 else (plain, value)
-        for seat, player in enumerate(players):
-            player.reset(seed=agent_seed(seed + k, seat))
-        winner = play_game(sim, players, seed + k, 0)
-        out.append(0.5 if winner is None else float(players[winner] is value))
+    for game_seed, breaker, other in alternate(range(seed, seed + games), value, plain, first=seed):
+        for seat, player in enumerate((breaker, other)):
+            player.reset(seed=player_seed(game_seed, seat))
+        winner = play_game(sim, (breaker, other), game_seed, 0)  # seat 0 breaks
+        out.append(points(winner, 0 if breaker is value else 1))
     return out
 
 

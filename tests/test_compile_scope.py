@@ -45,7 +45,7 @@ def test_a_level_shot_compiles_no_airborne_function(tmp_path):
     level, air = set(data["level"]), set(data["air"])
     assert "pool_env.physics.engine.run" in level and data["level_events"] > 0
     # A level scene: nothing of airborne.py, nor the fixed-step and seed-report loops.
-    for module in ("airborne", "fixed", "seed_loop"):
+    for module in ("airborne", "fixed", "fixed_frame", "fixed_priori", "fixed_posteriori", "seed_loop"):
         assert not [f for f in level if f.startswith(f"pool_env.physics.{module}.")], module
     # A ball in the air reaches the 3D engine: the landing (a ball_table event) is airborne.py's.
     assert "ball_table" in data["air_kinds"]

@@ -180,7 +180,7 @@ def pooltool_sweep(shots, seed=0, first=0):
         import pooltool as pt  # noqa: F401
     except Exception as exc:  # noqa: BLE001 - any import failure means: no comparison
         return None, f"{type(exc).__name__}: {exc}"
-    from pool_env.bench.speed import _pooltool_system
+    from pool_env.bench.speed_pooltool import pooltool_system
 
     events, chatter, skipped = [], [], 0
     for k in range(first, first + shots):
@@ -188,7 +188,7 @@ def pooltool_sweep(shots, seed=0, first=0):
         if len(table.pockets) != 6:
             skipped += 1
             continue
-        system = _pooltool_system(balls, table)
+        system = pooltool_system(balls, table)
         pt.simulate(system, inplace=True)
         pairs = collections.Counter()
         for event in system.events:

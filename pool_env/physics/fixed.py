@@ -51,6 +51,10 @@ mid-frame states show the overlaps the method produced). `stats` adds `steps`, `
 or at a resolved contact, m), `max_cushion_depth` (deepest penetration of a rail or jaw, m),
 `overlaps` (overlapping pairs seen at frame ends), `pushes` (posteriori position fixes
 without a collision), `ball_ball_checks` and `cushion_checks` (narrow-phase tests).
+
+This module holds the frame loop (`run`), the pocket drops and the Python entry; the frame's
+scratch and the moves both detections share are in fixed_frame.py, the two detections in
+fixed_posteriori.py and fixed_priori.py.
 """
 
 from __future__ import annotations
@@ -61,37 +65,30 @@ from collections import namedtuple
 
 import numpy as np
 
-from . import ball_ball, cushion, pocket, transition
+from . import pocket
 from .bundles import CODE, EVENTS, ROWS, new_log, prepare, record_event, record_row, scene_of
-from .geometry import alongside, cushion_gap, cushion_normal, rail_gap
-from .jit import allocating, helper
-from .kinds import (
-    BALL_BALL,
-    BALL_CUSHION,
-    BALL_POCKET,
-    BUFFER_FULL,
-    DONE,
-    EVENT_CAP,
-    POCKETED,
-    ROW_WIDTH,
-    STEP_CAP,
-    T0,
-    VX,
-    VY,
-    WZ,
-    X,
-    Y,
+from .fixed_frame import (
+    COUNTERS,
+    LEFT_TABLE,
+    MAX_CUSHION,
+    MAX_OVERLAP,
+    STEPS,
+    Frame,
+    advance_to,
+    near_edge,
+    new_segment,
+    positions,
+    rebase,
 )
-from .motion import P_G, P_MU_R, P_MU_S, classify, moving, state_at, trajectory, transition_time
+from .fixed_posteriori import posteriori_cushions, posteriori_pairs
+from .fixed_priori import cushion_depths, priori_frame
+from .jit import allocating, helper
+from .kinds import BALL_POCKET, BUFFER_FULL, DONE, EVENT_CAP, POCKETED, ROW_WIDTH, STEP_CAP, T0
+from .motion import P_G, P_MU_R, P_MU_S, moving
 from .result import Result, SimulationError, cap_message
-from .tolerances import CONTACT_TOLERANCE, MIN_APPROACH
+from .tolerances import CONTACT_TOLERANCE
 
 DETECTIONS = ("posteriori", "priori")
-
-# Counters the compiled loop keeps (Log.counters), and its float statistics (Frame.depth).
-COUNTERS = ("steps", "ball_ball_checks", "cushion_checks", "pushes", "overlaps", "left_table")
-STEPS, BB_CHECKS, CU_CHECKS, PUSHES, OVERLAPS, LEFT_TABLE = range(len(COUNTERS))
-MAX_OVERLAP, MAX_CUSHION = 0, 1
 
 # Every ball stops under friction long before this (a 10 m/s ball rolls for ~100 s with the
 # standard cloth); a run still going is a bug, not a long shot.
@@ -101,344 +98,6 @@ Stepping = namedtuple("Stepping", ["dt", "priori", "recheck", "touch", "max_step
 Stepping.__doc__ = """The method's options: frame length dt (s), a-priori detection (else a-posteriori), the
 re-check, the distance (m) within which an overlapping pair counts as touching, and the cap
 on the number of frames."""
-
-Frame = namedtuple("Frame", ["t_tr", "px", "py", "vx", "vy", "row", "depth"])
-Frame.__doc__ = """Per-frame scratch: each ball's next transition time t_tr, position (px, py) and velocity
-(vx, vy) at the current instant (N,) each; one state row; depth = [deepest ball-ball overlap,
-deepest cushion penetration] seen (m)."""
-
-
-@helper
-def _rebase(scene, frame, i, t):
-    """Make ball i's state row start at time t (closed form), ready to be changed there."""
-    S = scene.S
-    state_at(S[i], scene.st[i], t, scene.R[i], scene.params, frame.row)
-    for c in range(ROW_WIDTH):
-        S[i, c] = frame.row[c]
-
-
-@helper
-def _new_segment(scene, frame, log, i, t):
-    """After ball i's row changed at time t: its new motion state, segment and next transition."""
-    S, st = scene.S, scene.st
-    if st[i] != POCKETED:
-        if not scene.spin:
-            S[i, WZ] = 0.0
-        st[i] = classify(S[i], scene.R[i])
-    S[i, T0] = t
-    frame.t_tr[i] = transition_time(S[i], st[i], scene.R[i], scene.params)
-    record_row(log, S, st, i)
-
-
-@helper
-def _advance_to(T, scene, frame, log):
-    """Apply, in time order, every motion transition due at or before time T."""
-    n = scene.S.shape[0]
-    while log.size[CODE] == DONE:
-        best, who = np.inf, -1
-        for i in range(n):
-            if frame.t_tr[i] < best:
-                best, who = frame.t_tr[i], i
-        if who < 0 or best > T:
-            return
-        _rebase(scene, frame, who, best)
-        kind = transition.resolve(scene.S[who], scene.st[who], scene.R[who])
-        _new_segment(scene, frame, log, who, best)
-        record_event(log, best, kind, who, -1)
-
-
-@helper
-def _positions(scene, frame, t):
-    """Every ball's position and velocity at time t, from its current segment."""
-    S, st = scene.S, scene.st
-    for i in range(S.shape[0]):
-        if moving(st[i]):
-            x, y, vx, vy, _, _ = trajectory(S[i], st[i], t, scene.R[i], scene.params)
-            frame.px[i], frame.py[i], frame.vx[i], frame.vy[i] = x, y, vx, vy
-        else:
-            frame.px[i], frame.py[i], frame.vx[i], frame.vy[i] = S[i, X], S[i, Y], 0.0, 0.0
-
-
-@helper
-def _near_edge(x, y, margin, bounds):
-    """Whether a centre is within `margin` of the table's outline (only there can a rail, a jaw
-    or a pocket be reached)."""
-    return x < margin or y < margin or x > bounds.length - margin or y > bounds.width - margin
-
-
-@helper
-def _cushion_depths(scene, bounds, frame):
-    """Record how deep balls stand in the rails, facings or jaw tips at a frame end (priori mode)."""
-    R, px, py, rails, jaws = scene.R, frame.px, frame.py, bounds.rails, bounds.jaws
-    for i in range(scene.S.shape[0]):
-        if not moving(scene.st[i]) or not _near_edge(px[i], py[i], R[i], bounds):
-            continue
-        for c in range(rails.shape[0] + jaws.shape[0]):
-            gap = cushion_gap(rails, jaws, c, px[i], py[i], scene.Rc[i])
-            if gap < 0.0:
-                frame.depth[MAX_CUSHION] = max(frame.depth[MAX_CUSHION], -gap)
-
-
-@helper
-def _place(S, i, k, nx, ny, depth, M):
-    """Move balls i and k apart along n (from i to k) by `depth` (together if negative), each by
-    the other's mass share: the centre of mass and the line of centres stay put."""
-    share_i, share_k = M[k] / (M[i] + M[k]), M[i] / (M[i] + M[k])
-    S[i, X] -= nx * depth * share_i
-    S[i, Y] -= ny * depth * share_i
-    S[k, X] += nx * depth * share_k
-    S[k, Y] += ny * depth * share_k
-
-
-@helper
-def _posteriori_pairs(t, scene, frame, log):
-    """Find and fix the ball-ball overlaps standing at the frame end t: push apart, then collide."""
-    S, st, R, M, px, py = scene.S, scene.st, scene.R, scene.M, frame.px, frame.py
-    n = S.shape[0]
-    for i in range(n):
-        if st[i] == POCKETED:
-            continue
-        for k in range(i + 1, n):
-            # The state is read live: a ball set moving by an earlier pair is checked at once.
-            if st[k] == POCKETED or not (moving(st[i]) or moving(st[k])):
-                continue
-            reach = R[i] + R[k]
-            dx, dy = px[k] - px[i], py[k] - py[i]
-            if abs(dx) >= reach or abs(dy) >= reach:
-                continue
-            log.counters[BB_CHECKS] += 1
-            d = math.hypot(dx, dy)
-            depth = reach - d
-            if depth <= CONTACT_TOLERANCE:
-                continue
-            log.counters[OVERLAPS] += 1
-            frame.depth[MAX_OVERLAP] = max(frame.depth[MAX_OVERLAP], depth)
-            _rebase(scene, frame, i, t)
-            _rebase(scene, frame, k, t)
-            if d > 0.0:
-                nx, ny = dx / d, dy / d
-            else:  # concentric: any normal will do
-                nx, ny = 1.0, 0.0
-            _place(S, i, k, nx, ny, depth, M)
-            px[i], py[i], px[k], py[k] = S[i, X], S[i, Y], S[k, X], S[k, Y]
-            approach = (S[i, VX] - S[k, VX]) * nx + (S[i, VY] - S[k, VY]) * ny
-            if approach > MIN_APPROACH:
-                ball_ball.resolve(scene.bb_model, S[i], S[k], R[i], R[k], M[i], M[k], scene.params)
-                record_event(log, t, BALL_BALL, i, k)
-            else:
-                log.counters[PUSHES] += 1
-            _new_segment(scene, frame, log, i, t)
-            _new_segment(scene, frame, log, k, t)
-
-
-@helper
-def _posteriori_cushions(t, scene, bounds, frame, log):
-    """Find and fix the balls standing in a rail, a facing or a jaw tip at the frame end t."""
-    S, R, px, py, rails, jaws = scene.S, scene.R, frame.px, frame.py, bounds.rails, bounds.jaws
-    for i in range(S.shape[0]):
-        if not moving(scene.st[i]) or not _near_edge(px[i], py[i], R[i], bounds):
-            continue
-        for c in range(rails.shape[0] + jaws.shape[0]):
-            depth = -cushion_gap(rails, jaws, c, px[i], py[i], scene.Rc[i])
-            if depth <= CONTACT_TOLERANCE:
-                continue
-            if c >= rails.shape[0] and px[i] == jaws[c - rails.shape[0], 0] and py[i] == jaws[c - rails.shape[0], 1]:
-                continue  # on the tip's centre: no normal
-            nx, ny = cushion_normal(rails, jaws, c, px[i], py[i])
-            log.counters[CU_CHECKS] += 1
-            frame.depth[MAX_CUSHION] = max(frame.depth[MAX_CUSHION], depth)
-            _rebase(scene, frame, i, t)
-            S[i, X] += nx * depth
-            S[i, Y] += ny * depth
-            px[i], py[i] = S[i, X], S[i, Y]
-            if S[i, VX] * nx + S[i, VY] * ny < -MIN_APPROACH:
-                cushion.resolve(scene.cu_model, S[i], nx, ny, R[i], scene.params, bounds.height)
-                record_event(log, t, BALL_CUSHION, i, c)
-            else:
-                log.counters[PUSHES] += 1
-            _new_segment(scene, frame, log, i, t)
-            if not moving(scene.st[i]):
-                break
-
-
-@helper
-def _priori_pairs_of(scene, frame, log, i, best, touch, balls_too, measure):
-    """The earliest contact of ball i with a ball k > i before `best`, predicted by
-    straight-line motion (the report's eq. 3.1): (tau, k), k = -1 if none. With `measure`,
-    also records the overlaps standing now (at a frame start: the previous frame's end)."""
-    st, R, px, py, vx, vy = scene.st, scene.R, frame.px, frame.py, frame.vx, frame.vy
-    which = -1
-    for k in range(i + 1, st.shape[0]):
-        if st[k] == POCKETED or not (moving(st[i]) or moving(st[k])):
-            continue
-        dx, dy = px[k] - px[i], py[k] - py[i]
-        reach = R[i] + R[k]
-        if measure and abs(dx) < reach and abs(dy) < reach:
-            depth = reach - math.hypot(dx, dy)
-            if depth > CONTACT_TOLERANCE:
-                log.counters[OVERLAPS] += 1
-                frame.depth[MAX_OVERLAP] = max(frame.depth[MAX_OVERLAP], depth)
-        if not balls_too:
-            continue
-        dvx, dvy = vx[k] - vx[i], vy[k] - vy[i]
-        half_b = dx * dvx + dy * dvy  # b / 2 in the report's notation
-        if half_b >= -reach * MIN_APPROACH:
-            continue  # not approaching
-        a = dvx * dvx + dvy * dvy
-        d = math.hypot(dx, dy)
-        gap = d - reach
-        if gap > math.sqrt(a) * best:
-            continue  # cannot close the gap within the frame
-        log.counters[BB_CHECKS] += 1
-        if gap <= 0.0:
-            if gap < -touch:
-                continue  # overlapping: the smaller root is in the past, a miss
-            tau = 0.0
-        else:
-            # Smaller root of a t^2 + b t + c, c = d^2 - reach^2, in the cancellation-free form.
-            c = gap * (d + reach)
-            disc = half_b * half_b - a * c
-            if disc <= 0.0:
-                continue  # a miss or a tangent touch (the report's one-solution case)
-            tau = c / (-half_b + math.sqrt(disc))
-        if tau < best:
-            best, which = tau, k
-    return best, which
-
-
-@helper
-def _priori_cushion(scene, bounds, frame, log, i, best):
-    """Ball i's earliest straight-line contact with a rail's or facing's line or a jaw tip
-    before `best`: (tau, cushion id), id -1 if none."""
-    R, rc, rails, jaws = scene.R, scene.Rc[i], bounds.rails, bounds.jaws
-    x, y, vx, vy = frame.px[i], frame.py[i], frame.vx[i], frame.vy[i]
-    speed = math.hypot(vx, vy)
-    which = -1
-    if not _near_edge(x, y, R[i] + speed * best, bounds):
-        return best, which
-    for c in range(rails.shape[0]):
-        vn = rails[c, 4] * vx + rails[c, 5] * vy
-        gap = rail_gap(rails[c], x, y, rc)
-        if vn >= -MIN_APPROACH or gap < -rc:
-            continue
-        log.counters[CU_CHECKS] += 1
-        tau = max(gap, 0.0) / -vn
-        if tau < best and alongside(rails[c], x + vx * tau, y + vy * tau):
-            best, which = tau, c
-    for p in range(jaws.shape[0]):
-        dx, dy = x - jaws[p, 0], y - jaws[p, 1]
-        reach = rc + jaws[p, 2]
-        half_b = dx * vx + dy * vy
-        if half_b >= -reach * MIN_APPROACH:
-            continue
-        d = math.hypot(dx, dy)
-        gap = d - reach
-        if gap > speed * best:
-            continue
-        log.counters[CU_CHECKS] += 1
-        if gap <= 0.0:
-            tau = 0.0
-        else:
-            c = gap * (d + reach)
-            disc = half_b * half_b - speed * speed * c
-            if disc <= 0.0:
-                continue
-            tau = c / (-half_b + math.sqrt(disc))
-        if tau < best:
-            best, which = tau, rails.shape[0] + p
-    return best, which
-
-
-@helper
-def _priori_next(scene, bounds, stepping, frame, log, horizon, balls_too, measure):
-    """The earliest contact in [0, horizon) predicted by straight-line motion: pairs (the
-    report's eq. 3.1) and each ball against the rails' nose lines and the jaw circles, ball by
-    ball. Returns (tau, kind, i, j); kind -1 if none."""
-    st = scene.st
-    best, kind, bi, bj = horizon, -1, -1, -1
-    for i in range(st.shape[0]):
-        if st[i] == POCKETED:
-            continue
-        if balls_too or measure:
-            tau, k = _priori_pairs_of(scene, frame, log, i, best, stepping.touch, balls_too, measure)
-            if k >= 0:
-                best, kind, bi, bj = tau, BALL_BALL, i, k
-        if not moving(st[i]):
-            continue
-        tau, c = _priori_cushion(scene, bounds, frame, log, i, best)
-        if c >= 0:
-            best, kind, bi, bj = tau, BALL_CUSHION, i, c
-    return best, kind, bi, bj
-
-
-@helper
-def _priori_ball_ball(now, scene, frame, log, i, j, recheck):
-    """Resolve the predicted contact of balls i and j at `now` (both rebased there); returns
-    whether the rest of the frame may still see ball-ball contacts."""
-    S, R, M = scene.S, scene.R, scene.M
-    dx, dy = S[j, X] - S[i, X], S[j, Y] - S[i, Y]
-    d = math.hypot(dx, dy)
-    nx, ny = dx / d, dy / d
-    frame.depth[MAX_OVERLAP] = max(frame.depth[MAX_OVERLAP], R[i] + R[j] - d)
-    balls_too = True
-    # A transition inside the frame (a ball stopping) can undo the predicted approach.
-    if (S[i, VX] - S[j, VX]) * nx + (S[i, VY] - S[j, VY]) * ny > MIN_APPROACH:
-        # The report moves the pair "next to each other" before resolving (its code listing
-        # 3). Here it closes the gap or overlap the straight-line prediction left, so that a
-        # pair kept pressed together (a sliding ball driving into another) cannot creep into
-        # overlap frame after frame.
-        _place(S, i, j, nx, ny, R[i] + R[j] - d, M)
-        ball_ball.resolve(scene.bb_model, S[i], S[j], R[i], R[j], M[i], M[j], scene.params)
-        record_event(log, now, BALL_BALL, i, j)
-        # Without the re-check the rest of the frame sees no ball-ball collision.
-        balls_too = recheck
-    _new_segment(scene, frame, log, i, now)
-    _new_segment(scene, frame, log, j, now)
-    return balls_too
-
-
-@helper
-def _priori_cushion_contact(now, scene, bounds, frame, log, i, j):
-    """Resolve ball i's predicted contact with cushion j (rails and facings first, then jaw
-    tips) at `now` (the ball rebased there)."""
-    S, rails, jaws = scene.S, bounds.rails, bounds.jaws
-    nx, ny = cushion_normal(rails, jaws, j, S[i, X], S[i, Y])
-    if j < rails.shape[0]:
-        depth = -rail_gap(rails[j], S[i, X], S[i, Y], scene.Rc[i])
-    else:
-        p = j - rails.shape[0]
-        depth = scene.Rc[i] + jaws[p, 2] - math.hypot(S[i, X] - jaws[p, 0], S[i, Y] - jaws[p, 1])
-    frame.depth[MAX_CUSHION] = max(frame.depth[MAX_CUSHION], depth)
-    if S[i, VX] * nx + S[i, VY] * ny < -MIN_APPROACH:
-        S[i, X] += nx * depth  # to the contact, as for a pair
-        S[i, Y] += ny * depth
-        cushion.resolve(scene.cu_model, S[i], nx, ny, scene.R[i], scene.params, bounds.height)
-        record_event(log, now, BALL_CUSHION, i, j)
-    _new_segment(scene, frame, log, i, now)
-
-
-@helper
-def _priori_frame(t0, t1, scene, bounds, stepping, frame, log):
-    """One frame of the report's a-priori loop: predict, resolve the earliest, (re)predict."""
-    now = t0
-    balls_too = True
-    first = True
-    while log.size[CODE] == DONE:
-        # At the frame start frame.px.. already hold the positions (the previous frame's end).
-        if not first:
-            _positions(scene, frame, now)
-        tau, kind, i, j = _priori_next(scene, bounds, stepping, frame, log, t1 - now, balls_too, first)
-        first = False
-        if kind < 0:
-            return
-        now = now + tau
-        _advance_to(now, scene, frame, log)
-        _rebase(scene, frame, i, now)
-        if kind == BALL_BALL:
-            _rebase(scene, frame, j, now)
-            balls_too = _priori_ball_ball(now, scene, frame, log, i, j, stepping.recheck) and balls_too
-        else:
-            _priori_cushion_contact(now, scene, bounds, frame, log, i, j)
 
 
 @helper
@@ -464,7 +123,7 @@ def _pockets(t, scene, bounds, frame, log):
         margin = max(margin, pockets[p, 2])
     for i in range(S.shape[0]):
         # Resting balls too: a ball may stop inside a capture circle within the frame.
-        if st[i] == POCKETED or not _near_edge(px[i], py[i], margin, bounds):
+        if st[i] == POCKETED or not near_edge(px[i], py[i], margin, bounds):
             continue
         which, nearest = -1, np.inf
         for p in range(pockets.shape[0]):
@@ -477,7 +136,7 @@ def _pockets(t, scene, bounds, frame, log):
             continue
         if nearest >= 0.0:
             log.counters[LEFT_TABLE] += 1
-        _rebase(scene, frame, i, t)
+        rebase(scene, frame, i, t)
         pocket.capture(S[i])
         st[i] = POCKETED
         S[i, T0] = t
@@ -503,8 +162,8 @@ def run(scene, bounds, stepping, log, depth):
     n = scene.S.shape[0]
     frame = Frame(np.full(n, np.inf), np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(ROW_WIDTH), depth)
     for i in range(n):
-        _new_segment(scene, frame, log, i, 0.0)
-    _positions(scene, frame, 0.0)
+        new_segment(scene, frame, log, i, 0.0)
+    positions(scene, frame, 0.0)
     step = 0
     while log.size[CODE] == DONE:
         if not _translating(scene.st):
@@ -515,19 +174,19 @@ def run(scene, bounds, stepping, log, depth):
         # Frame times as multiples of dt, so no round-off accumulates over millions of frames.
         t0, t1 = step * stepping.dt, (step + 1) * stepping.dt
         if stepping.priori:
-            _priori_frame(t0, t1, scene, bounds, stepping, frame, log)
-        _advance_to(t1, scene, frame, log)
-        _positions(scene, frame, t1)
+            priori_frame(t0, t1, scene, bounds, stepping, frame, log)
+        advance_to(t1, scene, frame, log)
+        positions(scene, frame, t1)
         if stepping.priori:
-            _cushion_depths(scene, bounds, frame)
+            cushion_depths(scene, bounds, frame)
         else:
-            _posteriori_pairs(t1, scene, frame, log)
-            _posteriori_cushions(t1, scene, bounds, frame, log)
+            posteriori_pairs(t1, scene, frame, log)
+            posteriori_cushions(t1, scene, bounds, frame, log)
         _pockets(t1, scene, bounds, frame, log)
         step += 1
     log.counters[STEPS] = step
     # Nothing translates any more: the remaining transitions (spin dying out) need no frames.
-    _advance_to(np.inf, scene, frame, log)
+    advance_to(np.inf, scene, frame, log)
     return log.size[CODE]
 
 

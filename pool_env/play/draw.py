@@ -12,7 +12,8 @@ from ..game import MAX_TIP_OFFSET
 from ..render.overlay import fit_text
 from ..render.overlay import font as text_font
 from .aim import first_hit
-from .session import KEYS, PANEL, STATUS_BAR, TIP_RADIUS
+from .layout import PANEL, STATUS_BAR, TIP_RADIUS
+from .session import KEYS
 
 PANEL_RGB, TEXT_RGB, DIM_RGB = (24, 28, 34), (235, 235, 235), (150, 155, 165)
 AIM_RGB, GHOST_RGB, CUE_RGB = (255, 255, 255), (230, 230, 230), (196, 160, 100)

@@ -13,13 +13,13 @@ from ..physics import BALL_RADIUS
 from ..records.saved import record_game, save_game
 from ..render.window import import_pygame
 from ..rules import cue_ball
-from .aim import clamp_tip, first_hit, shot_action
+from . import layout
+from .aim import first_hit, shot_action
 from .animation import PendingStep, StepAnimation
-from .games import NAMES, TABLE_SIZE, TWO_SIDED, make_env
+from .games import TABLE_SIZE, TWO_SIDED, make_env
+from .layout import PANEL, STATUS_BAR
+from .status import player_name, shot_lines, status_lines
 
-PANEL = 250  # px: the panel right of the table (tip diagram, messages, keys)
-STATUS_BAR = 80  # px: the status bar above the table (the game, whose turn, the last shot's messages)
-TIP_RADIUS = 70  # px: the cue ball of the tip diagram
 SLOW = 4  # slow motion: this many times slower
 KEYS = "R restart  U undo  S slow motion  W save  Esc quit"
 
@@ -173,7 +173,7 @@ class PlaySession:
         if pos[0] >= self.size[0] or pos[1] < STATUS_BAR:  # the panel or the status bar
             return
         xy = self.to_world(pos)
-        pocket = self._pocket_at(xy)
+        pocket = layout.pocket_at(self.base.table, xy)
         if self.needs_call and pocket is not None:
             ball = self.called_ball
             ball = "the ball you aim at" if ball is None else f"the {ball}"
@@ -270,19 +270,8 @@ class PlaySession:
         self.step = None
         obs, reward, terminated, truncated, info = step.outcome()
         self.done = bool(terminated or truncated)
-        self.lines = self._shot_lines(info, step.shooter)
+        self.lines = shot_lines(self, info, step.shooter)
         self._begin_turn()
-
-    def _shot_lines(self, info, shooter):
-        """The rules' messages of a step (both players' shots, from its records), or what a break shot did."""
-        if self.state is None:
-            pocketed = info["pocketed"][1:].nonzero()[0] + 1  # the mask's object balls
-            return [f"pocketed: {', '.join(map(str, pocketed)) or 'none'}"] + (["scratch"] if info["scratch"] else [])
-        lines = []
-        for k, record in enumerate(self.base.step_records):
-            who = self._player(shooter) if k == 0 else "opponent"
-            lines += [f"{who}: {m}" for m in (record.ruling.messages if record.ruling is not None else ())]
-        return lines
 
     def undo(self):
         """Take back the last shot: the game replayed from its seed with every action but the last."""
@@ -321,77 +310,27 @@ class PlaySession:
 
     # --- geometry -----------------------------------------------------------------------------
     def to_world(self, pos):
-        """Window pixel (col, row) to table metres (x, y) (the table is drawn below the status bar)."""
-        origin, unit = self.base.playback.renderer.world_to_pixel(np.array([[0.0, 0.0], [1.0, 1.0]]))
-        scale = unit - origin
-        return np.array([(pos[0] - origin[0]) / scale[0], (pos[1] - STATUS_BAR - origin[1]) / scale[1]])
+        """Window pixel (col, row) to table metres (x, y) (`layout.to_world`)."""
+        return layout.to_world(self.base.playback.renderer, pos)
 
     def to_pixel(self, xy):
-        """Table metres (x, y) to the window's pixel (col, row)."""
-        return self.base.playback.renderer.world_to_pixel(np.asarray(xy, dtype=np.float64))[0] + (0.0, STATUS_BAR)
-
-    def _pocket_at(self, xy):
-        """The pocket (index in `Table.pockets`) whose mouth is under `xy` (m), else None."""
-        pockets = self.base.table.pockets
-        if not pockets.shape[0]:
-            return None
-        d = np.hypot(pockets[:, 0] - xy[0], pockets[:, 1] - xy[1])
-        k = int(np.argmin(d))
-        return k if d[k] <= pockets[k, 2] + 2 * BALL_RADIUS else None
+        """Table metres (x, y) to the window's pixel (col, row) (`layout.to_pixel`)."""
+        return layout.to_pixel(self.base.playback.renderer, xy)
 
     def tip_centre(self):
-        return self.size[0] + PANEL // 2, TIP_RADIUS + 40  # the panel starts at the window's top
+        return layout.tip_centre(self.size)
 
     def _tip_at(self, pos, clamp=False):
-        """The tip offset (side, top) in R under the pixel `pos` of the diagram (None outside it, unless clamp)."""
-        cx, cy = self.tip_centre()
-        side, top = (pos[0] - cx) / TIP_RADIUS, (cy - pos[1]) / TIP_RADIUS
-        if not clamp and math.hypot(side, top) > 1.0:
-            return None
-        return clamp_tip(side, top)
+        return layout.tip_at(self.size, pos, clamp)
 
-    def _player(self, shooter=None):
+    def player(self, shooter=None):
         """A player's name (default: the shooter now): "you" and "opponent", or "player 1" and "player 2"."""
-        if self.state is None:
-            return "you"
-        shooter = self.state.shooter if shooter is None else shooter
-        if self.two_players:
-            return f"player {shooter + 1}"
-        return "you" if shooter == 0 else "opponent"
+        return player_name(self.state, self.two_players, shooter)
 
     # --- drawing ------------------------------------------------------------------------------
     def status(self):
         """The lines of text on the table: the game, whose turn, ball in hand, the last shot's messages."""
-        name = NAMES[self.game]
-        if self.busy:  # the rules' state is the worker's until the step is over
-            return [f"{name}: {self.thinking}"]
-        if self.state is None:
-            head = f"{name}: shot {len(self.actions) + 1}" + (" - over, R for a new rack" if self.done else "")
-            return [head, *self.lines]
-        state = self.state
-        if state.winner is not None:
-            head = f"{name}: {self._player(state.winner)} {'win' if self._player(state.winner) == 'you' else 'wins'}"
-        elif self.done:
-            head = f"{name}: game stopped"
-        else:
-            who = self._player()
-            head = f"{name}  shot {state.shot + 1}: {who} {'shoot' if who == 'you' else 'shoots'}"
-            if state.ball_in_hand:
-                head += f", ball in hand ({state.ball_in_hand.replace('_', ' ')}): drag the cue ball"
-        lines = [head]
-        if self.game == "eight_ball" and state.groups[state.shooter] is not None:
-            lines.append(f"group: {state.groups[state.shooter]}")
-        if self.game in ("snooker", "three_cushion"):
-            lines.append(f"score: {self._player(0)} {state.scores[0]}, {self._player(1)} {state.scores[1]}")
-        if self.game == "three_cushion":
-            ball = "white" if self.cue_index == 0 else "yellow"
-            lines.append(f"{ball} cue ball, innings {state.innings[0]}-{state.innings[1]}")
-        if self.needs_call:
-            called = self.called is not None
-            ball = self.called_ball
-            ball = "the ball you aim at" if ball is None else f"the {ball}"
-            lines.append(f"{ball} called in pocket {self.called}" if called else f"click a pocket to call {ball}")
-        return lines + self.lines
+        return status_lines(self)
 
     def table_frame(self):
         """The table now (uint8 (H, W, 3)), the cue ball where it is to be placed (`status` says the
