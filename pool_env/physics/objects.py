@@ -135,7 +135,7 @@ class Balls:
     def on_cloth(self) -> bool:
         """True if every ball is on the cloth (no z, no vz): the level engine can simulate them.
         Balls made without z and vz share one zeros array, so this is an identity test."""
-        return self.air is _on_cloth(self.air.shape[0]) or not self.air.any()
+        return self.air is _on_cloth(self.air.shape[0]) or not np.count_nonzero(self.air)
 
     def __reduce__(self):
         # copy.copy, copy.deepcopy and pickle all rebuild through _rebuild_balls, which marks
