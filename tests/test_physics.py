@@ -447,6 +447,33 @@ def test_overlap_is_named():
         Balls([[0.5, 0.5], [0.5 + 2 * R - 0.0021, 0.5]])
 
 
+def test_overlap_check_agrees_with_the_distances():
+    # The compiled check against the distances worked out here, for sets of balls near contact
+    # (some pocketed, some lifted: centres in 3D), with sizes drawn per ball.
+    from pool_env.physics.placement import overlapping
+    from pool_env.physics.tolerances import CONTACT_TOLERANCE
+
+    rng = np.random.default_rng(3)
+    verdicts = set()
+    for _ in range(400):
+        n = int(rng.integers(2, 7))
+        xy = 0.5 + rng.uniform(0.0, 4 * R, (n, 2))
+        radii = R * rng.uniform(0.9, 1.1, n)
+        pocketed = rng.random(n) < 0.2
+        z = np.where(rng.random(n) < 0.3, rng.uniform(0.0, 2 * R, n), 0.0)
+        on = np.flatnonzero(~pocketed)
+        lifted = bool(np.any(z[on] != 0.0))
+        worst = -np.inf
+        for a in on:
+            for b in on[on > a]:
+                dz = (radii[a] + z[a]) - (radii[b] + z[b]) if lifted else 0.0
+                worst = max(worst, radii[a] + radii[b] - math.sqrt(np.sum((xy[a] - xy[b]) ** 2) + dz ** 2))
+        verdict = overlapping(xy, radii, pocketed, z, CONTACT_TOLERANCE)
+        assert verdict == (worst > CONTACT_TOLERANCE)
+        verdicts.add(verdict)
+    assert verdicts == {True, False}
+
+
 @pytest.mark.parametrize(
     "kwargs, match",
     [(dict(xy=[[np.nan, 0.5]]), "non-finite position"), (dict(xy=[[0.5, 0.5]], v=[[np.inf, 0]]), "velocity"),

@@ -9,7 +9,7 @@ import numpy as np
 
 from . import snooker  # the snooker table's figures
 from .bundles import bounds_of
-from .placement import first_misplaced
+from .placement import first_misplaced, overlapping
 from .pocket_shape import PocketShape, as_rows, build_pocket
 from .tolerances import CONTACT_TOLERANCE, PLACEMENT_SLACK
 
@@ -57,6 +57,8 @@ def _array(value, n, cols, name):
     arr = np.array(value, dtype=np.float64)
     if arr.shape != (n, cols):
         raise ValueError(f"{name} must have shape ({n}, {cols}), got {arr.shape}")
+    if np.isfinite(arr).all():
+        return arr
     bad = np.argwhere(~np.isfinite(arr))
     if bad.size:
         i = bad[0, 0]
@@ -251,7 +253,9 @@ def _air(z, vz, n):
     return air
 
 
-def _check_overlaps(xy, radii, pocketed, z=None):
+def _check_overlaps(xy, radii, pocketed, z):
+    if not overlapping(xy, radii, pocketed, np.ascontiguousarray(z), CONTACT_TOLERANCE):
+        return  # the common case, compiled; the pair that overlaps most is named below
     on = np.flatnonzero(~pocketed)
     if on.size < 2:
         return
