@@ -474,6 +474,31 @@ def test_overlap_check_agrees_with_the_distances():
     assert verdicts == {True, False}
 
 
+def test_nearest_ball_is_numpys():
+    # The compiled search that placing a ball uses gives numpy's figures, to the bit.
+    from pool_env.physics.placement import nearest_to
+
+    rng = np.random.default_rng(4)
+    for _ in range(300):
+        xy, radii = rng.uniform(0.0, 2.5, (16, 2)), R * rng.uniform(0.9, 1.1, 16)
+        pocketed = rng.random(16) < 0.3
+        x, y = rng.uniform(0.0, 2.5, 2)
+        on = ~pocketed
+        on[3] = False
+        h = np.hypot(xy[on, 0] - x, xy[on, 1] - y)
+        distance, gap, ball = nearest_to(xy, radii, pocketed, 3, float(x), float(y))
+        assert distance == h.min() and gap == (h - radii[on]).min()
+        assert ball == np.flatnonzero(on)[np.argmin(h - radii[on])]
+    assert nearest_to(xy, radii, np.ones(16, dtype=bool), 0, 1.0, 1.0) == (np.inf, np.inf, -1)
+
+
+def test_placed_ball_overlap_is_named():
+    balls = Balls([[0.5, 0.5], [1.0, 0.5], [1.5, 0.5]])
+    assert balls.with_ball_at(0, (1.5 - 2 * R, 0.5)).xy[0].tolist() == [1.5 - 2 * R, 0.5]  # touching
+    with pytest.raises(ValueError, match=r"balls 0 and 2 overlap by 1 mm"):
+        balls.with_ball_at(0, (1.5 - 2 * R + 0.001, 0.5))
+
+
 @pytest.mark.parametrize(
     "kwargs, match",
     [(dict(xy=[[np.nan, 0.5]]), "non-finite position"), (dict(xy=[[0.5, 0.5]], v=[[np.inf, 0]]), "velocity"),

@@ -9,7 +9,7 @@ import numpy as np
 
 from . import snooker  # the snooker table's figures
 from .bundles import bounds_of
-from .placement import first_misplaced, overlapping
+from .placement import first_misplaced, nearest_to, overlapping
 from .pocket_shape import PocketShape, as_rows, build_pocket
 from .tolerances import CONTACT_TOLERANCE, PLACEMENT_SLACK
 
@@ -170,13 +170,11 @@ class Balls:
         x, y = float(xy[0]), float(xy[1])
         if not (math.isfinite(x) and math.isfinite(y)):
             raise ValueError(f"ball {k}'s position must be finite, got {(x, y)}")
-        on = ~self.pocketed
-        on[k] = False
-        gap = np.hypot(self.xy[on, 0] - x, self.xy[on, 1] - y) - self._radii[on] - self._radii[k]
-        if gap.size and gap.min() < -CONTACT_TOLERANCE:
-            other = int(np.flatnonzero(on)[int(np.argmin(gap))])
+        _, gap, other = nearest_to(self.xy, self._radii, self.pocketed, k, x, y)
+        gap -= self._radii[k]
+        if gap < -CONTACT_TOLERANCE:
             i, j = sorted((k, other))
-            raise ValueError(f"balls {i} and {j} overlap by {-gap.min() * 1000:.3g} mm")
+            raise ValueError(f"balls {i} and {j} overlap by {-gap * 1000:.3g} mm")
         xy_new, pocketed = self.xy.copy(), self.pocketed.copy()
         xy_new[k], pocketed[k] = (x, y), False
         return Balls._trusted(xy_new, self.v, self.w, pocketed, self, self.air)

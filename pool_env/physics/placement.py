@@ -2,6 +2,8 @@
 
 import math
 
+import numpy as np
+
 from .geometry import cushion_gap
 from .jit import helper, kernel
 from .tolerances import CONTACT_TOLERANCE
@@ -60,6 +62,24 @@ def overlapping(xy, radii, pocketed, z, tolerance):
             if radii[a] + radii[b] - math.sqrt(square) > tolerance:
                 return True
     return False
+
+
+@kernel
+def nearest_to(xy, radii, pocketed, k, x, y):
+    """From the point (x, y), over the balls on the table other than ball k: the nearest
+    centre's distance, and the least gap to a ball's surface (its centre's distance less its
+    radius) with that ball, the first of equal ones (inf, inf, -1 when there is no ball).
+    math.hypot compiles to the C library's hypot, numpy's too: the figures numpy gives.
+    For placing a ball (`Balls.with_ball_at`, ball in hand), once per placement."""
+    distance, gap, ball = np.inf, np.inf, -1
+    for i in range(xy.shape[0]):
+        if pocketed[i] or i == k:
+            continue
+        d = math.hypot(xy[i, 0] - x, xy[i, 1] - y)
+        distance = min(distance, d)
+        if d - radii[i] < gap:
+            gap, ball = d - radii[i], i
+    return distance, gap, ball
 
 
 @helper

@@ -178,7 +178,7 @@ class GameGhostBallAgent(Agent):
             view = views[0]
             objects = np.array(view.on_table, dtype=bool)
             objects[0] = False
-            legal = np.zeros_like(objects)
+            legal = np.zeros(len(objects), dtype=bool)
             legal[list(view.legal)] = True
             return np.array(view.xy, dtype=np.float64)[None], objects[None], (legal & objects)[None]
         xy = np.array([view.xy for view in views], dtype=np.float64)
