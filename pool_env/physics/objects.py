@@ -38,6 +38,8 @@ def _readonly(a):
 
 
 def _per_ball(value, n, name):
+    if type(value) is float and math.isfinite(value) and value > 0:  # one size for all: the common case
+        return value, np.full(n, value)
     arr = np.asarray(value, dtype=np.float64)
     if arr.ndim == 0:
         if not (math.isfinite(float(arr)) and float(arr) > 0):

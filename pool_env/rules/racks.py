@@ -45,13 +45,13 @@ def _place(table, layout, rng, n_balls):
     for (row, across), number in layout.items():
         rows[number] = (fx + row * s * math.sqrt(3.0) / 2.0, fy + across * s)
     xy = np.array(rows)
-    placed = sorted(layout.values())
+    placed = np.array(sorted(layout.values()))
     angle = rng.uniform(0.0, 2.0 * math.pi, len(placed))
     dist = JITTER * np.sqrt(rng.uniform(0.0, 1.0, len(placed)))
     xy[placed, 0] += dist * np.cos(angle)
     xy[placed, 1] += dist * np.sin(angle)
     pocketed = np.ones(n_balls, dtype=bool)
-    pocketed[[0, *placed]] = False
+    pocketed[0] = pocketed[placed] = False
     return Balls(xy, radius=BALL_RADIUS, mass=BALL_MASS, pocketed=pocketed)
 
 
