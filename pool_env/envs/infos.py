@@ -27,12 +27,6 @@ def shot_info(result, after: Balls, error: str | None = None) -> dict:
                 cushions += 1
             elif first < 0 and kind in BALL_BALL_KINDS and (i == 0 or j == 0):  # a settle is a contact too
                 first = i + j
-    return shot_entries(pocketed, first, cushions, events, result, after, error)
-
-
-def shot_entries(pocketed, first: int, cushions: int, events: int, result, after: Balls, error=None) -> dict:
-    """`shot_info`'s dict of what its events showed: the balls that dropped (a mask), the cue
-    ball's first contact (-1: none), the cushion contacts and the events counted."""
     on_table = after.pocketed.tolist()
     return {
         "pocketed": pocketed,
@@ -73,17 +67,9 @@ def rules_info(record) -> dict:
 
 def record_info(record) -> dict:
     """A game shot's info: `shot_info`'s entries and the rules' (`rules_info`); `balls_left` is
-    the object balls on the table by the rules (spotted balls back). The drops and the first
-    contact are the `ShotOutcome`'s, which the rules read from the same events (every ball
-    that dropped in `pocket_of`; the first ball-ball contact of the cue ball, a settle too)."""
-    outcome, result = record.outcome, record.result
-    pocketed = np.zeros(len(record.balls_after), dtype=np.bool_)
-    pocketed[list(outcome.pocket_of)] = True
-    first = -1 if outcome.first_contact is None else outcome.first_contact
-    kinds = result.event_arrays[1]
-    info = shot_entries(pocketed, first, int(np.count_nonzero(kinds == BALL_CUSHION)), len(kinds), result,
-                        record.balls_after)
-    return {**info, **rules_info(record), "balls_left": len(record.state_after.on_table)}
+    the object balls on the table by the rules (spotted balls back)."""
+    return {**shot_info(record.result, record.balls_after), **rules_info(record),
+            "balls_left": len(record.state_after.on_table)}
 
 
 def no_shot_info(balls: Balls, ball_in_hand: str | None, error: str | None = None) -> dict:
