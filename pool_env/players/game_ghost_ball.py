@@ -99,8 +99,8 @@ class GameGhostBallAgent(Agent):
             xy, objects, legal = self.arrays([view])
             index, rows, k = self.planner.batch.plan_lie(xy[0], objects[0], legal[0], self.planner.arrival_speed)
             if k >= 0 and rows[k, SCORE] > -math.inf:
-                return Shot.aimed((rows[k, DX], rows[k, DY]), float(rows[k, SPEED]), pocket=int(index[k, 2]),
-                                  ball=int(index[k, 1]))
+                row = rows[k].tolist()  # Python floats: a Shot takes them as they are
+                return Shot.aimed((row[DX], row[DY]), row[SPEED], pocket=int(index[k, 2]), ball=int(index[k, 1]))
             return self.safety(xy[0], view.on_table, legal[0, 1:], None)
         if view.ball_in_hand is None or (view.on_table.all() and view.ball_in_hand == "behind_head_string"):
             return self.decide_batch([view])[0]  # a pocketed cue ball without ball in hand, or the break
@@ -179,7 +179,8 @@ class GameGhostBallAgent(Agent):
             objects = np.array(view.on_table, dtype=bool)
             objects[0] = False
             legal = np.zeros(len(objects), dtype=bool)
-            legal[list(view.legal)] = True
+            for ball in view.legal:  # a handful: cheaper one by one than as an index array
+                legal[ball] = True
             return np.array(view.xy, dtype=np.float64)[None], objects[None], (legal & objects)[None]
         xy = np.array([view.xy for view in views], dtype=np.float64)
         objects = np.array([view.on_table for view in views], dtype=bool)
