@@ -447,6 +447,58 @@ def test_overlap_is_named():
         Balls([[0.5, 0.5], [0.5 + 2 * R - 0.0021, 0.5]])
 
 
+def test_overlap_check_agrees_with_the_distances():
+    # The compiled check against the distances worked out here, for sets of balls near contact
+    # (some pocketed, some lifted: centres in 3D), with sizes drawn per ball.
+    from pool_env.physics.placement import overlapping
+    from pool_env.physics.tolerances import CONTACT_TOLERANCE
+
+    rng = np.random.default_rng(3)
+    verdicts = set()
+    for _ in range(400):
+        n = int(rng.integers(2, 7))
+        xy = 0.5 + rng.uniform(0.0, 4 * R, (n, 2))
+        radii = R * rng.uniform(0.9, 1.1, n)
+        pocketed = rng.random(n) < 0.2
+        z = np.where(rng.random(n) < 0.3, rng.uniform(0.0, 2 * R, n), 0.0)
+        on = np.flatnonzero(~pocketed)
+        lifted = bool(np.any(z[on] != 0.0))
+        worst = -np.inf
+        for a in on:
+            for b in on[on > a]:
+                dz = (radii[a] + z[a]) - (radii[b] + z[b]) if lifted else 0.0
+                worst = max(worst, radii[a] + radii[b] - math.sqrt(np.sum((xy[a] - xy[b]) ** 2) + dz ** 2))
+        verdict = overlapping(xy, radii, pocketed, z, CONTACT_TOLERANCE)
+        assert verdict == (worst > CONTACT_TOLERANCE)
+        verdicts.add(verdict)
+    assert verdicts == {True, False}
+
+
+def test_nearest_ball_is_numpys():
+    # The compiled search that placing a ball uses gives numpy's figures, to the bit.
+    from pool_env.physics.placement import nearest_to
+
+    rng = np.random.default_rng(4)
+    for _ in range(300):
+        xy, radii = rng.uniform(0.0, 2.5, (16, 2)), R * rng.uniform(0.9, 1.1, 16)
+        pocketed = rng.random(16) < 0.3
+        x, y = rng.uniform(0.0, 2.5, 2)
+        on = ~pocketed
+        on[3] = False
+        h = np.hypot(xy[on, 0] - x, xy[on, 1] - y)
+        distance, gap, ball = nearest_to(xy, radii, pocketed, 3, float(x), float(y))
+        assert distance == h.min() and gap == (h - radii[on]).min()
+        assert ball == np.flatnonzero(on)[np.argmin(h - radii[on])]
+    assert nearest_to(xy, radii, np.ones(16, dtype=bool), 0, 1.0, 1.0) == (np.inf, np.inf, -1)
+
+
+def test_placed_ball_overlap_is_named():
+    balls = Balls([[0.5, 0.5], [1.0, 0.5], [1.5, 0.5]])
+    assert balls.with_ball_at(0, (1.5 - 2 * R, 0.5)).xy[0].tolist() == [1.5 - 2 * R, 0.5]  # touching
+    with pytest.raises(ValueError, match=r"balls 0 and 2 overlap by 1 mm"):
+        balls.with_ball_at(0, (1.5 - 2 * R + 0.001, 0.5))
+
+
 @pytest.mark.parametrize(
     "kwargs, match",
     [(dict(xy=[[np.nan, 0.5]]), "non-finite position"), (dict(xy=[[0.5, 0.5]], v=[[np.inf, 0]]), "velocity"),

@@ -8,6 +8,7 @@ import numpy as np
 
 from .. import rules
 from ..physics import BALL_RADIUS, Balls, Physics, Table
+from ..physics.placement import nearest_to
 from ..physics.simulate import check_on_table
 
 PLACE_MARGIN = 1e-4  # m: a placed cue ball clears rails and balls by this much
@@ -84,18 +85,18 @@ def place_cue_ball(balls: Balls, table: Table, physics: Physics, where: str, wan
     search walks rings of PLACE_STEP around the wanted spot; ValueError if none is free."""
     area = placement_area(table, where, float(balls.radii[0]))
     x_lo, x_hi, y_lo, y_hi = area
-    on = ~balls.pocketed
-    on[0] = False
-    others = balls.xy[on]
     reach = float(balls.radii[0]) * 2.0 + PLACE_MARGIN
     if isinstance(area, HalfDisc):
         wx, wy = area.clamp(float(wanted[0]), float(wanted[1]))
     else:
         wx, wy = min(max(float(wanted[0]), x_lo), x_hi), min(max(float(wanted[1]), y_lo), y_hi)
-    if not others.size or float(np.min(np.hypot(others[:, 0] - wx, others[:, 1] - wy))) >= reach:
+    if nearest_to(balls.xy, balls.radii, balls.pocketed, 0, wx, wy)[0] >= reach:
         placed = _placed(balls, (wx, wy), table, physics)  # the spot asked for is free: the common case
         if placed is not None:
             return placed
+    on = ~balls.pocketed
+    on[0] = False
+    others = balls.xy[on]
     for ring in range(1, PLACE_RINGS):
         spots = np.column_stack([wx + ring * PLACE_STEP * RING_COS, wy + ring * PLACE_STEP * RING_SIN])
         inside = (spots[:, 0] >= x_lo) & (spots[:, 0] <= x_hi) & (spots[:, 1] >= y_lo) & (spots[:, 1] <= y_hi)

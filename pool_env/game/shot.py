@@ -29,6 +29,10 @@ MIN_NOISY_SPEED = 0.01  # m/s: the noise never turns a shot round (a speed below
 
 
 def _pair(value, what) -> tuple[float, float]:
+    if type(value) is tuple and len(value) == 2 and type(value[0]) is float and type(value[1]) is float:
+        if not (math.isfinite(value[0]) and math.isfinite(value[1])):  # two floats (most shots): as they are
+            raise ValueError(f"{what} must be finite, got {value!r}")
+        return value
     try:
         a, b = value
         a, b = float(a), float(b)
@@ -88,23 +92,34 @@ class Shot:
         if not (math.isfinite(elevation) and 0.0 <= elevation <= MAX_ELEVATION):
             raise ValueError(f"Shot.elevation must be in [0, MAX_ELEVATION = {MAX_ELEVATION:.4f}] rad (0 to 85 deg), "
                              f"got {self.elevation!r}")
-        object.__setattr__(self, "force", force)
-        object.__setattr__(self, "tip", tip)
-        object.__setattr__(self, "elevation", elevation)
+        # Each field normalised (a float, a tuple of floats, an int, a bool), set again only when
+        # it is not already that: a Shot is made for every shot, and setting a field costs.
+        set_ = object.__setattr__
+        if force is not self.force:
+            set_(self, "force", force)
+        if tip is not self.tip:
+            set_(self, "tip", tip)
+        if type(self.elevation) is not float:
+            set_(self, "elevation", elevation)
         if self.place is not None:
-            object.__setattr__(self, "place", _pair(self.place, "Shot.place"))
+            place = _pair(self.place, "Shot.place")
+            if place is not self.place:
+                set_(self, "place", place)
         if self.pocket is not None:
             if isinstance(self.pocket, bool) or int(self.pocket) != self.pocket or self.pocket < 0:
                 raise ValueError(f"Shot.pocket must be None or a pocket's index (an integer >= 0), got {self.pocket!r}")
-            object.__setattr__(self, "pocket", int(self.pocket))
+            if type(self.pocket) is not int:
+                set_(self, "pocket", int(self.pocket))
         if self.ball is not None:
             if isinstance(self.ball, bool) or int(self.ball) != self.ball or self.ball < 1:
                 raise ValueError(f"Shot.ball must be None or an object ball's number (an integer >= 1), "
                                  f"got {self.ball!r}")
-            object.__setattr__(self, "ball", int(self.ball))
-        if not isinstance(self.push_out, (bool, np.bool_)):
-            raise ValueError(f"Shot.push_out must be a bool, got {self.push_out!r}")
-        object.__setattr__(self, "push_out", bool(self.push_out))
+            if type(self.ball) is not int:
+                set_(self, "ball", int(self.ball))
+        if type(self.push_out) is not bool:
+            if not isinstance(self.push_out, np.bool_):
+                raise ValueError(f"Shot.push_out must be a bool, got {self.push_out!r}")
+            set_(self, "push_out", bool(self.push_out))
 
     @classmethod
     def aimed(cls, direction, speed: float, tip=(0.0, 0.0), place=None, pocket=None, elevation=0.0,

@@ -76,7 +76,7 @@ def strike(balls: Balls, force, offset=(0.0, 0.0), contact_time=0.005, ball=0, e
     w = 5 v0 / (2R) (a z + b z x d). Returns new Balls.
     The elevated cue's model: `_elevated`.
     """
-    fx, fy = (float(c) for c in np.asarray(force, dtype=np.float64).reshape(2))
+    fx, fy = _two_floats(force)
     if not (math.isfinite(fx) and math.isfinite(fy)):
         raise ValueError(f"cue force must be finite, got ({fx}, {fy})")
     magnitude = math.hypot(fx, fy)
@@ -94,9 +94,9 @@ def strike(balls: Balls, force, offset=(0.0, 0.0), contact_time=0.005, ball=0, e
         raise ValueError(f"there is no ball {ball} to strike (have {len(balls)})")
     if balls.pocketed[ball]:
         raise ValueError(f"ball {ball} is pocketed and cannot be struck")
-    if balls.airborne[ball]:
+    if not balls.on_cloth and balls.airborne[ball]:
         raise ValueError(f"ball {ball} is in the air and cannot be struck")
-    m, r = balls.masses[ball], balls.radii[ball]
+    m, r = float(balls.masses[ball]), float(balls.radii[ball])
     v_d = magnitude * contact_time / m
     v_l = v_d * squirt_tangent(side, top, m, end_mass)
     dx, dy = fx / magnitude, fy / magnitude
@@ -107,9 +107,19 @@ def strike(balls: Balls, force, offset=(0.0, 0.0), contact_time=0.005, ball=0, e
     k = 2.5 / r
     v = balls.v.copy()
     w = balls.w.copy()
-    v[ball] = (vx, vy)
-    w[ball] = (-k * top * vy, k * top * vx, k * (side * v_d - depth * v_l))
+    v[ball, 0], v[ball, 1] = vx, vy  # entry by entry: cheaper than a row from a tuple
+    w[ball, 0], w[ball, 1], w[ball, 2] = -k * top * vy, k * top * vx, k * (side * v_d - depth * v_l)
     return Balls._trusted(balls.xy, v, w, balls.pocketed, balls, balls.air)
+
+
+def _two_floats(pair) -> tuple[float, float]:
+    """Two numbers (anything numpy reshapes to (2,)) as Python floats; a tuple of two floats
+    (what `Game` passes, once per shot) is taken as it is, anything else goes through numpy,
+    whose error a wrong shape raises."""
+    if type(pair) is tuple and len(pair) == 2 and type(pair[0]) is float and type(pair[1]) is float:
+        return pair
+    a, b = np.asarray(pair, dtype=np.float64).reshape(2).tolist()
+    return a, b
 
 
 def squirt_tangent(side, top, mass, end_mass):
@@ -176,7 +186,7 @@ def _elevation(elevation):
 
 def _tip_offset(offset):
     """(side, top) as floats, checked finite and within the miscue limit."""
-    side, top = (float(c) for c in np.asarray(offset, dtype=np.float64).reshape(2))
+    side, top = _two_floats(offset)
     if not (math.isfinite(side) and math.isfinite(top)):
         raise ValueError(f"cue tip offset must be finite, got ({side}, {top})")
     reach = math.hypot(side, top)

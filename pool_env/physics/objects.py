@@ -9,7 +9,7 @@ import numpy as np
 
 from . import snooker  # the snooker table's figures
 from .bundles import bounds_of
-from .placement import first_misplaced
+from .placement import first_misplaced, nearest_to, overlapping
 from .pocket_shape import PocketShape, as_rows, build_pocket
 from .tolerances import CONTACT_TOLERANCE, PLACEMENT_SLACK
 
@@ -38,6 +38,8 @@ def _readonly(a):
 
 
 def _per_ball(value, n, name):
+    if type(value) is float and math.isfinite(value) and value > 0:  # one size for all: the common case
+        return value, np.full(n, value)
     arr = np.asarray(value, dtype=np.float64)
     if arr.ndim == 0:
         if not (math.isfinite(float(arr)) and float(arr) > 0):
@@ -57,6 +59,8 @@ def _array(value, n, cols, name):
     arr = np.array(value, dtype=np.float64)
     if arr.shape != (n, cols):
         raise ValueError(f"{name} must have shape ({n}, {cols}), got {arr.shape}")
+    if np.isfinite(arr).all():
+        return arr
     bad = np.argwhere(~np.isfinite(arr))
     if bad.size:
         i = bad[0, 0]
@@ -135,7 +139,7 @@ class Balls:
     def on_cloth(self) -> bool:
         """True if every ball is on the cloth (no z, no vz): the level engine can simulate them.
         Balls made without z and vz share one zeros array, so this is an identity test."""
-        return self.air is _on_cloth(self.air.shape[0]) or not self.air.any()
+        return self.air is _on_cloth(self.air.shape[0]) or not np.count_nonzero(self.air)
 
     def __reduce__(self):
         # copy.copy, copy.deepcopy and pickle all rebuild through _rebuild_balls, which marks
@@ -168,13 +172,11 @@ class Balls:
         x, y = float(xy[0]), float(xy[1])
         if not (math.isfinite(x) and math.isfinite(y)):
             raise ValueError(f"ball {k}'s position must be finite, got {(x, y)}")
-        on = ~self.pocketed
-        on[k] = False
-        gap = np.hypot(self.xy[on, 0] - x, self.xy[on, 1] - y) - self._radii[on] - self._radii[k]
-        if gap.size and gap.min() < -CONTACT_TOLERANCE:
-            other = int(np.flatnonzero(on)[int(np.argmin(gap))])
+        _, gap, other = nearest_to(self.xy, self._radii, self.pocketed, k, x, y)
+        gap -= self._radii[k]
+        if gap < -CONTACT_TOLERANCE:
             i, j = sorted((k, other))
-            raise ValueError(f"balls {i} and {j} overlap by {-gap.min() * 1000:.3g} mm")
+            raise ValueError(f"balls {i} and {j} overlap by {-gap * 1000:.3g} mm")
         xy_new, pocketed = self.xy.copy(), self.pocketed.copy()
         xy_new[k], pocketed[k] = (x, y), False
         return Balls._trusted(xy_new, self.v, self.w, pocketed, self, self.air)
@@ -251,7 +253,9 @@ def _air(z, vz, n):
     return air
 
 
-def _check_overlaps(xy, radii, pocketed, z=None):
+def _check_overlaps(xy, radii, pocketed, z):
+    if not overlapping(xy, radii, pocketed, np.ascontiguousarray(z), CONTACT_TOLERANCE):
+        return  # the common case, compiled; the pair that overlaps most is named below
     on = np.flatnonzero(~pocketed)
     if on.size < 2:
         return

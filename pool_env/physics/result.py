@@ -92,8 +92,7 @@ class Result:
     def final(self):
         """The balls when everything rests (Balls; `.pocketed` marks balls off the table)."""
         if self._final is None:
-            scene = self._run[0]
-            S, st = scene.S, scene.st
+            S, st = self._scene[:2]  # a Scene or its plain tuple: the rows and states come first
             self._final = self._balls._trusted(S[:, 0:2].copy(), S[:, 2:4].copy(), S[:, 4:7].copy(), st == POCKETED,
                                                self._balls, _air(S))
         return self._final
@@ -165,7 +164,7 @@ class Result:
 def _air(rows):
     """The (z, vz) columns of state rows as Balls.air, or None when every ball is on the cloth."""
     air = rows[:, Z:VZ + 1]
-    return air.copy() if air.any() else None
+    return air.copy() if np.count_nonzero(air) else None  # count_nonzero: a third of any()'s cost
 
 
 def engine_counters(log):

@@ -99,10 +99,10 @@ class GameGhostBallAgent(Agent):
             xy, objects, legal = self.arrays([view])
             index, rows, k = self.planner.batch.plan_lie(xy[0], objects[0], legal[0], self.planner.arrival_speed)
             if k >= 0 and rows[k, SCORE] > -math.inf:
-                return Shot.aimed((rows[k, DX], rows[k, DY]), float(rows[k, SPEED]), pocket=int(index[k, 2]),
-                                  ball=int(index[k, 1]))
+                row = rows[k].tolist()  # Python floats: a Shot takes them as they are
+                return Shot.aimed((row[DX], row[DY]), row[SPEED], pocket=int(index[k, 2]), ball=int(index[k, 1]))
             return self.safety(xy[0], view.on_table, legal[0, 1:], None)
-        if view.ball_in_hand is None or (np.all(view.on_table) and view.ball_in_hand == "behind_head_string"):
+        if view.ball_in_hand is None or (view.on_table.all() and view.ball_in_hand == "behind_head_string"):
             return self.decide_batch([view])[0]  # a pocketed cue ball without ball in hand, or the break
         return self.in_hand(view)
 
@@ -174,6 +174,14 @@ class GameGhostBallAgent(Agent):
     # --- planning ----------------------------------------------------------------------------
     def arrays(self, views):
         """(xy (Q, n, 2), object balls on the table (Q, n), their legal ones (Q, n)) of views."""
+        if len(views) == 1:  # `decide`'s one view (every opponent shot): without the stacking
+            view = views[0]
+            objects = np.array(view.on_table, dtype=bool)
+            objects[0] = False
+            legal = np.zeros(len(objects), dtype=bool)
+            for ball in view.legal:  # a handful: cheaper one by one than as an index array
+                legal[ball] = True
+            return np.array(view.xy, dtype=np.float64)[None], objects[None], (legal & objects)[None]
         xy = np.array([view.xy for view in views], dtype=np.float64)
         objects = np.array([view.on_table for view in views], dtype=bool)
         objects[:, 0] = False
@@ -218,7 +226,7 @@ class GameGhostBallAgent(Agent):
         if in_hand is None:
             return "lies", [xy[0]], xy[0]
         area = placement_area(self.table, in_hand, self.radius)
-        if np.all(view.on_table) and in_hand == "behind_head_string":  # the break: every ball racked
+        if view.on_table.all() and in_hand == "behind_head_string":  # the break: every ball racked
             x, y = rules.head_spot(self.table)  # on the head string: placed just behind it (the kitchen)
             return "break", [], np.array((min(x, area[1]), y), dtype=np.float64)
         middle = np.array([0.5 * (area[0] + area[1]), 0.5 * (area[2] + area[3])])

@@ -67,6 +67,16 @@ class ShotPlanner:
                                    math.cos(math.radians(max_cut)), max_speed, table.length, table.width, PATH_STEP])
         self.tables = (self.jaws, self.rails, self.lams, self.reach, np.empty_like(self.rails), self.constants,
                        self.captures)  # what plan_lie reads (its rail scratch space included)
+        self.work: dict = {}  # the one-position kernels' scratch arrays, by candidates (`scratch`)
+
+    def scratch(self, m: int) -> tuple:
+        """Scratch arrays for m candidates of the one-position kernels, (m, 3), (m, 2), (m,)
+        and (6,): made once per m and reused, as nothing these calls return points into them
+        (the kernels hold the GIL, so one call's scratch is never another's at the same time)."""
+        found = self.work.get(m)
+        if found is None:
+            found = self.work[m] = (np.empty((m, 3)), np.empty((m, 2)), np.empty(m), np.empty(6))
+        return found
 
     def checked(self, xy, on, index, columns: int = 3):
         """(xy, on, index) as the kernels read them; ValueError naming the first thing wrong
@@ -125,7 +135,8 @@ class ShotPlanner:
         give for it, and `first_best` of them. ValueError for a position that is not finite."""
         xy, on, legal, m = self.one_position(xy, on, legal)
         index, rows = np.empty((m, 3), dtype=np.int64), np.empty((m, PLAN_COLUMNS))
-        buffers = (index, np.empty((m, 3)), rows, np.empty((m, 2)), np.empty(m), np.empty(6))
+        aims, cue, arrivals, work = self.scratch(m)
+        buffers = (index, aims, rows, cue, arrivals, work)
         count, best = plan_lie(xy, on, legal, self.tables, float(arrival), buffers)
         if count < 0:
             raise ValueError("xy must be finite for the cue ball and the object balls on the table")
@@ -157,7 +168,8 @@ class ShotPlanner:
             raise ValueError("aims and spots must be finite")
         n = len(index)
         rows = np.empty((len(spots) * n, PLAN_COLUMNS))
-        buffers = (rows, np.empty((n, 2)), np.empty(n), np.empty(6))
+        _, cue, arrivals, work = self.scratch(n)
+        buffers = (rows, cue, arrivals, work)
         spot, row = plan_from(xy, on, index, aims, spots, self.tables, float(arrival), buffers)
         return rows, spot, row
 

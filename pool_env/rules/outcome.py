@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 
 from ..physics.kinds import BALL_BALL_KINDS, BALL_CUSHION, BALL_OFF_TABLE, BALL_POCKET, EVENT_KINDS
 
@@ -50,6 +50,9 @@ class ShotOutcome:
     def scratch(self) -> bool:
         """The cue ball dropped or left the table."""
         return self.cue_pocketed or CUE in self.off_table
+
+
+OUTCOME_FIELDS = tuple(f.name for f in fields(ShotOutcome))
 
 
 def _check_outcome(o: ShotOutcome) -> None:
@@ -105,7 +108,8 @@ def outcome_from_result(result) -> ShotOutcome:
     is a "ball_off_table" event. Motion transitions and bounces on the slate are ignored."""
     arrays = getattr(result, "event_arrays", None)
     if arrays is not None:  # a physics Result: its arrays as lists, without an Event object per event
-        kinds, i_s, j_s = (a.tolist() for a in arrays[1:])
+        _, kinds, i_s, j_s = arrays
+        kinds, i_s, j_s = kinds.tolist(), i_s.tolist(), j_s.tolist()
         pressed = result.pressed_cushion_events().tolist() if BALL_CUSHION in kinds else None
     else:
         kinds = [EVENT_KINDS.index(event.kind) for event in result.events]
@@ -113,6 +117,19 @@ def outcome_from_result(result) -> ShotOutcome:
         pressed = None
     if pressed is None:
         pressed = [False] * len(kinds)
+    read = _read_events(kinds, i_s, j_s, pressed)
+    if arrays is None:
+        return ShotOutcome(*read)
+    # The engine's events make a consistent outcome (a ball drops once, the cue ball never is
+    # its own first contact...): built without the checks, which cost as much as the reading.
+    outcome = object.__new__(ShotOutcome)
+    outcome.__dict__.update(zip(OUTCOME_FIELDS, read))
+    return outcome
+
+
+def _read_events(kinds, i_s, j_s, pressed) -> tuple:
+    """`outcome_from_result`'s reading of the events (kind ids, balls i and j, pressed flags,
+    lists in time order): the `ShotOutcome`'s fields, in order."""
     first, contact_seen, rail_after = None, False, False
     to_rail, dropped, pockets, gone = set(), [], [], []
     for kind, i, j, frozen in zip(kinds, i_s, j_s, pressed):
@@ -131,5 +148,4 @@ def outcome_from_result(result) -> ShotOutcome:
         elif kind == BALL_OFF_TABLE:
             gone.append(i)
     pocketed = tuple(b for b in dropped if b != CUE)
-    return ShotOutcome(first, pocketed, dict(zip(dropped, pockets)), CUE in dropped, rail_after, frozenset(to_rail),
-                       tuple(gone))
+    return first, pocketed, dict(zip(dropped, pockets)), CUE in dropped, rail_after, frozenset(to_rail), tuple(gone)

@@ -41,18 +41,17 @@ def _place(table, layout, rng, n_balls):
     apart: no overlap), the cue ball on the head spot; the rest of the n_balls pocketed."""
     s = 2.0 * BALL_RADIUS + 2.0 * JITTER
     fx, fy = foot_spot(table)
-    xy = np.zeros((n_balls, 2))
-    xy[0] = head_spot(table)
+    rows = [head_spot(table)] * n_balls  # the cue ball; placeholders for the pocketed balls (ignored)
     for (row, across), number in layout.items():
-        xy[number] = (fx + row * s * math.sqrt(3.0) / 2.0, fy + across * s)
-    placed = sorted(layout.values())
+        rows[number] = (fx + row * s * math.sqrt(3.0) / 2.0, fy + across * s)
+    xy = np.array(rows)
+    placed = np.array(sorted(layout.values()))
     angle = rng.uniform(0.0, 2.0 * math.pi, len(placed))
     dist = JITTER * np.sqrt(rng.uniform(0.0, 1.0, len(placed)))
     xy[placed, 0] += dist * np.cos(angle)
     xy[placed, 1] += dist * np.sin(angle)
     pocketed = np.ones(n_balls, dtype=bool)
-    pocketed[[0, *placed]] = False
-    xy[pocketed] = head_spot(table)  # placeholders: ignored while pocketed
+    pocketed[0] = pocketed[placed] = False
     return Balls(xy, radius=BALL_RADIUS, mass=BALL_MASS, pocketed=pocketed)
 
 

@@ -170,11 +170,12 @@ def check_shot(state, outcome) -> None:
     if state.pending is not None:
         raise ValueError(f"player {state.shooter} has a decision to make first ({state.pending.name}: one of "
                          f"{state.pending.options}); call rules.decide(state, option)")
-    named = set(outcome.pocketed) | set(outcome.object_balls_to_rail) | (set(outcome.off_table) - {CUE})
+    named = set().union(outcome.pocketed, outcome.object_balls_to_rail, outcome.off_table)
     if outcome.first_contact is not None:
         named.add(outcome.first_contact)
-    missing = sorted(named - state.on_table)
-    if missing:
+    named.discard(CUE)  # the cue ball may leave the table (the others never name it: _check_outcome)
+    if not named <= state.on_table:
+        missing = sorted(named - state.on_table)
         raise ValueError(f"the shot names ball {missing[0]}, which is not on the table "
                          f"(on the table: {sorted(state.on_table)})")
 
@@ -196,7 +197,7 @@ def standard_fouls(outcome, targets, describe, is_break) -> list:
     if (not is_break and outcome.first_contact is not None and not outcome.pocketed
             and not outcome.cue_pocketed and not outcome.rail_after_contact):
         out.append(("no_rail", "foul: no ball pocketed and no ball reached a rail after contact"))
-    gone = [b for b in outcome.off_table if b != CUE]
+    gone = [b for b in outcome.off_table if b != CUE] if outcome.off_table else None
     if gone:
         out.append(("ball_off_table", f"foul: ball {', '.join(map(str, gone))} left the table"))
     return out
@@ -214,6 +215,8 @@ def break_requirement(outcome):
 
 def ordered(fouls) -> list:
     """The (name, message) fouls in FOULS order, each name once."""
+    if len(fouls) < 2:  # most shots: none or one
+        return list(fouls)
     seen, out = set(), []
     for name, message in sorted(fouls, key=lambda f: FOULS.index(f[0])):
         if name not in seen:
@@ -257,6 +260,8 @@ def turn_messages(new, turn_passed, warn_two_fouls) -> list:
 
 
 def with_messages(ruling, messages):
-    """`ruling` with its messages."""
-    return Ruling(ruling.foul, ruling.fouls, ruling.turn_passed, ruling.ball_in_hand, ruling.balls_to_spot,
-                  ruling.winner, ruling.end_reason, tuple(messages))
+    """`ruling` (a `Ruling`) with its messages: a copy of its fields, without the frozen
+    dataclass's __init__, which costs more (every shot's ruling is made twice)."""
+    out = object.__new__(Ruling)
+    out.__dict__.update(ruling.__dict__, messages=tuple(messages))
+    return out
