@@ -134,6 +134,11 @@ class Physics:
             low, high = COEFFICIENT_RANGES.get(name, (1.0, 0.0))
             if not (value.__class__ is float and low <= value <= high):  # replace says what is wrong
                 return dataclasses.replace(self, **coefficients)
+        return self._with(coefficients)
+
+    def _with(self, coefficients: dict) -> Physics:
+        """`variant` of coefficients already checked (each a float in its COEFFICIENT_RANGES):
+        the physics' friends' (randomize.py draws inside ranges checked at both ends)."""
         state = self.__dict__.copy()
         state.update(coefficients)
         params = self._params.copy()

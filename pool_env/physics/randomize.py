@@ -125,10 +125,12 @@ class Sample:
     randomization: Randomization
 
     @classmethod
-    def of(cls, *fields) -> Sample:
-        """Sample(*fields), without the frozen dataclass's set-up (one per randomized reset)."""
+    def of(cls, table, physics, radii, masses, drawn, randomization, scalars=None) -> Sample:
+        """Sample(...), without the frozen dataclass's set-up (one per randomized reset); `scalars`:
+        drawn's physics and table values as a list, if known (for `info`)."""
         out = object.__new__(cls)
-        out.__dict__.update(zip(("table", "physics", "radii", "masses", "drawn", "randomization"), fields))
+        object.__setattr__(out, "__dict__", {"table": table, "physics": physics, "radii": radii, "masses": masses,
+                                             "drawn": drawn, "randomization": randomization, "_scalars": scalars})
         return out
 
     @functools.cached_property
@@ -145,7 +147,7 @@ class Sample:
         """What reset's info reports: `physics` (every Physics coefficient), `table` (the
         TABLE_NAMES), and `ball_radius`/`ball_mass` arrays when those are drawn. Plain floats."""
         base = self.randomization
-        scalars = self.drawn[:base.scalars].tolist()
+        scalars = self.__dict__.get("_scalars") or self.drawn[:base.scalars].tolist()
         physics, table = base.physics_info.copy(), base.table_info.copy()
         physics.update(zip(base.physics_names, scalars))
         table.update(zip(base.table_names, scalars[len(base.physics_names):]))
@@ -206,8 +208,10 @@ class Randomization:
         self.physics_names = tuple(d.name for d in self.draws if d.name in PHYSICS_NAMES)
         self.table_names = tuple(d.name for d in self.draws if d.name in TABLE_NAMES)
         self.scalars = len(self.physics_names) + len(self.table_names)
-        self._ball_at = {name: self.scalars + k * self.n_balls
-                         for k, name in enumerate(d.name for d in self.draws if d.name in BALL_NAMES)}
+        self._physics_count = len(self.physics_names)
+        at = {name: slice(self.scalars + k * self.n_balls, self.scalars + (k + 1) * self.n_balls)
+              for k, name in enumerate(d.name for d in self.draws if d.name in BALL_NAMES)}
+        self._radii, self._masses = at.get("ball_radius"), at.get("ball_mass")
         self._low = np.repeat([d.low for d in self.draws], self.counts)
         self._width = np.repeat([d.high - d.low for d in self.draws], self.counts)
         self._uniform = all(d.sd is None for d in self.draws)
@@ -242,19 +246,21 @@ class Randomization:
         Uniform ranges alone (the defaults): one call of rng.random for them all, the same
         values as rng.uniform(low, high) for each in turn."""
         if self._uniform:
-            drawn = self._low + self._width * rng.random(self.size)
+            drawn = rng.random(self.size)
+            drawn *= self._width
+            drawn += self._low
         else:
             drawn = np.concatenate([np.atleast_1d(d.sample(rng, n if d.name in BALL_NAMES else None))
                                     for d, n in zip(self.draws, self.counts, strict=True)])
         scalars = drawn[:self.scalars].tolist()
-        physics = self.physics.variant(**dict(zip(self.physics_names, scalars))) if self.physics_names \
-            else self.physics
-        table = self.table.variant(**dict(zip(self.table_names, scalars[len(self.physics_names):]))) \
-            if self.table_names else self.table
-        at, n = self._ball_at, self.n_balls
-        radii = drawn[at["ball_radius"]:at["ball_radius"] + n] if "ball_radius" in at else None
-        masses = drawn[at["ball_mass"]:at["ball_mass"] + n] if "ball_mass" in at else None
-        return Sample.of(table, physics, radii, masses, drawn, self)
+        # Each coefficient's valid values are a range, whose ends `_check` tried: a draw
+        # between them needs no check.
+        k = self._physics_count
+        physics = self.physics._with(dict(zip(self.physics_names, scalars))) if k else self.physics
+        table = self.table.variant(**dict(zip(self.table_names, scalars[k:]))) if self.table_names else self.table
+        radii = None if self._radii is None else drawn[self._radii]
+        masses = None if self._masses is None else drawn[self._masses]
+        return Sample.of(table, physics, radii, masses, drawn, self, scalars)
 
     def scaled(self, sample: Sample) -> np.ndarray:
         """The drawn values mapped from their ranges onto [-1, 1] (float32), in NAMES order,

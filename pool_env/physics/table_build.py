@@ -219,7 +219,7 @@ def build(plan, entries, corner_mouth, side_mouth, wide, narrow):
             return code, k, 0, 0
     code, which, count = _nose_rails(sides, cuts, counts, wide)
     wide[count:count + 2 * n] = facings
-    return code, which, count, _candidates(points, np.zeros((n, POINTS), dtype=np.bool_), reach, narrow[5 * n:])
+    return code, which, count, _candidates(points, np.empty((n, POINTS)), reach, narrow[5 * n:])
 
 
 @helper
@@ -316,28 +316,26 @@ def _entry(x1, y1, x2, y2, ox, oy, r):
 
 
 @helper
-def _candidates(points, chosen, reach, out):
+def _candidates(points, far, reach, out):
     """Each pocket's broad-phase radius by the C library's hypot (to `reach`'s last column), and
     the points of each pocket (`points` (P, POINTS, 3): dx, dy from its circle's centre, r) that
-    may be its farthest by Python's (marked in `chosen` (P, POINTS), zeros) to the rows of
-    `out`, w per pocket, w the most any pocket has (the pocket's first one repeated to fill);
-    returns w."""
+    may be its farthest by Python's to the rows of `out`, w per pocket, w the most any pocket
+    has (the pocket's first one repeated to fill); returns w. `far` (P, POINTS): scratch."""
     n = points.shape[0]
     width = 1
     for k in range(n):
-        far = -math.inf
+        reach[k, 2] = -math.inf
         for i in range(POINTS):
-            far = max(far, math.hypot(points[k, i, 0], points[k, i, 1]) + points[k, i, 2])
-        reach[k, 2] = far
+            far[k, i] = math.hypot(points[k, i, 0], points[k, i, 1]) + points[k, i, 2]
+            reach[k, 2] = max(reach[k, 2], far[k, i])
         count = 0
         for i in range(POINTS):
-            chosen[k, i] = math.hypot(points[k, i, 0], points[k, i, 1]) + points[k, i, 2] >= far * (1.0 - CANDIDATE)
-            count += chosen[k, i]
+            count += far[k, i] >= reach[k, 2] * (1.0 - CANDIDATE)
         width = max(width, count)
     for k in range(n):
         at, first = 0, -1
         for i in range(POINTS):
-            if chosen[k, i]:
+            if far[k, i] >= reach[k, 2] * (1.0 - CANDIDATE):
                 first = i if first < 0 else first
                 for c in range(3):
                     out[k * width + at, c] = points[k, i, c]
