@@ -27,7 +27,7 @@ Bounds.__doc__ = """The table: rails (K, 6) [x1, y1, x2, y2, nx, ny], the nose s
 facings, and rail_pockets (K,) each one's pocket (-1 for a nose); jaws (J, 3) the rounded jaw
 tips [x, y, r] and jaw_pockets (J,) their pockets; pockets (P, 3) the openings [x, y, r] a
 ball drops through when its centre enters; reach (P, 3) a circle around each pocket's mouth,
-its jaw tips and its facings up to the opening (the broad phase; pocket_shape.build_pocket);
+its jaw tips and its facings up to the opening (the broad phase; table_build.py);
 the cushion nose height, length and width of the playing area (m)."""
 
 Log = namedtuple("Log", ["t", "kind", "i", "j", "hist", "hist_ball", "counters", "size"])

@@ -8,11 +8,11 @@ pockets, the facings, jaw tips and openings (the geometry pocket_shape.py descri
 checks that refuse a mouth that does not fit. A randomized reset draws mouths on a table whose
 plan is known (`Table.variant`), so it pays for the call alone.
 
-The compiled arithmetic is the same IEEE arithmetic, in the same order, as Python's, so a
-table is the same bit for bit whichever way it is built; the one exception is `math.hypot`,
-which the compiled code takes from the C library (it may differ from Python's in the last
-bit): it only picks the candidates for each pocket's broad-phase circle, whose radius Python
-then works out with its own `math.hypot`, as it always has.
+The compiled arithmetic is Python's IEEE arithmetic, in its order, so a table is the same bit
+for bit whichever way it is built; the one exception is `math.hypot`, which the compiled code
+takes from the C library (it may differ from Python's in the last bit). It only matters for
+each pocket's broad-phase radius: `Table` has Python work it out again among the candidates
+the compiled code found (`exact`), as it always has; `Table.variant` keeps the C library's.
 """
 
 from __future__ import annotations
@@ -29,22 +29,22 @@ from .pocket_shape import jaw_constants, jaw_frame
 from .tolerances import PLACEMENT_SLACK
 
 Plan = namedtuple("Plan", ["flat", "sides", "pockets", "touch", "jaws", "corner", "shapes", "size"])
-Plan.__doc__ = """What a table's geometry needs besides its mouths, in `flat` (1D: what `build` takes) and as
-its parts, views of it: sides (4, 8) [start x, y, along x, y,
-inward normal x, y, length, depth across]; pockets (P, 11) [corner (1.0) or rail (0.0) pocket, the
-mouth's divisor to its half-width along a rail (sqrt 2 or 2), the nose rail's trim past a jaw
-point, the room the mouth has, axis x, y, a jaw tip's tangent distance t and centre distance c,
-jaw radius, shelf, opening radius (nan: half the mouth)]; touch (P, 2, 2) [side (-1: none), distance
-along it] of each rail a pocket sits on; jaws (P, 2, 2, 7) [nose x, y, facing x, y, the facing's
-component along the axis, the tip's bisector x, y] for each rail a pocket sits on and each
-direction along it (away from the pocket towards the rail's start, then its end); corner (P,)
-bool; shapes and size as `plan_of` took them (for the messages)."""
+Plan.__doc__ = """What a table's geometry needs besides its mouths, in `flat` (1D: what `build` takes),
+and its parts, views of it: sides (4, 8) [start x, y, along x, y, inward normal x, y, length,
+depth across]; pockets (P, 11) [corner (1.0) or rail (0.0) pocket, the mouth's divisor to its
+half-width along a rail (sqrt 2 or 2), the nose rail's trim past a jaw point, the room the
+mouth has, axis x, y, a jaw tip's tangent distance t and centre distance c, jaw radius, shelf,
+opening radius (nan: half the mouth)]; touch (P, 2, 2) [side (-1: none), distance along it] of
+each rail a pocket sits on; jaws (P, 2, 2, 7) [nose x, y, facing x, y, the facing's component
+along the axis, the tip's bisector x, y] for each rail a pocket sits on and each direction
+along it (towards the rail's start, then its end); corner (P,) bool; shapes and size as
+`plan_of` took them (for the messages)."""
 
 # Pocket columns of Plan.pockets.
 CORNER, DIVISOR, TRIM, ROOM, AX, AY, TANGENT, CENTRE, JAW_R, SHELF, OPENING = range(11)
 # What `build` reports: every pocket fits, or which check refused which pocket.
 FITS, TOO_WIDE, OVERLAP, BACKWARDS, SHORT_OPENING, CROSSING, BAD_MOUTH = range(7)
-POINTS = 8  # the points of a pocket its broad-phase circle encloses (pocket_shape: `reach`)
+POINTS = 8  # the points a pocket's broad-phase circle encloses: nose ends, tips, facing starts and entries
 CANDIDATE = 1e-12  # relative: a point within this of the farthest may be the farthest for Python's hypot
 
 
