@@ -14,7 +14,7 @@ import pool_env  # noqa: F401  (registers the ids)
 from pool_env.game import Game, Shot
 from pool_env.physics import Physics, Table, simulate, simulate_batch, strike
 from pool_env.physics.randomize import DEFAULTS, INCH, OUNCE, PHYSICS_NAMES, Randomization
-from pool_env.records.saved import ReplayMismatch, record_game, replay
+from pool_env.records.saved import ReplayMismatch, load_game, record_game, replay, save_game
 
 EQUIPMENT = {"nine_ball": "pool", "eight_ball": "pool", "ten_ball": "pool", "break": "pool",
              "three_cushion": "carom", "snooker": "snooker"}
@@ -92,6 +92,36 @@ def test_episodes_against_a_built_in_opponent_repeat_by_seed(env_id):
     assert episode() == episode()
 
 
+def test_the_equipment_is_drawn_first_from_the_games_generator_as_rng_uniform_draws_it():
+    # One call of rng.random for every uniform range: the values rng.uniform(low, high) gives
+    # each parameter in turn (NAMES order, a ball's radius and mass one draw per ball).
+    game = Game("break", randomize="default")
+    game.reset(seed=11)
+    rng, expected = np.random.default_rng(11), {}
+    for d in game.randomization.draws:
+        per_ball = d.name in ("ball_radius", "ball_mass")
+        value = rng.uniform(d.low, d.high, game.n_balls if per_ball else None)
+        expected[d.name] = tuple(value.tolist()) if per_ball else float(value)
+    assert game.sample.values == expected
+    assert game.physics.mu_s == expected["mu_s"] and game.table.pocket_entries[0, 2] == expected["corner_mouth"]
+    assert game.table.pocket_entries[4, 2] == expected["side_mouth"] and game.balls.masses.tolist() == list(
+        expected["ball_mass"])
+    scaled = game.randomization.scaled(game.sample)
+    assert scaled[0] == np.float32(2.0 * (expected["mu_s"] - 0.15) / (0.4 - 0.15) - 1.0)
+    assert scaled.dtype == np.float32 and np.all(np.abs(scaled) <= 1.0)
+
+
+def test_a_spec_with_a_normal_draws_each_parameter_in_turn():
+    spec = {"mu_s": {"normal": (0.2, 0.05), "clip": (0.15, 0.25)}, "e_c": (0.6, 0.9), "ball_mass": (0.16, 0.17)}
+    randomization = Randomization(spec, Table.eight_foot(), Physics(), 16)
+    sample = randomization.sample(np.random.default_rng(2))
+    rng = np.random.default_rng(2)
+    assert sample.values["mu_s"] == float(np.clip(rng.normal(0.2, 0.05), 0.15, 0.25))
+    assert sample.values["e_c"] == rng.uniform(0.6, 0.9) == sample.physics.e_c
+    assert sample.values["ball_mass"] == tuple(rng.uniform(0.16, 0.17, 16).tolist())
+    assert sample.radii is None and sample.table is randomization.table
+
+
 def test_without_randomize_nothing_is_drawn_and_the_rack_is_unchanged():
     plain = Game("nine_ball", seed=4)
     assert plain.sample is None and plain.table is plain.base_table
@@ -124,6 +154,7 @@ def test_a_normal_draw_is_clipped_and_the_other_parameters_keep_their_values():
     ({"mu_s": {"normal": (0.5, 0.1), "clip": (0.1, 0.3)}}, "outside its clip"),
     ({"e_b": (0.9, 1.2)}, "Physics.e_b must be in [0, 1]"),
     ({"ball_radius": (0.015, 0.02)}, "pass under a cushion nose"),
+    ({"ball_mass": (-0.1, 0.2)}, "every ball's mass must be > 0"),
     ({"corner_mouth": (0.1, 0.9)}, "invalid game"),
     ({}, "non-empty dict"),
     ("measured", "'default'"),
@@ -182,6 +213,21 @@ def test_a_randomized_saved_game_replays_and_a_changed_draw_is_refused():
     record["sampled"]["physics"]["mu_s"] += 1e-9
     with pytest.raises(ReplayMismatch, match="randomize drew"):
         replay(record)
+
+
+def test_a_randomized_game_saved_before_version_4_is_refused(tmp_path):
+    # Version 3 drew the equipment from a generator of its own: its resets cannot be drawn again.
+    env = gym.make("PoolBreak-v0", randomize={"mu_s": (0.15, 0.4)})
+    record = json.loads(json.dumps(record_game(env, lambda obs: np.array([0.9, 0.0], np.float32), seed=1)))
+    assert record["version"] == 4 and "sampled" in record
+    old = {**record, "version": 3}
+    path = save_game(tmp_path / "old.json", old)
+    with pytest.raises(ValueError, match="old.json: a randomized game saved by saved-game version 3 .* cannot be "
+                                         "drawn again"):
+        load_game(path)
+    with pytest.raises(ValueError, match="cannot be drawn again"):
+        replay(old)
+    replay(record)
 
 
 @pytest.mark.parametrize("env_id", ["PoolBreak-v0", "PoolNineBall-v0", "ThreeCushion-v0", "Snooker-v0"])

@@ -268,7 +268,7 @@ class Game:
     def reset(self, seed=None, *, rng=None, balls: Balls | None = None, breaker: int = 0,
               ball_in_hand: bool = False, state: rules.GameState | None = None) -> Game:
         """A new game: `seed` reseeds the noise generator (or `rng` replaces it); a rack drawn
-        from it (with `randomize`, the equipment's seed first; the cue ball's random start next,
+        from it (with `randomize`, the equipment first, drawn from it; the cue ball's random start next,
         with `randomize_cue`, then the rack's seed, drawn even when `balls` is given, whose sizes
         stay theirs), `breaker` (0 or 1) to break. `balls` starts from a
         layout instead (`n_balls` balls at rest by number, the cue ball on the table; with rules
@@ -282,7 +282,7 @@ class Game:
         if breaker not in (0, 1) or isinstance(breaker, (bool, np.bool_)):
             raise ValueError(f"breaker must be 0 or 1, got {breaker!r}")
         if self.randomization is not None:  # the equipment first: the rack stands on it
-            self.sample = self.randomization.sample(np.random.default_rng(int(self.rng.integers(2**63 - 1))))
+            self.sample = self.randomization.sample(self.rng)
             self.table, self.physics = self.sample.table, self.sample.physics
         cue_xy = self._cue_start() if self.randomize_cue else None
         rack_seed = int(self.rng.integers(2**63 - 1))

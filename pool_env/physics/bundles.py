@@ -5,12 +5,13 @@ about ten parameters. Each bundle's fields are listed with their shapes; N is th
 balls.
 """
 
+import math
 from collections import namedtuple
 
 import numpy as np
 
-from .config import cushion_reach
-from .jit import allocating, allocating_helper, helper
+from .config import NOSE_HEIGHT_MODELS, cushion_reach
+from .jit import allocating, allocating_helper, helper, kernel
 from .kinds import BUFFER_FULL, DONE, EVENT_CAP, POCKETED, ROW_WIDTH, VZ, Z
 
 Scene = namedtuple("Scene", ["S", "st", "R", "Rc", "M", "params", "bb_model", "cu_model", "spin"])
@@ -26,7 +27,7 @@ Bounds.__doc__ = """The table: rails (K, 6) [x1, y1, x2, y2, nx, ny], the nose s
 facings, and rail_pockets (K,) each one's pocket (-1 for a nose); jaws (J, 3) the rounded jaw
 tips [x, y, r] and jaw_pockets (J,) their pockets; pockets (P, 3) the openings [x, y, r] a
 ball drops through when its centre enters; reach (P, 3) a circle around each pocket's mouth,
-its jaw tips and its facings up to the opening (the broad phase; pocket_shape.build_pocket);
+its jaw tips and its facings up to the opening (the broad phase; table_build.py);
 the cushion nose height, length and width of the playing area (m)."""
 
 Log = namedtuple("Log", ["t", "kind", "i", "j", "hist", "hist_ball", "counters", "size"])
@@ -188,18 +189,35 @@ REACH_CACHE = 64  # entries kept at most
 
 
 def reach_of(balls, table, cushion):
-    """Each ball's cushion reach (config.cushion_reach) as an (N,) array. Balls of one size
-    (the common case) share one cached array per (N, R, nose height, model): the engine only
-    reads it, and building it anew cost more than a short shot's whole Python wrapper."""
-    if not isinstance(balls.radius, float):
-        return np.array(cushion_reach(balls.radii, table.cushion_height, cushion), dtype=np.float64)
-    key = (len(balls), balls.radius, table.cushion_height, cushion)
+    """Each ball's cushion reach (config.cushion_reach) as an (N,) array, one cached array per
+    (N, R, nose height, model), or per (radii, nose height, model) for balls of their own
+    sizes (drawn ones): the engine only reads it, and building it anew cost more than a short
+    shot's whole Python wrapper."""
+    one_size = isinstance(balls.radius, float)
+    key = (len(balls), balls.radius, table.cushion_height, cushion) if one_size else \
+        (balls.radii.tobytes(), table.cushion_height, cushion)
     reach = _REACH.get(key)
     if reach is None:
-        if len(_REACH) >= REACH_CACHE:  # randomized nose heights: every table another key
+        if len(_REACH) >= REACH_CACHE:  # randomized nose heights and balls: every table another key
             _REACH.clear()
-        reach = _REACH[key] = np.full(key[0], cushion_reach(balls.radius, table.cushion_height, cushion))
+        if one_size:
+            reach = np.full(key[0], cushion_reach(balls.radius, table.cushion_height, cushion))
+        elif cushion in NOSE_HEIGHT_MODELS:
+            reach = np.empty(len(balls))
+            _nose_reach(balls.radii, float(table.cushion_height), reach)
+        else:
+            reach = np.array(balls.radii, dtype=np.float64)
+        _REACH[key] = reach
     return reach
+
+
+@kernel
+def _nose_reach(radii, height, out):
+    """config.cushion_reach of every radius for a nose-height model, in its arithmetic (the
+    balls' radii, checked finite and > 0, and the nose height's: no NaN to treat apart)."""
+    for i in range(radii.shape[0]):
+        sin_t = min(max(height / radii[i] - 1.0, -1.0), 1.0)
+        out[i] = radii[i] * math.sqrt(1.0 - sin_t * sin_t)
 
 
 def bounds_of(table):

@@ -22,6 +22,15 @@ NOSE_HEIGHT_MODELS = ("han2005", "mathavan2010")
 SEED_THETA = 0.01
 
 
+# Each coefficient's valid values, as __post_init__ checks them (`Physics.variant`): a finite
+# number > 0 (the smallest positive double up to the largest), in [0, 1], or finite and >= 0.
+_POSITIVE, _FRACTION, _NONNEGATIVE = (5e-324, 1.7976931348623157e308), (0.0, 1.0), (0.0, 1.7976931348623157e308)
+# The coefficients in the order the compiled engine reads them (motion.P_*): name -> index.
+PARAM_INDEX = {name: k for k, name in enumerate(("mu_s", "mu_r", "mu_sp", "g", "e_b", "e_c", "f_c", "e_t", "mu_t"))}
+COEFFICIENT_RANGES = {"mu_s": _POSITIVE, "mu_r": _POSITIVE, "mu_sp": _POSITIVE, "g": _POSITIVE, "e_b": _FRACTION,
+                      "e_c": _FRACTION, "e_t": _FRACTION, "f_c": _NONNEGATIVE, "mu_t": _NONNEGATIVE}
+
+
 @dataclasses.dataclass(frozen=True)
 class Physics:
     """How balls move and collide. Frozen: derive variants with `dataclasses.replace`.
@@ -78,8 +87,7 @@ class Physics:
             if not (math.isfinite(value) and value >= 0):
                 raise ValueError(f"Physics.{name} must be a finite number >= 0, got {value!r}")
         # The engine's view of the coefficients, built once (see motion.P_*).
-        params = np.array([self.mu_s, self.mu_r, self.mu_sp, self.g, self.e_b, self.e_c, self.f_c, self.e_t,
-                           self.mu_t])
+        params = np.array([getattr(self, name) for name in PARAM_INDEX])
         object.__setattr__(self, "_params", params)
         # The model ids the compiled code dispatches on (each name's position in its tuple).
         ids = (BALL_BALL_MODELS.index(self.ball_ball), CUSHION_MODELS.index(self.cushion))
@@ -117,6 +125,30 @@ class Physics:
         and follow almost at once); e_b 0.95 as the standard (phenolic balls alike)."""
         return cls(ball_ball="frictional", cushion="han2005", mu_s=0.2, mu_r=0.01, mu_sp=0.01, e_b=0.95,
                    e_c=0.85, f_c=0.5)
+
+    def variant(self, **coefficients) -> Physics:
+        """This physics with the given coefficients (float fields) replaced: the same as
+        `dataclasses.replace(self, **coefficients)`, the same ValueError for a value out of its
+        range, without the dataclass's set-up (a randomized reset draws one at every reset)."""
+        for name, value in coefficients.items():
+            low, high = COEFFICIENT_RANGES.get(name, (1.0, 0.0))
+            if not (value.__class__ is float and low <= value <= high):  # replace says what is wrong
+                return dataclasses.replace(self, **coefficients)
+        return self._with(coefficients)
+
+    def _with(self, coefficients: dict) -> Physics:
+        """`variant` of coefficients already checked (each a float in its COEFFICIENT_RANGES):
+        the physics' friends' (randomize.py draws inside ranges checked at both ends)."""
+        state = self.__dict__.copy()
+        state.update(coefficients)
+        params = self._params.copy()
+        for name, value in coefficients.items():
+            params[PARAM_INDEX[name]] = value
+        state["_params"] = params
+        state["_engine_args"] = (params, *self._engine_args[1:])
+        out = object.__new__(Physics)
+        object.__setattr__(out, "__dict__", state)
+        return out
 
     def can_create_spin(self) -> bool:
         """True when a collision model can give a ball z-spin it did not have."""

@@ -9,9 +9,11 @@ import numpy as np
 
 from . import snooker  # the snooker table's figures
 from .bundles import bounds_of
+from .jit import kernel
 from .placement import first_misplaced, nearest_to, overlapping
-from .pocket_shape import PocketShape, as_rows, build_pocket
-from .tolerances import CONTACT_TOLERANCE, PLACEMENT_SLACK
+from .pocket_shape import PocketShape, as_rows
+from .table_build import geometry, plan_of
+from .tolerances import CONTACT_TOLERANCE
 
 # Regulation pool ball (WPA equipment specifications): 2.25 in diameter, 5.5-6 oz.
 BALL_RADIUS = 0.028575
@@ -47,8 +49,8 @@ def _per_ball(value, n, name):
         return float(arr), np.full(n, float(arr))
     if arr.shape != (n,):
         raise ValueError(f"ball {name} must be a number or an array of shape ({n},), got shape {arr.shape}")
-    bad = np.flatnonzero(~(np.isfinite(arr) & (arr > 0)))
-    if bad.size:
+    if not (np.minimum.reduce(arr) > 0.0 and np.maximum.reduce(arr) < math.inf):  # a NaN fails both
+        bad = np.flatnonzero(~(np.isfinite(arr) & (arr > 0)))
         raise ValueError(f"ball {bad[0]} has {name} {float(arr[bad[0]])!r}; it must be finite and > 0")
     return _readonly(arr.copy()), arr.copy()
 
@@ -189,24 +191,74 @@ class Balls:
         radii) is at least g times what it was: balls apart stay apart (no check needed), and
         these balls, checked when made, overlap by at most g times the contact tolerance."""
         n = len(self)
-        radius, new_radii = _per_ball(radii, n, "radius")
+        given = np.asarray(radii, dtype=np.float64), np.asarray(masses, dtype=np.float64)
+        if given[0].shape == given[1].shape == (n,):
+            # One compiled call checks them, copies them (a read-only copy for `radius` and
+            # `mass`, the engine's own) and spreads the balls: `fixed` holds the positions,
+            # radius and mass (read-only), `own` the engine's radii and masses.
+            fixed, own = np.empty(4 * n), np.empty(2 * n)
+            grow = _resized(self.xy, self.pocketed, self._radii, given[0], given[1], fixed, own)
+            if grow >= 0.0:
+                fixed.setflags(write=False)  # and so every view of it below
+                out = Balls.__new__(Balls)
+                out.radius, out.mass = fixed[2 * n:3 * n], fixed[3 * n:]
+                out.xy = fixed[:2 * n].reshape(n, 2) if grow > 1.0 else self.xy
+                out.v, out.w, out.pocketed, out.air = self.v, self.w, self.pocketed, self.air
+                out._radii, out._masses = own[:n], own[n:]
+                return out
+        radius, new_radii = _per_ball(radii, n, "radius")  # a number, or a bad value: named here
         mass, new_masses = _per_ball(masses, n, "mass")
-        xy = self.xy
-        grow = float(np.max(new_radii) / np.min(self._radii))
-        if grow > 1.0:
-            on = ~self.pocketed
-            centre = xy[on].mean(axis=0)
-            xy = xy.copy()
-            xy[on] = centre + (xy[on] - centre) * grow
+        xy = np.empty((n, 2))
+        grow = _spread(self.xy, self.pocketed, self._radii, new_radii, xy)
         out = Balls.__new__(Balls)
         out.radius, out.mass = radius, mass
-        out._set(xy, self.v, self.w, self.pocketed, new_radii, new_masses, self.air)
+        out._set(xy if grow > 1.0 else self.xy, self.v, self.w, self.pocketed, new_radii, new_masses, self.air)
         return out
 
     def energy(self) -> float:
         """Kinetic energy (translation, vz included, and rotation) of the balls on the table (J)."""
         kinetic = kinetic_energy(self.v, self.w, self._radii, self._masses) + 0.5 * self._masses * self.air[:, 1] ** 2
         return float(np.sum(kinetic[~self.pocketed]))
+
+
+@kernel
+def _resized(xy, pocketed, old_radii, radii, masses, fixed, own):
+    """`Balls.sized` of (N,) radii and masses: -1 if one is not finite and > 0; else fixed (4N,)
+    holds the spread positions (2N, `_spread`: written only if its factor g > 1), the radii and
+    the masses, own (2N,) the radii and the masses again, and g is returned."""
+    n = xy.shape[0]
+    for i in range(n):
+        if not (0.0 < radii[i] < math.inf and 0.0 < masses[i] < math.inf):
+            return -1.0
+        fixed[2 * n + i], fixed[3 * n + i], own[i], own[n + i] = radii[i], masses[i], radii[i], masses[i]
+    return _spread(xy, pocketed, old_radii, radii, fixed[:2 * n].reshape((n, 2)))
+
+
+@kernel
+def _spread(xy, pocketed, old_radii, new_radii, out):
+    """`Balls.sized`'s spread: g = max(new_radii) / min(old_radii); if g > 1, `out` (N, 2) is xy
+    with the balls on the table spread about their mean position by g (a pocketed ball's row
+    as it was). Returns g. The arithmetic of numpy's xy[on].mean(axis=0) (a running sum,
+    row by row, over the count) and of centre + (xy - centre) * g."""
+    largest, smallest = new_radii[0], old_radii[0]
+    for i in range(1, xy.shape[0]):
+        largest, smallest = max(largest, new_radii[i]), min(smallest, old_radii[i])
+    grow = largest / smallest
+    if grow <= 1.0:
+        return grow
+    cx = cy = 0.0
+    count = 0
+    for i in range(xy.shape[0]):
+        if not pocketed[i]:
+            cx, cy = (xy[i, 0], xy[i, 1]) if count == 0 else (cx + xy[i, 0], cy + xy[i, 1])
+            count += 1
+    cx, cy = cx / count, cy / count
+    for i in range(xy.shape[0]):
+        if pocketed[i]:
+            out[i, 0], out[i, 1] = xy[i, 0], xy[i, 1]
+        else:
+            out[i, 0], out[i, 1] = cx + (xy[i, 0] - cx) * grow, cy + (xy[i, 1] - cy) * grow
+    return grow
 
 
 def kinetic_energy(v, w, radii, masses) -> np.ndarray:
@@ -310,41 +362,64 @@ class Table:
             raise ValueError(
                 f"pockets must be a sequence of (x, y, mouth) entries, or None for no pockets, got {pockets!r}"
             ) from None
-        L, W = self.length, self.width
         corner_shape = _shape(corner_pocket, PocketShape.corner, "corner_pocket")
         side_shape = _shape(side_pocket, PocketShape.side, "side_pocket")
         set_("corner_pocket", corner_shape)
         set_("side_pocket", side_shape)
-        sides = _sides(L, W)
-        cuts = [[] for _ in sides]
         entries = [_pocket_entry(k, p) for k, p in enumerate(pockets)]
-        built = [_place_pocket(k, entry, sides, cuts, (corner_shape, side_shape), (L, W))
-                 for k, entry in enumerate(entries)]
-        # The pockets as given, (x, y, mouth) each: what Table(...) needs to build this table again.
-        set_("pocket_entries", as_rows(entries, 3))
-        rails = []
-        for s, (start, along, normal, span, _) in enumerate(sides):
-            pos = 0.0
-            for lo, hi, number in sorted(cuts[s]):
-                if lo < pos - PLACEMENT_SLACK:
-                    raise ValueError(f"pocket {number} overlaps another pocket's mouth")
-                if lo > pos:
-                    rails.append(_rail(start, along, normal, pos, lo))
-                pos = hi
-            if pos < span:
-                rails.append(_rail(start, along, normal, pos, span))
-        # Rails: the nose segments, then each pocket's two facings (rail_pockets: -1 for a
-        # nose, else the facing's pocket; the engine looks at a pocket's facings and jaw tips
-        # only when a ball can come near the pocket).
-        rail_pockets = [-1] * len(rails) + [k for k in range(len(built)) for _ in range(2)]
-        rails += [f for pocket in built for f in pocket["facings"]]
-        set_("rails", as_rows(rails, 6))
-        set_("rail_pockets", _readonly(np.array(rail_pockets, dtype=np.int64)))
-        set_("jaws", as_rows([t for pocket in built for t in pocket["tips"]], 3))
-        set_("jaw_pockets", _readonly(np.array([k for k in range(len(built)) for _ in range(2)], dtype=np.int64)))
-        set_("pockets", as_rows([pocket["opening"] for pocket in built], 3))
-        set_("pocket_reach", as_rows([pocket["reach"] for pocket in built], 3))
-        set_("mouths", as_rows([pocket["mouth"] for pocket in built], 6))
+        plan = plan_of(tuple((x, y) for x, y, _ in entries), (corner_shape, side_shape), (self.length, self.width))
+        # The arrays of its pockets; pocket_entries, (x, y, mouth) each as given, is what Table(...)
+        # needs to build this table again. Rails: the nose segments, then each pocket's two
+        # facings (rail_pockets: -1 for a nose, else the facing's pocket; the engine looks at a
+        # pocket's facings and jaw tips only when a ball can come near the pocket).
+        self.__dict__.update(geometry(plan, as_rows(entries, 3)))
+        self.__dict__["_plan"] = plan
+
+    def variant(self, cushion_height=None, corner_mouth=None, side_mouth=None) -> Table:
+        """This table with another cushion height, and every corner (side) pocket's mouth
+        `corner_mouth` (`side_mouth`); None keeps this table's. The same as `Table(length, width,
+        the entries with those mouths, cushion_height, corner_pocket, side_pocket)`, bit for bit
+        but for each pocket's broad-phase radius (`pocket_reach`'s last column, which may differ
+        from Table's in the last bit: it takes the C library's hypot, Table Python's), and the
+        same ValueError for a value that does not fit; built in one compiled call on what this
+        table worked out once (its pockets' places and shapes: what a randomized reset draws on)."""
+        try:
+            height = self.cushion_height if cushion_height is None else float(cushion_height)
+            corner = math.nan if corner_mouth is None else float(corner_mouth)
+            side = math.nan if side_mouth is None else float(side_mouth)
+        except (TypeError, ValueError):
+            raise ValueError(f"cushion_height, corner_mouth and side_mouth must be numbers, got "
+                             f"{cushion_height!r}, {corner_mouth!r} and {side_mouth!r}") from None
+        plan = self.__dict__.get("_plan") or self._the_plan()
+        if not (0.0 < height < math.inf and (corner_mouth is None or 0.0 < corner < math.inf)
+                and (side_mouth is None or 0.0 < side < math.inf)):  # Table says what is wrong, if anything
+            entries = self.pocket_entries.copy()
+            entries[plan.corner, 2] = entries[plan.corner, 2] if corner_mouth is None else corner
+            entries[~plan.corner, 2] = entries[~plan.corner, 2] if side_mouth is None else side
+            return Table(self.length, self.width, entries.tolist(), height, self.corner_pocket, self.side_pocket)
+        out = Table.__new__(Table)
+        state = out.__dict__
+        state.update(length=self.length, width=self.width, cushion_height=height, corner_pocket=self.corner_pocket,
+                     side_pocket=self.side_pocket)
+        state.update(geometry(plan, self.pocket_entries, corner, side, exact=False))
+        state["_plan"] = plan
+        return out
+
+    @property
+    def corner_pockets(self) -> np.ndarray:
+        """Which pockets (in `pocket_entries` order) sit at a corner, shaped as `corner_pocket`;
+        the others sit on a rail, shaped as `side_pocket`. (P,) bool, read-only."""
+        return self._the_plan().corner
+
+    def _the_plan(self):
+        """This table's plan (table_build.Plan): kept since it was built, or worked out again
+        for a table unpickled (its plan is not saved)."""
+        plan = self.__dict__.get("_plan")
+        if plan is None:
+            places = tuple(map(tuple, self.pocket_entries[:, :2].tolist()))
+            plan = plan_of(places, (self.corner_pocket, self.side_pocket), (self.length, self.width))
+            self.__dict__["_plan"] = plan
+        return plan
 
     def __setattr__(self, name, value):
         raise AttributeError(f"Table is immutable: cannot set {name!r} (make a new Table)")
@@ -360,11 +435,16 @@ class Table:
         # array would be writable, and numba would compile the whole engine again for it).
         return self
 
+    def __getstate__(self):
+        # The engine's cached views of the arrays (bundles.bounds_of) and the plan are not
+        # saved: a loaded table works them out again when it needs them.
+        return {name: value for name, value in self.__dict__.items() if not name.startswith(("_bounds", "_plan"))}
+
     def __setstate__(self, state):
-        # Unpickling: numpy loads arrays writable; make them read-only again. The engine's
-        # cached views of them (bundles.bounds_of) are dropped: they would hold writable copies.
+        # Unpickling: numpy loads arrays writable; make them read-only again (a pickle made
+        # before __getstate__ may still hold the engine's cached views: they are dropped).
         for name, value in state.items():
-            if name.startswith("_bounds"):
+            if name.startswith(("_bounds", "_plan")):
                 continue
             object.__setattr__(self, name, _readonly(value) if isinstance(value, np.ndarray) else value)
 
@@ -407,68 +487,6 @@ class Table:
                    side_pocket=snooker.MIDDLE_POCKET)
 
 
-def _place_pocket(number, entry, sides, cuts, shapes, size):
-    """Pocket `number`'s jaws, facings and opening (pocket_shape.build_pocket) from its checked
-    (x, y, mouth) `entry`, checked to fit the table; appends the stretch of each rail its mouth
-    cuts to `cuts`."""
-    x, y, mouth = entry
-    touching, corner, shape, trim, room, axis = _placement(number, x, y, shapes, size)
-    half = mouth / math.sqrt(2.0) if corner else mouth / 2.0
-    # The jaw points and their rounded tips must lie on the rail(s).
-    if half + trim >= room:
-        widest = (room - trim) * (math.sqrt(2.0) if corner else 2.0)
-        raise ValueError(
-            f"pocket {number} at ({x}, {y}) has a {mouth} m mouth, too wide for the {size[0]} x {size[1]} m table: "
-            f"its jaw points must lie on the rail{'s' if corner else ''} it sits on and its mouth must not "
-            f"reach past the opposite rail, so its mouth can be at most {widest:.4g} m"
-        )
-    jaw_points, noses = [], []
-    for s, rel in touching:
-        start, along, _, span, _ = sides[s]
-        for edge in (e for e in (rel - half, rel + half) if 0.0 < e < span):
-            sign = 1.0 if edge > rel else -1.0
-            jaw_points.append((start[0] + edge * along[0], start[1] + edge * along[1]))
-            noses.append((sign * along[0], sign * along[1]))
-        cuts[s].append((max(rel - half - trim, 0.0), min(rel + half + trim, span), number))
-    return build_pocket(number, jaw_points, noses, axis, shape, mouth)
-
-
-@functools.lru_cache(maxsize=256)
-def _placement(number, x, y, shapes, size):
-    """What of pocket `number`'s place does not depend on its mouth (a randomized table keeps
-    its pockets' places, so each is worked out once): the (side, distance along it) of each
-    rail it sits on, whether it is a corner pocket, its shape, the trim of the nose rail past
-    its jaw points, the room its mouth has and its axis off the table."""
-    (corner_shape, side_shape), (L, W) = shapes, size
-    sides = _sides(L, W)
-    touching = []
-    for s, (start, along, _, span, _) in enumerate(sides):
-        rel = (x - start[0]) * along[0] + (y - start[1]) * along[1]
-        off = (x - start[0]) * along[1] - (y - start[1]) * along[0]
-        if abs(off) < PLACEMENT_SLACK and -PLACEMENT_SLACK <= rel <= span + PLACEMENT_SLACK:
-            touching.append((s, rel))
-    if not touching:
-        raise ValueError(f"pocket {number} at ({x}, {y}) is not on a rail or corner of the table")
-    corner = len(touching) == 2
-    shape = corner_shape if corner else side_shape
-    # The nose rail stops on the rounded tip, this far past the jaw point.
-    trim = shape.jaw_radius / math.tan(math.radians(0.5 * shape.cut_angle))
-    # The room the mouth has: along each rail it sits on, to the far end of the rail
-    # (at a corner) or to the nearer end (on a rail); across the table, the depth.
-    room = min(min(sides[s][3] if corner else min(rel, sides[s][3] - rel), sides[s][4]) for s, rel in touching)
-    normals = [sides[s][2] for s, _ in touching]
-    ax, ay = -sum(n[0] for n in normals), -sum(n[1] for n in normals)
-    norm = math.hypot(ax, ay)
-    return tuple(touching), corner, shape, trim, room, (ax / norm, ay / norm)
-
-
-def _sides(L, W):
-    """Each side of an L x W table: start corner, direction along it, inward normal, length, depth
-    across the table from it."""
-    return [((0.0, 0.0), (1.0, 0.0), (0.0, 1.0), L, W), ((L, W), (-1.0, 0.0), (0.0, -1.0), L, W),
-            ((0.0, W), (0.0, -1.0), (1.0, 0.0), W, L), ((L, 0.0), (0.0, 1.0), (-1.0, 0.0), W, L)]
-
-
 def _shape(value, default, name):
     """A PocketShape argument: None for the default, else a PocketShape."""
     if value is None:
@@ -494,12 +512,6 @@ def _pocket_entry(number, pocket):
     if not (all(math.isfinite(c) for c in (x, y, mouth)) and mouth > 0):
         raise ValueError(f"pocket {number} must be finite (x, y, mouth > 0), got {pocket!r}")
     return x, y, mouth
-
-
-def _rail(start, along, normal, a, b):
-    x1, y1 = start[0] + a * along[0], start[1] + a * along[1]
-    x2, y2 = start[0] + b * along[0], start[1] + b * along[1]
-    return (x1, y1, x2, y2, normal[0], normal[1])
 
 
 # The standard 8-ball rack read from the apex row by row (8 in the middle, a solid and a

@@ -91,80 +91,30 @@ def _unit(x, y):
     return x / d, y / d
 
 
-def build_pocket(number, jaw_points, noses, axis, shape, mouth):
-    """The cushions and opening of pocket `number`.
-
-    `jaw_points` are its two jaw points, `noses` the unit vectors along the nose from each
-    jaw point away from the pocket, `axis` the unit vector off the table through the middle
-    of the mouth, `mouth` its width. Returns a dict: `facings` (two [x1, y1, x2, y2, nx, ny] rail rows, n into
-    the throat), `tips` (two [x, y, r] jaw-tip circles), `nose_ends` (the points where each
-    nose rail stops, on its tip), `opening` [x, y, r], `reach` [x, y, r] (a circle around
-    all of it, for the engine's broad phase) and `mouth` [x1, y1, x2, y2, ax, ay] (the jaw
-    points and the axis)."""
-    (p1, p2), (u1, u2), (ax, ay) = jaw_points, noses, axis
-    mx, my = 0.5 * (p1[0] + p2[0]), 0.5 * (p1[1] + p2[1])
-    cos_cut, sin_cut, t, c = _jaw_constants(shape)
-    opening_radius = 0.5 * mouth if shape.opening_radius is None else shape.opening_radius
-    depth_end = shape.shelf + opening_radius
-    ox, oy = mx + depth_end * ax, my + depth_end * ay
-    facings, tips, nose_ends = [], [], []
-    for (px, py), (ux, uy), (qx, qy) in (((p1, u1, p2)), ((p2, u2, p1))):
-        # Unit vector across the table from this jaw (its rail's inward normal) and the facing
-        # direction: the nose turned by the cut angle towards the cushion's side.
-        nx, ny = _inward(ux, uy, ax, ay)
-        fx, fy = cos_cut * ux - sin_cut * nx, cos_cut * uy - sin_cut * ny
-        along = fx * ax + fy * ay
-        if along <= 0.0:
-            raise ValueError(f"pocket {number}: a {shape.cut_angle} degree cut sends the facing back onto the table")
-        bx, by = _unit(ux + fx, uy + fy)  # into the cushion's wedge, halving it
-        tips.append((px + c * bx, py + c * by, shape.jaw_radius))
-        nose_ends.append((px + t * ux, py + t * uy))
-        end = depth_end / along
-        ex, ey = px + end * fx, py + end * fy
-        # The facing's normal into the throat: towards the other jaw point's side.
-        mx_, my_ = -fy, fx
-        if mx_ * (qx - px) + my_ * (qy - py) < 0.0:
-            mx_, my_ = -mx_, -my_
-        if math.hypot(ex - ox, ey - oy) >= opening_radius:
-            raise ValueError(
-                f"pocket {number}: its opening (radius {opening_radius:.4g} m, {shape.shelf:.4g} m behind the mouth) "
-                f"does not reach its facings; make the opening wider or the shelf shallower"
-            )
-        if mx_ * (ox - ex) + my_ * (oy - ey) <= 0.0:
-            raise ValueError(f"pocket {number}: its facings cross before they reach the opening")
-        facings.append((px + t * fx, py + t * fy, ex, ey, mx_, my_))
-    opening = (ox, oy, opening_radius)
-    # The broad phase's circle: around the jaw tips, the nose ends and each facing up to where
-    # it enters the opening. A ball meets the rest of a facing only over the opening, after it
-    # dropped, and it can enter the opening only through the mouth, inside this circle.
-    points = [(x, y, 0.0) for x, y in nose_ends] + list(tips)
-    points += [(*_entry(f, opening), 0.0) for f in facings] + [(f[0], f[1], 0.0) for f in facings]
-    reach = max(math.hypot(x - mx, y - my) + r for x, y, r in points)
-    return {"facings": facings, "tips": tips, "nose_ends": nose_ends, "opening": opening,
-            "reach": (mx, my, reach), "mouth": (p1[0], p1[1], p2[0], p2[1], ax, ay)}
+def jaw_frame(ux, uy, ax, ay, shape):
+    """What a jaw needs of its nose direction u (a unit vector along the nose, away from the
+    pocket) and its pocket's axis a (unit, off the table), whatever the mouth: the facing's
+    direction f (the nose turned by the cut angle towards the cushion's side), f's component
+    along the axis (> 0: the facing runs into the pocket) and the unit bisector b of the
+    cushion's wedge at the jaw point, on which the rounded tip's centre sits. Returns (fx,
+    fy, along, bx, by); the builder (table_build.py) does the rest of the geometry above."""
+    cos_cut, sin_cut, _, _ = jaw_constants(shape)
+    # Unit vector across the table from this jaw (its rail's inward normal) and the facing
+    # direction: the nose turned by the cut angle towards the cushion's side.
+    nx, ny = _inward(ux, uy, ax, ay)
+    fx, fy = cos_cut * ux - sin_cut * nx, cos_cut * uy - sin_cut * ny
+    bx, by = _unit(ux + fx, uy + fy)  # into the cushion's wedge, halving it
+    return fx, fy, fx * ax + fy * ay, bx, by
 
 
 @functools.lru_cache(maxsize=64)
-def _jaw_constants(shape):
+def jaw_constants(shape):
     """What a jaw of `shape` needs of its cut angle alpha: cos alpha, sin alpha, the distance t
     from the jaw point to each tangent point of the rounded tip (r / tan(alpha / 2)) and from
     the jaw point to the tip's centre (r / sin(alpha / 2)); worked out once per shape."""
     alpha = math.radians(shape.cut_angle)
     return (math.cos(alpha), math.sin(alpha), shape.jaw_radius / math.tan(0.5 * alpha),
             shape.jaw_radius / math.sin(0.5 * alpha))
-
-
-def _entry(facing, opening):
-    """Where the facing (from its start, at the jaw tip) first enters the opening circle."""
-    x1, y1, x2, y2 = facing[:4]
-    ox, oy, r = opening
-    dx, dy = x2 - x1, y2 - y1
-    fx, fy = x1 - ox, y1 - oy
-    a, b, c = dx * dx + dy * dy, 2.0 * (fx * dx + fy * dy), fx * fx + fy * fy - r * r
-    if c <= 0.0:  # starts inside the opening already
-        return x1, y1
-    u = (-b - math.sqrt(max(b * b - 4.0 * a * c, 0.0))) / (2.0 * a)
-    return x1 + u * dx, y1 + u * dy
 
 
 def _inward(ux, uy, ax, ay):

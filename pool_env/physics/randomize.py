@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 
 import numpy as np
@@ -65,10 +66,6 @@ class Draw:
             return rng.uniform(self.low, self.high, size)
         return np.clip(rng.normal(self.mean, self.sd, size), self.low, self.high)
 
-    def scaled(self, value):
-        """`value` mapped from [low, high] onto [-1, 1]."""
-        return 2.0 * (np.asarray(value, dtype=np.float64) - self.low) / (self.high - self.low) - 1.0
-
 
 def _number(name, value, what):
     try:
@@ -117,22 +114,48 @@ def draw_of(name: str, value) -> Draw:
 @dataclasses.dataclass(frozen=True)
 class Sample:
     """One draw: the table and physics to play on, every ball's radius and mass (None: the rack's
-    own), and the drawn values by name (per-ball names: a tuple, one per ball)."""
+    own), and the drawn values, `drawn` (in NAMES order, per-ball names one entry per ball; see
+    `values` for them by name)."""
 
     table: Table
     physics: Physics
     radii: np.ndarray | None
     masses: np.ndarray | None
-    values: dict
+    drawn: np.ndarray
+    randomization: Randomization
+
+    @classmethod
+    def of(cls, table, physics, radii, masses, drawn, randomization, scalars=None) -> Sample:
+        """Sample(...), without the frozen dataclass's set-up (one per randomized reset); `scalars`:
+        drawn's physics and table values as a list, if known (for `info`)."""
+        out = object.__new__(cls)
+        object.__setattr__(out, "__dict__", {"table": table, "physics": physics, "radii": radii, "masses": masses,
+                                             "drawn": drawn, "randomization": randomization, "_scalars": scalars})
+        return out
+
+    @functools.cached_property
+    def values(self) -> dict:
+        """The drawn values by name (per-ball names: a tuple, one per ball)."""
+        out, at = {}, 0
+        for d, n in zip(self.randomization.draws, self.randomization.counts, strict=True):
+            part = self.drawn[at:at + n].tolist()
+            out[d.name] = tuple(part) if d.name in BALL_NAMES else part[0]
+            at += n
+        return out
 
     def info(self) -> dict:
         """What reset's info reports: `physics` (every Physics coefficient), `table` (the
         TABLE_NAMES), and `ball_radius`/`ball_mass` arrays when those are drawn. Plain floats."""
-        out = {"physics": {name: float(getattr(self.physics, name)) for name in PHYSICS_NAMES},
-               "table": table_values(self.table)}
-        for name, arr in (("ball_radius", self.radii), ("ball_mass", self.masses)):
-            if arr is not None:
-                out[name] = np.array(arr, dtype=np.float64)
+        base = self.randomization
+        scalars = self.__dict__.get("_scalars") or self.drawn[:base.scalars].tolist()
+        physics, table = base.physics_info.copy(), base.table_info.copy()
+        physics.update(zip(base.physics_names, scalars))
+        table.update(zip(base.table_names, scalars[len(base.physics_names):]))
+        out = {"physics": physics, "table": table}
+        if self.radii is not None:
+            out["ball_radius"] = self.radii.copy()
+        if self.masses is not None:
+            out["ball_mass"] = self.masses.copy()
         return out
 
     def sized(self, balls: Balls) -> Balls:
@@ -148,44 +171,13 @@ class Sample:
 def table_values(table: Table) -> dict:
     """The TABLE_NAMES of a table: its cushion height, and its first corner and side mouths
     (the mouths only when it has such pockets)."""
-    corner, side = _mouth_columns(table)
+    corner = table.corner_pockets
     out = {"cushion_height": float(table.cushion_height)}
     if corner.any():
         out["corner_mouth"] = float(table.pocket_entries[corner][0, 2])
-    if side.any():
-        out["side_mouth"] = float(table.pocket_entries[side][0, 2])
+    if (~corner).any():
+        out["side_mouth"] = float(table.pocket_entries[~corner][0, 2])
     return out
-
-
-def _mouth_columns(table):
-    """Masks of the corner pockets and the side pockets among `table.pocket_entries`."""
-    entries = table.pocket_entries
-    if not entries.size:
-        return np.zeros(0, dtype=bool), np.zeros(0, dtype=bool)
-    at_x = _near(entries[:, 0], 0.0) | _near(entries[:, 0], table.length)
-    at_y = _near(entries[:, 1], 0.0) | _near(entries[:, 1], table.width)
-    return at_x & at_y, ~(at_x & at_y)
-
-
-def _near(a, b):
-    """np.isclose(a, b) with its default tolerances, for finite values, without its set-up
-    (this runs at every randomized reset)."""
-    return np.abs(a - b) <= 1e-8 + 1e-5 * abs(b)
-
-
-def table_with(table: Table, values: dict, masks=None) -> Table:
-    """`table` with the TABLE_NAMES in `values` replaced (a new, checked Table); `masks` its
-    (corner, side) pockets if known (`_mouth_columns`)."""
-    if not values:
-        return table
-    corner, side = _mouth_columns(table) if masks is None else masks
-    entries = table.pocket_entries.copy()
-    if "corner_mouth" in values:
-        entries[corner, 2] = values["corner_mouth"]
-    if "side_mouth" in values:
-        entries[side, 2] = values["side_mouth"]
-    return Table(table.length, table.width, entries.tolist(), values.get("cushion_height", table.cushion_height),
-                 table.corner_pocket, table.side_pocket)
 
 
 class Randomization:
@@ -208,8 +200,23 @@ class Randomization:
             draw_of(unknown[0], None)  # raises, naming it
         self.table, self.physics, self.n_balls = table, physics, int(n_balls)
         self.by_name = {d.name: d for d in self.draws}
-        self._masks = _mouth_columns(table)  # which pockets a corner or side mouth sizes, found once
         self._check()
+        # What `sample` and `Sample` need, worked out once: each draw's entries, the scalar
+        # (physics and table) names first, every entry's low end and width, the base's info.
+        self.counts = tuple(self.n_balls if d.name in BALL_NAMES else 1 for d in self.draws)
+        self.size = sum(self.counts)
+        self.physics_names = tuple(d.name for d in self.draws if d.name in PHYSICS_NAMES)
+        self.table_names = tuple(d.name for d in self.draws if d.name in TABLE_NAMES)
+        self.scalars = len(self.physics_names) + len(self.table_names)
+        self._physics_count = len(self.physics_names)
+        at = {name: slice(self.scalars + k * self.n_balls, self.scalars + (k + 1) * self.n_balls)
+              for k, name in enumerate(d.name for d in self.draws if d.name in BALL_NAMES)}
+        self._radii, self._masses = at.get("ball_radius"), at.get("ball_mass")
+        self._low = np.repeat([d.low for d in self.draws], self.counts)
+        self._width = np.repeat([d.high - d.low for d in self.draws], self.counts)
+        self._uniform = all(d.sd is None for d in self.draws)
+        self.physics_info = {name: float(getattr(physics, name)) for name in PHYSICS_NAMES}
+        self.table_info = table_values(table)
 
     def _check(self):
         for end in ("low", "high"):
@@ -217,9 +224,13 @@ class Randomization:
             phys = {k: v for k, v in values.items() if k in PHYSICS_NAMES}
             try:
                 dataclasses.replace(self.physics, **phys)
-                table = table_with(self.table, {k: v for k, v in values.items() if k in TABLE_NAMES})
+                table = self.table.variant(**{k: v for k, v in values.items() if k in TABLE_NAMES})
             except ValueError as exc:
                 raise ValueError(f"randomize: the ranges' {end} ends make an invalid game: {exc}") from None
+        for name in BALL_NAMES:
+            if name in self.by_name and not self.by_name[name].low > 0:
+                raise ValueError(f"randomize[{name!r}]: every ball's {name[5:]} must be > 0, "
+                                 f"got a range from {self.by_name[name].low}")
         lowest = self.by_name["ball_radius"].low if "ball_radius" in self.by_name else None
         highest_nose = self.by_name["cushion_height"].high if "cushion_height" in self.by_name \
             else self.table.cushion_height
@@ -231,23 +242,30 @@ class Randomization:
                 raise ValueError("randomize: the table has no pockets to size")
 
     def sample(self, rng: np.random.Generator) -> Sample:
-        """Every parameter drawn, in NAMES order (per-ball names: one draw per ball)."""
-        values = {}
-        for d in self.draws:
-            per_ball = d.name in BALL_NAMES
-            drawn = d.sample(rng, self.n_balls if per_ball else None)
-            values[d.name] = tuple(float(v) for v in drawn) if per_ball else float(drawn)
-        physics = dataclasses.replace(self.physics, **{k: v for k, v in values.items() if k in PHYSICS_NAMES})
-        table = table_with(self.table, {k: v for k, v in values.items() if k in TABLE_NAMES}, self._masks)
-        radii = np.array(values["ball_radius"]) if "ball_radius" in values else None
-        masses = np.array(values["ball_mass"]) if "ball_mass" in values else None
-        return Sample(table, physics, radii, masses, values)
+        """Every parameter drawn from `rng`, in NAMES order (per-ball names: one draw per ball).
+        Uniform ranges alone (the defaults): one call of rng.random for them all, the same
+        values as rng.uniform(low, high) for each in turn."""
+        if self._uniform:
+            drawn = rng.random(self.size)
+            drawn *= self._width
+            drawn += self._low
+        else:
+            drawn = np.concatenate([np.atleast_1d(d.sample(rng, n if d.name in BALL_NAMES else None))
+                                    for d, n in zip(self.draws, self.counts, strict=True)])
+        scalars = drawn[:self.scalars].tolist()
+        # Each coefficient's valid values are a range, whose ends `_check` tried: a draw
+        # between them needs no check.
+        k = self._physics_count
+        physics = self.physics._with(dict(zip(self.physics_names, scalars))) if k else self.physics
+        table = self.table.variant(**dict(zip(self.table_names, scalars[k:]))) if self.table_names else self.table
+        radii = None if self._radii is None else drawn[self._radii]
+        masses = None if self._masses is None else drawn[self._masses]
+        return Sample.of(table, physics, radii, masses, drawn, self, scalars)
 
     def scaled(self, sample: Sample) -> np.ndarray:
         """The drawn values mapped from their ranges onto [-1, 1] (float32), in NAMES order,
         per-ball names one entry per ball: what an observation may carry."""
-        parts = [np.atleast_1d(d.scaled(sample.values[d.name])) for d in self.draws]
-        return np.concatenate(parts).astype(np.float32)
+        return (2.0 * (sample.drawn - self._low) / self._width - 1.0).astype(np.float32)
 
     def unscaled(self, scaled) -> dict:
         """`scaled`'s decoder: the drawn values by name (per-ball names: tuples), from its [-1, 1] entries."""
@@ -260,8 +278,3 @@ class Randomization:
         if at != scaled.shape[0]:
             raise ValueError(f"unscaled takes {at} entries (this spec's size), got {scaled.shape[0]}")
         return values
-
-    @property
-    def size(self) -> int:
-        """How many entries `scaled` returns."""
-        return sum(self.n_balls if d.name in BALL_NAMES else 1 for d in self.draws)

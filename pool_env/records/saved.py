@@ -13,8 +13,11 @@ from .. import __version__
 from ..physics import Physics
 
 FORMAT = "pool_env.saved_game"
-VERSION = 3  # 2: the numeric infos (codes, the pocketed mask); 3: 8-ball calls a ball and a pocket by default
-READS = (2, 3)  # the versions load_game reads (an older one upgraded: `upgrade`)
+# 2: the numeric infos (codes, the pocketed mask); 3: 8-ball calls a ball and a pocket by default;
+# 4: randomize draws the equipment from the game's generator (before: from one of its own).
+VERSION = 4
+READS = (2, 3, 4)  # the versions load_game reads (an older one upgraded: `upgrade`)
+DRAWS_FROM_THE_GAME = 4  # the first version whose randomized resets this pool_env draws again
 CHECKED_INFO = ("foul", "pocketed", "winner", "end_reason", "turn_passed", "scratch")  # per step, when present
 
 
@@ -203,17 +206,30 @@ def load_game(path) -> dict:
     if len(record["actions"]) != len(record["outcomes"]):
         raise ValueError(f"{path} is damaged: {len(record['actions'])} actions but {len(record['outcomes'])} "
                          "outcomes (one outcome per action)")
-    return upgrade(record)
+    try:
+        return upgrade(record)
+    except ValueError as exc:
+        raise ValueError(f"{path}: {exc}") from None
 
 
 def upgrade(record: dict) -> dict:
     """A loaded record in this version's terms: a version-2 8-ball game was played when 8-ball
     called only the 8 (`EightBall(calling="eight_only")`), so it gets that rule option, unless
-    it names a calling of its own."""
+    it names a calling of its own. A randomized game of a version before 4 drew its equipment
+    from a generator of its own, which this version does not: ValueError."""
+    _check_draws(record)
     if record["version"] == 2 and record["env_kwargs"].get("game") == "eight_ball":
         options = {"calling": "eight_only", **(record["env_kwargs"].get("rule_options") or {})}
         record = {**record, "env_kwargs": {**record["env_kwargs"], "rule_options": options}}
     return {**record, "version": VERSION}
+
+
+def _check_draws(record):
+    """ValueError for a randomized game saved before version 4 (its resets cannot be drawn again)."""
+    if record.get("sampled") is not None and record.get("version", VERSION) < DRAWS_FROM_THE_GAME:
+        raise ValueError(f"a randomized game saved by saved-game version {record['version']} drew its equipment "
+                         "from a generator of its own, as this pool_env no longer does: its resets cannot be "
+                         "drawn again (replay it with the pool_env that saved it)")
 
 
 def replay(record: dict, env=None, on_step=None, until=None):
@@ -221,6 +237,7 @@ def replay(record: dict, env=None, on_step=None, until=None):
     ReplayMismatch at the first difference (naming the step and what differs). `on_step(k,
     env)` is called after step k (e.g. to film it); `until` stops after that many steps.
     Returns the env, at the end of the replayed steps."""
+    _check_draws(record)
     env = make_env(record) if env is None else env
     base = env.unwrapped
     # A field the saved game predates (the slate's e_t and mu_t) was played at its default.
