@@ -205,3 +205,17 @@ def test_pixels_bench_prints_batched_and_single_beside_the_target(capsys):
     assert ">= 10,000" in out
     with pytest.raises(ValueError, match="num-envs"):
         pixels.main(["--num-envs", "0"])
+
+
+def test_pooltool_table_shape_gives_the_eight_foot_tables_documented_mouths():
+    """The table pooltool is given has Table.eight_foot's mouths between the jaw points: 4.5625 in
+    at the corners and 5.0625 in at the sides (the WPA ranges' middles, 0.1159 and 0.1286 m)."""
+    from pool_env.bench.speed_pooltool import table_shape
+    from pool_env.physics import Table
+
+    shape = table_shape(Table.eight_foot())
+    assert shape["corner"] == pytest.approx(4.5625 * 0.0254, abs=1e-4)
+    assert shape["side"] == pytest.approx(5.0625 * 0.0254, abs=1e-4)
+    assert (shape["l"], shape["w"]) == (2.24, 1.12)
+    with pytest.raises(ValueError, match="six-pocket"):
+        table_shape(Table(2.24, 1.12))

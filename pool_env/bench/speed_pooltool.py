@@ -11,16 +11,13 @@ from pool_env.bench.shots import break_shot, fmt_time, two_ball_shot
 
 
 def table_shape(table):
-    """Playing area, pocket mouths (between the rail ends) and cushion height of our six-pocket table."""
-    corner = side = None
-    for x, y, half in table.pockets:
-        if x in (0.0, table.length) and y in (0.0, table.width):
-            corner = half * math.sqrt(2.0)  # our capture radius at a corner is mouth / sqrt 2
-        else:
-            side = 2.0 * half  # and mouth / 2 on a rail
-    if len(table.pockets) != 6 or corner is None or side is None:
+    """Playing area, pocket mouths (between the jaw points) and cushion height of our six-pocket
+    table: four corner pockets and two on the long rails, as pooltool's pocket table has."""
+    mouths, corner = table.pocket_entries[:, 2], table.corner_pockets
+    if len(mouths) != 6 or int(corner.sum()) != 4:
         raise ValueError(f"pooltool comparison needs our six-pocket table, got {table!r}")
-    return {"l": table.length, "w": table.width, "corner": corner, "side": side, "h": table.cushion_height}
+    return {"l": table.length, "w": table.width, "corner": float(mouths[corner][0]),
+            "side": float(mouths[~corner][0]), "h": table.cushion_height}
 
 
 def pooltool_system(balls, table):
