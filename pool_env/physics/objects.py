@@ -24,6 +24,8 @@ from .placement import first_misplaced
 from .table import CAROM_CUSHION_HEIGHT, CAROM_LENGTH, CAROM_WIDTH, Table  # noqa: F401  (re-exported)
 from .tolerances import CONTACT_TOLERANCE
 
+# The standard 8-ball rack read from the apex row by row (8 in the middle, a solid and a
+# stripe in the back corners).
 RACK_ORDER = ((1,), (9, 2), (10, 8, 3), (11, 7, 14, 4), (5, 13, 15, 6, 12))
 
 

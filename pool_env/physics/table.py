@@ -208,6 +208,3 @@ def _pocket_entry(number, pocket):
         raise ValueError(f"pocket {number} must be finite (x, y, mouth > 0), got {pocket!r}")
     return x, y, mouth
 
-
-# The standard 8-ball rack read from the apex row by row (8 in the middle, a solid and a
-# stripe in the back corners).
