@@ -31,6 +31,11 @@ COEFFICIENT_RANGES = {"mu_s": _POSITIVE, "mu_r": _POSITIVE, "mu_sp": _POSITIVE, 
                       "e_c": _FRACTION, "e_t": _FRACTION, "f_c": _NONNEGATIVE, "mu_t": _NONNEGATIVE}
 
 
+def _named(valid) -> tuple:
+    """The coefficients whose valid values are `valid` (one of the ranges above), in order."""
+    return tuple(name for name, values in COEFFICIENT_RANGES.items() if values is valid)
+
+
 @dataclasses.dataclass(frozen=True)
 class Physics:
     """How balls move and collide. Frozen: derive variants with `dataclasses.replace`.
@@ -74,15 +79,15 @@ class Physics:
             )
         if self.cushion not in CUSHION_MODELS:
             raise ValueError(f"unknown cushion model {self.cushion!r}; choose one of {', '.join(CUSHION_MODELS)}")
-        for name in ("mu_s", "mu_r", "mu_sp", "g"):
+        for name in _named(_POSITIVE):
             value = getattr(self, name)
             if not (math.isfinite(value) and value > 0):
                 raise ValueError(f"Physics.{name} must be a finite number > 0, got {value!r}")
-        for name in ("e_b", "e_c", "e_t"):
+        for name in _named(_FRACTION):
             value = getattr(self, name)
             if not (math.isfinite(value) and 0 <= value <= 1):
                 raise ValueError(f"Physics.{name} must be in [0, 1], got {value!r}")
-        for name in ("f_c", "mu_t"):
+        for name in _named(_NONNEGATIVE):
             value = getattr(self, name)
             if not (math.isfinite(value) and value >= 0):
                 raise ValueError(f"Physics.{name} must be a finite number >= 0, got {value!r}")
