@@ -7,8 +7,9 @@
                                          # 9-ball: practice run-outs through the ghost-ball action
                                          # wrapper, judged by the win rate against the ghost-ball player
 
-Single file, read top to bottom (in the spirit of CleanRL): the options, then `main`, whose
-phases follow it in the order they run: the run folder and logging, the vectorised envs and
+One file, read top to bottom (in the spirit of CleanRL): the options, then `main`, whose
+phases follow it in the order they run (the words and tables of the report they write come from
+agents/report.py): the run folder and logging, the vectorised envs and
 the model, training (learning-curve evaluations, a progress bar on a terminal and a progress
 line every few seconds in train.log and on a redirected stdout, TensorBoard), the final
 evaluation of the trained model, RandomAgent and the geometric heuristic on the same fixed
@@ -180,6 +181,8 @@ def cli(argv=None) -> int:
 def main(args: Args) -> Path:
     """The whole job. Each phase is a function below, in the order it runs. Each imports what it
     needs (not the top of the file): subprocess envs re-import this file, and --help stays instant."""
+    from agents.report import plot_learning_curve
+
     started = time.perf_counter()
     run = open_run(args)                                 # run folder, logging, the env's facts, compiled physics
     if args.algo == "value":                             # the learned player: labelled data and a value net
@@ -398,6 +401,18 @@ def make_callbacks(args: Args, run: Run):
                     self.logger.record(f"eval/{key}", point[key])
             self.logger.dump(self.num_timesteps)
 
+    # No more often than the policy changes (PPO updates once per rollout of n_steps * n_envs).
+    every = max(args.timesteps // max(args.curve_points, 1), args.n_steps * args.n_envs if args.algo == "ppo" else 1)
+    curve = CurveCallback(every if args.curve_points else 0)
+    anneal = [anneal_std(args)] if args.algo == "ppo" and args.anneal_std else []
+    callbacks = [curve, progress_callback(args), *anneal]
+    return curve, CallbackList(callbacks)
+
+
+def anneal_std(args: Args):
+    """PPO's exploration schedule as a callback: the policy's log std from --log-std-init to --log-std-final."""
+    from stable_baselines3.common.callbacks import BaseCallback
+
     class AnnealStd(BaseCallback):
         """Exploration from coarse to fine: the reward is a rugged function of the aim (a fifth of a
         ball radius can halve it), so the Gaussian policy's spread follows a fixed schedule,
@@ -414,6 +429,15 @@ def make_callbacks(args: Args, run: Run):
 
         def _on_step(self) -> bool:
             return True
+
+    return AnnealStd()
+
+
+def progress_callback(args: Args):
+    """A callback that logs a progress line (agents.report.progress_line) every --progress-every seconds."""
+    from stable_baselines3.common.callbacks import BaseCallback
+
+    from agents.report import progress_line
 
     class Progress(BaseCallback):
         """A progress line every --progress-every seconds, to train.log and (unless the progress bar
@@ -433,29 +457,14 @@ def make_callbacks(args: Args, run: Run):
                              extra={"progress": True})
             return True
 
-    # No more often than the policy changes (PPO updates once per rollout of n_steps * n_envs).
-    every = max(args.timesteps // max(args.curve_points, 1), args.n_steps * args.n_envs if args.algo == "ppo" else 1)
-    curve = CurveCallback(every if args.curve_points else 0)
-    callbacks = [curve, Progress()] + ([AnnealStd()] if args.algo == "ppo" and args.anneal_std else [])
-    return curve, CallbackList(callbacks)
-
-
-def progress_line(done: int, total: int, elapsed: float, rewards: list[float]) -> str:
-    """Shots done / total, shots/s, the recent episodes' mean reward, elapsed and estimated remaining
-    time (at the average rate so far, learning-curve evaluations included); `done` and `elapsed` > 0."""
-    from datetime import timedelta
-
-    reward = f"{sum(rewards) / len(rewards):+.3f} (last {len(rewards)} episodes)" if rewards else "-"
-    left = max(total - done, 0) * elapsed / done
-    clock = lambda seconds: str(timedelta(seconds=round(seconds)))
-    return (f"progress: {done:,}/{total:,} shots ({100 * done / total:.0f} %), {done / elapsed:,.0f} shots/s, "
-            f"mean reward {reward}, {clock(elapsed)} elapsed, {clock(left)} left")
+    return Progress()
 
 
 def final_evaluation(args: Args, run: Run, model, curve) -> dict:
     """The trained model and the baselines on the same fixed seeds: the table and the paired reward
     differences (logged and written to results.md), the verdict, eval_episodes.json; returns eval.json's content."""
     from agents import BreakAgent, SB3Agent, baselines, evaluate, format_table, paired_difference
+    from agents.report import verdict
 
     if run.game:
         return game_evaluation(args, run, model, curve)
@@ -500,37 +509,6 @@ def final_evaluation(args: Args, run: Run, model, curve) -> dict:
     }
 
 
-def verdict(differences: dict[str, dict], trained_steps: int, min_timesteps: int, untrained: dict | None,
-            episodes: int) -> str:
-    """The comparison in words: "beats X" only when the paired 95 % interval of the reward
-    difference excludes zero in the trained agent's favour, and no claim at all from a run too
-    short to mean anything, or whose kept checkpoint (`untrained`) is the untrained policy."""
-    reasons = no_claim_reasons(trained_steps, min_timesteps, untrained, episodes)
-    if reasons:
-        return "no claim against the baselines: " + "; ".join(reasons)
-    claims = []
-    for key, d in differences.items():
-        low, high = d["mean"] - d["ci95"], d["mean"] + d["ci95"]
-        word = "beats" if low > 0 else "loses to" if high < 0 else "is not distinguishable from"
-        claims.append(f"{word} {key.removeprefix('trained - ')} ({d['mean']:+.3f} ± {d['ci95']:.3f})")
-    return ("the trained agent " + ", ".join(claims)
-            + " in reward per episode (paired on the same seeds; 95 % intervals)")
-
-
-def no_claim_reasons(trained_steps: int, min_timesteps: int, untrained: dict | None, episodes: int) -> list[str]:
-    """Why a run may claim nothing: too short, the untrained policy kept, a single evaluation episode."""
-    reasons = []
-    if trained_steps < min_timesteps:
-        reasons.append(f"too short to mean anything ({trained_steps:,} timesteps, under --min-timesteps "
-                       f"{min_timesteps:,})")
-    if untrained is not None:
-        reasons.append(f"the kept checkpoint is the untrained policy (the first evaluation, at "
-                       f"{untrained['timesteps']:,} timesteps, before any policy update)")
-    if episodes < 2:
-        reasons.append("one evaluation episode gives no confidence interval")
-    return reasons
-
-
 def film(args: Args, run: Run, model) -> float:
     """A video of the trained agent, every shot whole; returns its wall time."""
     import gymnasium as gym
@@ -566,6 +544,7 @@ def play_games(agent, args: Args, run: Run, seeds) -> dict:
 
     from agents import RandomAgent
     from agents.match import alternate, env_winner, run_episode
+    from agents.report import game_summary
     from pool_env.players.game_ghost_ball import GameGhostBallAgent
 
     as_agent = quiet_env(args.env_id, **run.env_kwargs)  # the agent breaks; args.opponent replies
@@ -588,37 +567,12 @@ def play_games(agent, args: Args, run: Run, seeds) -> dict:
     return {**game_summary(games), "per_episode": games}
 
 
-def game_summary(games: list[dict]) -> dict:
-    """Wins, losses, unfinished games (max_shots or a simulator error: half a win each), the win
-    rate with its 95 % Wilson interval (also among the games the agent broke and did not), the
-    reward per game (+1 a win, -1 a loss, 0 unfinished: mean, sd, 95 % half-width), shots per game."""
-    import math
-
-    import numpy as np
-
-    from agents.stats import Z95, wilson
-
-    def rate(subset):
-        wins = sum(g["winner"] == "agent" for g in subset) + 0.5 * sum(g["winner"] is None for g in subset)
-        low, high = wilson(wins, len(subset))
-        return {"mean": wins / max(len(subset), 1), "low": low, "high": high, "games": len(subset)}
-
-    reward = np.array([{"agent": 1.0, "opponent": -1.0}.get(g["winner"], 0.0) for g in games])
-    sd = float(reward.std(ddof=1)) if reward.size > 1 else 0.0
-    return {"episodes": len(games), "wins": sum(g["winner"] == "agent" for g in games),
-            "losses": sum(g["winner"] == "opponent" for g in games),
-            "unfinished": sum(g["winner"] is None for g in games), "win_rate": rate(games),
-            "win_rate_breaking": rate([g for g in games if g["agent_breaks"]]),
-            "win_rate_not_breaking": rate([g for g in games if not g["agent_breaks"]]),
-            "reward": {"mean": float(reward.mean()), "sd": sd, "ci95": Z95 * sd / math.sqrt(reward.size)},
-            "shots_per_game": float(np.mean([g["shots"] for g in games]))}  # both players' shots
-
-
 def game_evaluation(args: Args, run: Run, model, curve) -> dict:
     """Game envs: the trained model, the opponent's own player (ghost_ball) and random, each
     playing args.opponent on the same seeds, breaks alternating: win rates with 95 % Wilson
     intervals (logged and written to results.md), the verdict, eval_episodes.json; returns eval.json's content."""
     from agents import RandomAgent
+    from agents.report import game_table, game_verdict, no_claim_reasons
     from pool_env.players.game_ghost_ball import GameGhostBallAgent
 
     eval_start = time.perf_counter()
@@ -656,86 +610,6 @@ def game_evaluation(args: Args, run: Run, model, curve) -> dict:
         "verdict": words, "learning_curve": curve.points, "wall_time_s": {"evaluation": eval_time},
         "args": dataclasses.asdict(args),
     }
-
-
-def game_table(results: dict[str, dict]) -> str:
-    """A markdown table of game_summary results, a row per agent."""
-    def cell(w):
-        return f"{100 * w['mean']:.1f} % [{100 * w['low']:.1f}, {100 * w['high']:.1f}]"
-
-    rows = ["| agent | win rate [95 % CI] | breaking | not breaking | wins | losses | unfinished | shots / game |",
-            "| --- | --- | --- | --- | --- | --- | --- | --- |"]
-    for name, r in results.items():
-        rows.append(f"| {name} | {cell(r['win_rate'])} | {cell(r['win_rate_breaking'])} | "
-                    f"{cell(r['win_rate_not_breaking'])} | {r['wins']} | {r['losses']} | {r['unfinished']} | "
-                    f"{r['shots_per_game']:.1f} |")
-    return "\n".join(rows)
-
-
-def game_verdict(win_rate: dict, opponent: str, reasons: list[str]) -> str:
-    """"beats" the opponent only when the win rate's 95 % interval lies above 50 %, and no claim
-    at all for the reasons no_claim_reasons gives."""
-    if reasons:
-        return f"no claim against {opponent}: " + "; ".join(reasons)
-    figure = f"{100 * win_rate['mean']:.1f} % [{100 * win_rate['low']:.1f}, {100 * win_rate['high']:.1f}]"
-    word = ("beats" if win_rate["low"] > 0.5 else "loses to" if win_rate["high"] < 0.5
-            else "is not distinguishable from")
-    return f"the trained agent {word} {opponent} (win rate {figure}, 95 % Wilson interval, {win_rate['games']} games)"
-
-
-def read_monitor(folder: Path):
-    """(timesteps at the end of each episode, episode rewards) from SB3 Monitor csv files, in time order."""
-    import csv
-
-    import numpy as np
-
-    rows = []
-    for path in sorted(folder.glob("*.monitor.csv")):
-        with open(path) as f:
-            next(f)  # the JSON header line
-            rows += [(float(r["t"]), float(r["r"]), int(r["l"])) for r in csv.DictReader(f)]
-    rows.sort()
-    lengths = np.array([r[2] for r in rows], dtype=np.int64)
-    return np.cumsum(lengths), np.array([r[1] for r in rows])
-
-
-def plot_learning_curve(run_dir: Path, points: list[dict], baselines: dict[str, float], title: str,
-                        kept: dict | None = None) -> None:
-    """Training episodes' reward (rolling mean, from the Monitor files) and the deterministic
-    evaluations against timesteps, with the baselines' final evaluation as horizontal lines."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    import numpy as np
-
-    fig, ax = plt.subplots(figsize=(8, 5.2), dpi=120)
-    steps, rewards = read_monitor(run_dir / "monitor")
-    if len(rewards):
-        window = max(1, len(rewards) // 50)
-        smooth = np.convolve(rewards, np.ones(window) / window, mode="valid")
-        ax.plot(steps[window - 1:], smooth, color="tab:blue", alpha=0.6,
-                label=f"training episodes (stochastic policy, rolling mean of {window} episodes)")
-    if points:
-        t = [p["timesteps"] for p in points]
-        mean = np.array([p["reward"]["mean"] for p in points])
-        ci = np.array([p["reward"]["ci95"] for p in points])
-        ax.plot(t, mean, "o-", color="tab:red", label="trained agent, deterministic (fixed seeds)")
-        ax.fill_between(t, mean - ci, mean + ci, color="tab:red", alpha=0.15)
-    if kept is not None:
-        ax.plot([kept["timesteps"]], [kept["reward"]["mean"]], "*", color="black", markersize=14,
-                label="kept checkpoint (model.zip)")
-    colours = iter(["tab:gray", "tab:green", "tab:purple", "tab:orange"])
-    for name, value in baselines.items():
-        ax.axhline(value, linestyle="--", color=next(colours), label=f"{name} ({value:+.2f})")
-    ax.set_xlabel("timesteps (shots)")
-    ax.set_ylabel("episode reward")
-    ax.set_title(title)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)
-    fig.tight_layout()
-    fig.savefig(run_dir / "learning_curve.png")
-    plt.close(fig)
 
 
 def quiet_env(env_id: str, **kwargs):

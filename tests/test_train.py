@@ -1,7 +1,6 @@
 """train.py: a smoke run with tiny settings produces every artefact, reports progress, makes no claim
 from a run too short to mean anything; --help lists the options; the verdict's wording."""
 
-import importlib.util
 import json
 import re
 import subprocess
@@ -29,16 +28,9 @@ def test_help_lists_every_option():
         assert flag in out.stdout
 
 
-def load_train():
-    """train.py as a module (cheap: its heavy imports happen inside its phases)."""
-    spec = importlib.util.spec_from_file_location("train_script", ROOT / "train.py")
-    module = sys.modules[spec.name] = importlib.util.module_from_spec(spec)  # dataclasses look the module up
-    spec.loader.exec_module(module)
-    return module
-
-
 def test_verdict_claims_only_what_the_intervals_show():
-    verdict = load_train().verdict
+    from agents.report import verdict
+
     differences = {"trained - random": {"mean": 0.31, "ci95": 0.05},      # interval above zero
                    "trained - heuristic": {"mean": -0.03, "ci95": 0.13},  # straddles zero
                    "trained - head-on break": {"mean": -0.8, "ci95": 0.1}}
@@ -55,7 +47,9 @@ def test_verdict_claims_only_what_the_intervals_show():
 
 
 def test_progress_line_fields():
-    line = load_train().progress_line(10_000, 20_000, 4.0, [1.0, -1.0, 3.0])
+    from agents.report import progress_line
+
+    line = progress_line(10_000, 20_000, 4.0, [1.0, -1.0, 3.0])
     assert line == ("progress: 10,000/20,000 shots (50 %), 2,500 shots/s, mean reward +1.000 (last 3 episodes), "
                     "0:00:04 elapsed, 0:00:04 left")
 
@@ -152,21 +146,22 @@ def test_sac_option_runs(tmp_path):
 
 
 def test_game_verdict_and_summary():
-    train = load_train()
+    from agents.report import game_summary, game_table, game_verdict
+
     games = ([{"winner": "agent", "agent_breaks": k % 2 == 0, "shots": 5} for k in range(150)]
              + [{"winner": "opponent", "agent_breaks": k % 2 == 0, "shots": 7} for k in range(48)]
              + [{"winner": None, "agent_breaks": False, "shots": 100}] * 2)
-    summary = train.game_summary(games)
+    summary = game_summary(games)
     win = summary["win_rate"]
     assert (summary["wins"], summary["losses"], summary["unfinished"]) == (150, 48, 2)
     assert win["mean"] == pytest.approx(151 / 200) and win["low"] < win["mean"] < win["high"]
     assert summary["reward"]["mean"] == pytest.approx((150 - 48) / 200)
-    assert train.game_verdict(win, "ghost_ball", []).startswith("the trained agent beats ghost_ball (win rate 75.5 %")
-    assert "is not distinguishable from x" in train.game_verdict({"mean": 0.52, "low": 0.45, "high": 0.59,
+    assert game_verdict(win, "ghost_ball", []).startswith("the trained agent beats ghost_ball (win rate 75.5 %")
+    assert "is not distinguishable from x" in game_verdict({"mean": 0.52, "low": 0.45, "high": 0.59,
                                                                   "games": 200}, "x", [])
-    assert "loses to x" in train.game_verdict({"mean": 0.3, "low": 0.24, "high": 0.37, "games": 200}, "x", [])
-    assert train.game_verdict(win, "ghost_ball", ["too short"]) == "no claim against ghost_ball: too short"
-    assert "| trained | 75.5 % [" in train.game_table({"trained": summary})
+    assert "loses to x" in game_verdict({"mean": 0.3, "low": 0.24, "high": 0.37, "games": 200}, "x", [])
+    assert game_verdict(win, "ghost_ball", ["too short"]) == "no claim against ghost_ball: too short"
+    assert "| trained | 75.5 % [" in game_table({"trained": summary})
 
 
 @pytest.mark.slow
