@@ -7,8 +7,7 @@ from dataclasses import dataclass, field, fields
 import numpy as np
 
 from ..physics.jit import kernel
-from ..physics.kinds import BALL_BALL, BALL_BALL_SETTLE, BALL_CUSHION, BALL_OFF_TABLE, BALL_POCKET, \
-    EVENT_KINDS
+from ..physics.kinds import BALL_BALL, BALL_BALL_SETTLE, BALL_CUSHION, BALL_OFF_TABLE, BALL_POCKET, EVENT_KINDS
 
 CUE = 0  # the cue ball's number
 
