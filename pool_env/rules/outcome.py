@@ -4,10 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field, fields
 
-import numpy as np
-
-from ..physics.jit import kernel
-from ..physics.kinds import BALL_BALL, BALL_BALL_SETTLE, BALL_CUSHION, BALL_OFF_TABLE, BALL_POCKET, EVENT_KINDS
+from ..physics.kinds import BALL_BALL_KINDS, BALL_CUSHION, BALL_OFF_TABLE, BALL_POCKET, EVENT_KINDS
 
 CUE = 0  # the cue ball's number
 
@@ -110,65 +107,45 @@ def outcome_from_result(result) -> ShotOutcome:
     is a "ball_pocket" event (j the pocket index); a ball leaving the table through the air
     is a "ball_off_table" event. Motion transitions and bounces on the slate are ignored."""
     arrays = getattr(result, "event_arrays", None)
-    if arrays is not None:  # a physics Result: read in one compiled pass (`read_log`)
-        return _outcome_of_log(arrays, result.pressed_cushion_events())
-    events = result.events
-    arrays = (None, *(np.array(column, dtype=np.int64).reshape(-1) for column in
-                      ([EVENT_KINDS.index(event.kind) for event in events], [event.i for event in events],
-                       [event.j for event in events])))
-    return ShotOutcome(*_read(arrays, np.zeros(len(events), dtype=np.bool_)))
-
-
-def _outcome_of_log(arrays, pressed) -> ShotOutcome:
-    """The `ShotOutcome` of a Result's event arrays (t, kind, i, j) and pressed-cushion flags."""
+    if arrays is not None:  # a physics Result: its arrays as lists, without an Event object per event
+        _, kinds, i_s, j_s = arrays
+        kinds, i_s, j_s = kinds.tolist(), i_s.tolist(), j_s.tolist()
+        pressed = result.pressed_cushion_events().tolist() if BALL_CUSHION in kinds else None
+    else:
+        kinds = [EVENT_KINDS.index(event.kind) for event in result.events]
+        i_s, j_s = [int(event.i) for event in result.events], [int(event.j) for event in result.events]
+        pressed = None
+    if pressed is None:
+        pressed = [False] * len(kinds)
+    read = _read_events(kinds, i_s, j_s, pressed)
+    if arrays is None:
+        return ShotOutcome(*read)
     # The engine's events make a consistent outcome (a ball drops once, the cue ball never is
     # its own first contact...): built without the checks, which cost as much as the reading.
     outcome = object.__new__(ShotOutcome)
-    outcome.__dict__.update(zip(OUTCOME_FIELDS, _read(arrays, pressed)))
+    outcome.__dict__.update(zip(OUTCOME_FIELDS, read))
     return outcome
 
 
-def _read(arrays, pressed) -> tuple:
-    """The `ShotOutcome`'s fields, in order, of event arrays (t, kind, i, j: `read_log`'s
-    kinds, balls i and j, in time order) and their pressed-cushion flags."""
-    _, kinds, i_s, j_s = arrays
-    out = np.empty((4, len(kinds)), dtype=np.int64)
-    first, rail_after, n_dropped, n_gone, n_rail = read_log(kinds, i_s, j_s, pressed, out)
-    dropped = out[0, :n_dropped].tolist()
-    return (None if first < 0 else first, tuple(b for b in dropped if b != CUE),
-            dict(zip(dropped, out[1, :n_dropped].tolist())), CUE in dropped, rail_after,
-            frozenset(out[3, :n_rail].tolist()), tuple(out[2, :n_gone].tolist()))
-
-
-@kernel
-def read_log(kinds, i_s, j_s, pressed, out):
-    """`outcome_from_result`'s reading of the events (kind ids, balls i and j, pressed flags:
-    (E,) each, in time order), in one pass: returns (the cue ball's first contact or -1, a
-    cushion touched after it, how many balls dropped, left the table, reached a rail) and
-    fills out (4, E): row 0 the balls that dropped in order, row 1 their pockets, row 2 the
-    balls off the table in order, row 3 the object balls that reached a rail (each once)."""
-    first, rail_after = -1, False
-    n_dropped = n_gone = n_rail = 0
-    for e in range(kinds.shape[0]):
-        kind, i, j = kinds[e], i_s[e], j_s[e]
-        if kind == BALL_BALL or kind == BALL_BALL_SETTLE:
-            if first < 0 and (i == CUE or j == CUE):
-                first = j if i == CUE else i
+def _read_events(kinds, i_s, j_s, pressed) -> tuple:
+    """`outcome_from_result`'s reading of the events (kind ids, balls i and j, pressed flags,
+    lists in time order): the `ShotOutcome`'s fields, in order."""
+    first, contact_seen, rail_after = None, False, False
+    to_rail, dropped, pockets, gone = set(), [], [], []
+    for kind, i, j, frozen in zip(kinds, i_s, j_s, pressed):
+        if kind in BALL_BALL_KINDS:
+            if not contact_seen and CUE in (i, j):
+                first, contact_seen = (j if i == CUE else i), True
         elif kind == BALL_CUSHION:
-            if pressed[e]:  # a ball frozen to this cushion pressed into it: not driven to it (WPA 8.4)
+            if frozen:  # a ball frozen to this cushion pressed into it: not driven to it (WPA 8.4)
                 continue
-            rail_after = rail_after or first >= 0
+            rail_after = rail_after or contact_seen
             if i != CUE:
-                seen = False
-                for k in range(n_rail):
-                    seen = seen or out[3, k] == i
-                if not seen:
-                    out[3, n_rail] = i
-                    n_rail += 1
+                to_rail.add(i)
         elif kind == BALL_POCKET:
-            out[0, n_dropped], out[1, n_dropped] = i, j
-            n_dropped += 1
+            dropped.append(i)
+            pockets.append(j)
         elif kind == BALL_OFF_TABLE:
-            out[2, n_gone] = i
-            n_gone += 1
-    return first, rail_after, n_dropped, n_gone, n_rail
+            gone.append(i)
+    pocketed = tuple(b for b in dropped if b != CUE)
+    return first, pocketed, dict(zip(dropped, pockets)), CUE in dropped, rail_after, frozenset(to_rail), tuple(gone)
