@@ -240,3 +240,17 @@ def test_best_from_matches_planning_every_spot_on_random_layouts():
             chosen += 1
             assert best_spot * len(index) + k == row and found.tobytes() == many[row].tobytes()
     assert chosen > 30
+
+
+def test_plan_from_and_best_from_refuse_windows_or_spots_that_are_not_finite():
+    batch = GameGhostBallAgent("eight_ball").planner.batch
+    xy = np.column_stack([np.linspace(0.3, 2.0, 16), np.full(16, 0.6)])[None]
+    on = np.ones((1, 16), dtype=bool)
+    on[0, 0] = False
+    index = batch.candidates(on)
+    aims = batch.aims(xy, on, index)
+    spots = np.array([[0.5, 0.4], [0.7, 0.9]])
+    for bad_aims, bad_spots in ((aims, np.array([[0.5, np.nan]])), (np.where(aims == aims[0, 0], np.inf, aims), spots)):
+        for plan in (batch.plan_from, batch.best_from):
+            with pytest.raises(ValueError, match="aims and spots must be finite"):
+                plan(xy, on, index, bad_aims, bad_spots, 0.3)

@@ -43,7 +43,7 @@ from .plan_kernels import (
     plan_fault,
     plan_kernel,
 )
-from .position_kernels import best_from, plan_from, plan_lie, position_windows
+from .position_kernels import all_finite, best_from, plan_from, plan_lie, position_windows
 
 __all__ = ["D1", "D2", "DN", "DX", "DY", "OK", "PLAN_COLUMNS", "SCORE", "SCRATCH", "SPEED", "ShotPlanner",
            "first_best"]
@@ -163,7 +163,7 @@ class ShotPlanner:
         if xy.shape[0] != 1 or aims.shape != (len(index), 3) or spots.ndim != 2 or spots.shape[1] != 2:
             raise ValueError(f"xy must be one position, aims ({len(index)}, 3) and spots (S, 2), got {xy.shape}, "
                              f"{aims.shape} and {spots.shape}")
-        if not (np.isfinite(aims).all() and np.isfinite(spots).all()):
+        if not all_finite(aims, spots):
             raise ValueError("aims and spots must be finite")
         return xy, on, index, aims, spots
 

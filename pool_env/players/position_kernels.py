@@ -132,6 +132,23 @@ def plan_from(xy, on, index, aims, spots, tables, arrival, buffers):
     return best_spot, best_row
 
 
+@helper
+def finite_2d(x):
+    """Every entry of the 2-D array x is finite."""
+    for i in range(x.shape[0]):
+        for k in range(x.shape[1]):
+            if not math.isfinite(x[i, k]):
+                return False
+    return True
+
+
+@kernel
+def all_finite(a, b):
+    """Every entry of the 2-D arrays a and b is finite (`np.isfinite(x).all()` of both, in
+    one call: a ball-in-hand decision checks its windows and spots with it)."""
+    return finite_2d(a) and finite_2d(b)
+
+
 # A pot's score is dn * share / ((d1 + 0.5) * (d2 + 0.5)) (scaled down if it scratches), with
 # dn <= 1, d2 the ball's distance to its aim point (exact before planning) and d1 at least the
 # ball's distance to the cue ball less 2 R: `best_from`'s bound, widened by this share for roundings.
