@@ -148,7 +148,8 @@ def test_the_safety_goes_at_the_nearest_legal_ball_with_a_clear_line():
 
 
 def test_one_position_planned_in_one_call_is_the_batch_plan():
-    """ShotPlanner.plan_lie and plan_from give candidates, aims, plan and first_best's rows."""
+    """ShotPlanner.plan_lie and plan_from give candidates, aims, plan and first_best's rows; best_from
+    plan_from's choice."""
     agent = GameGhostBallAgent("eight_ball")
     batch = agent.planner.batch
     for balls, state, _, table in positions("PoolEightBall-v0", seed=3, steps=30):
@@ -172,6 +173,11 @@ def test_one_position_planned_in_one_call_is_the_batch_plan():
         scores = [max((r[pk.SCORE] for r in many[s * len(index):(s + 1) * len(index)] if r[pk.OK] > 0),
                       default=-np.inf) for s in range(3)]
         assert spot == (-1 if max(scores) == -np.inf else int(np.argmax(scores)))
+        # best_from skips the candidates its bound rules out: the same spot, candidate and row
+        found, best_spot, k = batch.best_from(xy, on, index, aims, spots, 0.3)
+        assert best_spot == spot and (found is None) == (spot < 0)
+        if spot >= 0:
+            assert best_spot * len(index) + k == row and found.tobytes() == many[row].tobytes()
 
 
 def test_the_straight_in_spots_are_behind_each_open_window_and_free():
@@ -207,3 +213,44 @@ def test_the_straight_in_spots_are_behind_each_open_window_and_free():
         assert flags.tolist() == keep.tolist()
         checked += m
     assert checked > 20
+
+
+def test_best_from_matches_planning_every_spot_on_random_layouts():
+    """best_from against plan_from's exhaustive rows on random 8-ball layouts, each planned
+    from a grid of cue-ball spots: the same spot, candidate and row (ties and near-ties
+    included: the grid repeats spots, and the first of equal pots must win)."""
+    agent = GameGhostBallAgent("eight_ball")
+    batch, table = agent.planner.batch, agent.table
+    rng = np.random.default_rng(11)
+    area = placement_area(table, "anywhere", BALL_RADIUS)
+    grid = np.array([(x, y) for x in np.linspace(area[0], area[1], 5) for y in np.linspace(area[2], area[3], 3)])
+    spots = np.vstack([grid, grid[:3]])  # repeated spots tie exactly
+    chosen = 0
+    for _ in range(60):
+        xy = np.column_stack([rng.uniform(area[0], area[1], 16), rng.uniform(area[2], area[3], 16)])[None]
+        on = rng.random((1, 16)) < 0.7
+        on[0, 0] = False
+        legal = on & (rng.random((1, 16)) < 0.6)
+        index = batch.candidates(legal)
+        aims = batch.aims(xy, on, index)
+        many, spot, row = batch.plan_from(xy, on, index, aims, spots, 0.3)
+        found, best_spot, k = batch.best_from(xy, on, index, aims, spots, 0.3)
+        assert best_spot == spot and (found is None) == (spot < 0)
+        if spot >= 0:
+            chosen += 1
+            assert best_spot * len(index) + k == row and found.tobytes() == many[row].tobytes()
+    assert chosen > 30
+
+
+def test_plan_from_and_best_from_refuse_windows_or_spots_that_are_not_finite():
+    batch = GameGhostBallAgent("eight_ball").planner.batch
+    xy = np.column_stack([np.linspace(0.3, 2.0, 16), np.full(16, 0.6)])[None]
+    on = np.ones((1, 16), dtype=bool)
+    on[0, 0] = False
+    index = batch.candidates(on)
+    aims = batch.aims(xy, on, index)
+    spots = np.array([[0.5, 0.4], [0.7, 0.9]])
+    for bad_aims, bad_spots in ((aims, np.array([[0.5, np.nan]])), (np.where(aims == aims[0, 0], np.inf, aims), spots)):
+        for plan in (batch.plan_from, batch.best_from):
+            with pytest.raises(ValueError, match="aims and spots must be finite"):
+                plan(xy, on, index, bad_aims, bad_spots, 0.3)

@@ -108,22 +108,22 @@ class GameGhostBallAgent(Agent):
 
     def in_hand(self, view) -> Shot:
         """`decide` of a view with ball in hand (not the break): the spots of `cue_spots`
-        planned from in one compiled call (`planner.ShotPlanner.plan_from`)."""
+        planned from in one compiled call (`planner.ShotPlanner.best_from`)."""
         xy, objects, legal = self.arrays([view])
         batch, arrival = self.planner.batch, self.planner.arrival_speed
         index, aims = batch.windows(xy[0], objects[0], legal[0])
         _, spots, cue = self.cue_spots(view, xy[0], objects[0], index, aims)
         pot = None
         if spots:
-            rows, s, k = batch.plan_from(xy, objects, index, aims, np.array(spots), arrival)
+            row, s, k = batch.best_from(xy, objects, index, aims, np.array(spots), arrival)
             if s >= 0:
-                cue, pot = spots[s], pot_of(index[k % len(index)], rows[k])
+                cue, pot = spots[s], pot_of(index[k], row)
         place = (float(cue[0]), float(cue[1]))
         if not view.on_table[0]:  # pots are planned for a cue ball on the table: a pocketed one plays safe
             pot = None
         elif pot is None:  # no spot has a pot: from the area's middle (the windows do not depend on the cue ball)
-            rows, s, k = batch.plan_from(xy, objects, index, aims, cue[None], arrival)
-            pot = None if s < 0 else pot_of(index[k], rows[k])
+            row, s, k = batch.best_from(xy, objects, index, aims, cue[None], arrival)
+            pot = None if s < 0 else pot_of(index[k], row)
         if pot is not None:
             return Shot.aimed(pot.direction, pot.speed, place=place, pocket=pot.pocket, ball=pot.ball)
         trial = xy[0].copy()

@@ -43,7 +43,7 @@ from .plan_kernels import (
     plan_fault,
     plan_kernel,
 )
-from .position_kernels import plan_from, plan_lie, position_windows
+from .position_kernels import all_finite, best_from, plan_from, plan_lie, position_windows
 
 __all__ = ["D1", "D2", "DN", "DX", "DY", "OK", "PLAN_COLUMNS", "SCORE", "SCRATCH", "SPEED", "ShotPlanner",
            "first_best"]
@@ -68,6 +68,8 @@ class ShotPlanner:
         self.tables = (self.jaws, self.rails, self.lams, self.reach, np.empty_like(self.rails), self.constants,
                        self.captures)  # what plan_lie reads (its rail scratch space included)
         self.work: dict = {}  # the one-position kernels' scratch arrays, by candidates (`scratch`)
+        self.single = (np.empty((1, 2)), np.empty(1), np.empty(6), np.empty((1, PLAN_COLUMNS)),
+                       np.empty(PLAN_COLUMNS))  # best_from's scratch and its best row
 
     def scratch(self, m: int) -> tuple:
         """Scratch arrays for m candidates of the one-position kernels, (m, 3), (m, 2), (m,)
@@ -153,25 +155,40 @@ class ShotPlanner:
             raise ValueError("xy must be finite for the cue ball and the object balls on the table")
         return index[:count], aims[:count]
 
+    def from_arrays(self, xy, on, index, aims, spots) -> tuple:
+        """(xy, on, index, aims, spots) as `plan_from` and `best_from` read them; ValueError
+        naming the first thing wrong."""
+        xy, on, index = self.checked(xy, on, index)
+        aims, spots = np.ascontiguousarray(aims, dtype=np.float64), np.ascontiguousarray(spots, dtype=np.float64)
+        if xy.shape[0] != 1 or aims.shape != (len(index), 3) or spots.ndim != 2 or spots.shape[1] != 2:
+            raise ValueError(f"xy must be one position, aims ({len(index)}, 3) and spots (S, 2), got {xy.shape}, "
+                             f"{aims.shape} and {spots.shape}")
+        if not all_finite(aims, spots):
+            raise ValueError("aims and spots must be finite")
+        return xy, on, index, aims, spots
+
     def plan_from(self, xy, on, index, aims, spots, arrival: float):
         """One position's candidates (index, aims: `candidates` and `aims` of xy (1, n, 2) and
         on (1, n)) planned from each cue-ball spot of spots (S, 2) in one compiled call
         (`plan_kernels.plan_from`). Returns (rows (S * N, PLAN_COLUMNS), spot s's in rows
         s * N to s * N + N - 1; the spot of the best pot, the first of equal ones, or -1; its
         row or -1)."""
-        xy, on, index = self.checked(xy, on, index)
-        aims, spots = np.ascontiguousarray(aims, dtype=np.float64), np.ascontiguousarray(spots, dtype=np.float64)
-        if xy.shape[0] != 1 or aims.shape != (len(index), 3) or spots.ndim != 2 or spots.shape[1] != 2:
-            raise ValueError(f"xy must be one position, aims ({len(index)}, 3) and spots (S, 2), got {xy.shape}, "
-                             f"{aims.shape} and {spots.shape}")
-        if not (np.isfinite(aims).all() and np.isfinite(spots).all()):
-            raise ValueError("aims and spots must be finite")
+        xy, on, index, aims, spots = self.from_arrays(xy, on, index, aims, spots)
         n = len(index)
         rows = np.empty((len(spots) * n, PLAN_COLUMNS))
         _, cue, arrivals, work = self.scratch(n)
         buffers = (rows, cue, arrivals, work)
         spot, row = plan_from(xy, on, index, aims, spots, self.tables, float(arrival), buffers)
         return rows, spot, row
+
+    def best_from(self, xy, on, index, aims, spots, arrival: float):
+        """`plan_from`'s choice without planning every candidate from every spot (the ones
+        whose score bound falls below the best so far are skipped: `position_kernels.best_from`).
+        Returns (the best pot's row (PLAN_COLUMNS,), a copy, or None; its spot or -1; its
+        candidate or -1): the same spot and row as `plan_from`'s."""
+        xy, on, index, aims, spots = self.from_arrays(xy, on, index, aims, spots)
+        spot, i = best_from(xy, on, index, aims, spots, self.tables, float(arrival), self.single)
+        return (None if spot < 0 else self.single[4].copy()), spot, i
 
     def candidates(self, legal) -> np.ndarray:
         """(N, 3) index of every legal ball (legal (Q, n) bool, column 0 the cue ball's, ignored)

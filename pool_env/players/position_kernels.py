@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from ..physics.jit import helper, kernel
-from .plan_kernels import OK, SCORE, aim_kernel, batch_fault, path_clear, plan_kernel
+from .plan_kernels import OK, PLAN_COLUMNS, R_, SCORE, aim_kernel, batch_fault, path_clear, plan_kernel
 
 
 @kernel
@@ -130,6 +130,61 @@ def plan_from(xy, on, index, aims, spots, tables, arrival, buffers):
         if head >= 0 and block[head, SCORE] > best_score:  # the first spot of the highest score
             best_spot, best_row, best_score = s, s * n + head, block[head, SCORE]
     return best_spot, best_row
+
+
+@helper
+def finite_2d(x):
+    """Every entry of the 2-D array x is finite."""
+    for i in range(x.shape[0]):
+        for k in range(x.shape[1]):
+            if not math.isfinite(x[i, k]):
+                return False
+    return True
+
+
+@kernel
+def all_finite(a, b):
+    """Every entry of the 2-D arrays a and b is finite (`np.isfinite(x).all()` of both, in
+    one call: a ball-in-hand decision checks its windows and spots with it)."""
+    return finite_2d(a) and finite_2d(b)
+
+
+# A pot's score is dn * share / ((d1 + 0.5) * (d2 + 0.5)) (scaled down if it scratches), with
+# dn <= 1, d2 the ball's distance to its aim point (exact before planning) and d1 at least the
+# ball's distance to the cue ball less 2 R: `best_from`'s bound, widened by this share for roundings.
+BOUND_SLACK = 1e-9
+
+
+@kernel
+def best_from(xy, on, index, aims, spots, tables, arrival, buffers):
+    """`plan_from`'s choice without its rows: the (spot, candidate) of the highest-scoring
+    pot, the first in spot-then-candidate order of equal ones, found by planning only the
+    candidates whose score bound (BOUND_SLACK) reaches the best so far; its row goes into
+    buffers' best (PLAN_COLUMNS,). `buffers` holds (cue (1, 2), arrivals (1,), work (6,),
+    trial (1, PLAN_COLUMNS), best (PLAN_COLUMNS,)). Returns (spot, candidate), or (-1, -1)
+    if no spot has a pot."""
+    c, captures = tables[5], tables[6]
+    cue, arrivals, work, trial, best = buffers
+    reach = 2.0 * c[R_] * (1.0 + BOUND_SLACK)
+    best_spot, best_i, best_score = -1, -1, -np.inf
+    arrivals[0] = arrival
+    for s in range(spots.shape[0]):
+        cue[0, 0], cue[0, 1] = spots[s, 0], spots[s, 1]
+        for i in range(index.shape[0]):
+            share = aims[i, 2]
+            if not share > 0.0:  # a closed window: plan_kernel gives no pot
+                continue
+            ox, oy = xy[0, index[i, 1], 0], xy[0, index[i, 1], 1]
+            d2 = math.hypot(aims[i, 0] - ox, aims[i, 1] - oy)
+            d1 = max(math.hypot(ox - spots[s, 0], oy - spots[s, 1]) - reach, 0.0)
+            if share / ((d1 + 0.5) * (d2 + 0.5)) * (1.0 + BOUND_SLACK) < best_score:
+                continue  # it cannot score the best so far, let alone beat it
+            plan_kernel(cue, xy, on, index[i:i + 1], aims[i:i + 1], arrivals, c, captures, work, trial)
+            if trial[0, OK] > 0.0 and trial[0, SCORE] > best_score:
+                best_spot, best_i, best_score = s, i, trial[0, SCORE]
+                for col in range(PLAN_COLUMNS):
+                    best[col] = trial[0, col]
+    return best_spot, best_i
 
 
 @kernel
