@@ -204,7 +204,7 @@ def reach_of(balls, table, cushion):
             reach = np.full(key[0], cushion_reach(balls.radius, table.cushion_height, cushion))
         elif cushion in NOSE_HEIGHT_MODELS:
             reach = np.empty(len(balls))
-            _nose_reach(balls.radii, float(table.cushion_height), reach)
+            nose_reach(balls.radii, float(table.cushion_height), reach)
         else:
             reach = np.array(balls.radii, dtype=np.float64)
         _REACH[key] = reach
@@ -212,7 +212,7 @@ def reach_of(balls, table, cushion):
 
 
 @kernel
-def _nose_reach(radii, height, out):
+def nose_reach(radii, height, out):
     """config.cushion_reach of every radius for a nose-height model, in its arithmetic (the
     balls' radii, checked finite and > 0, and the nose height's: no NaN to treat apart)."""
     for i in range(radii.shape[0]):
@@ -228,14 +228,3 @@ def bounds_of(table):
                         table.pocket_reach, float(table.cushion_height), float(table.length), float(table.width))
         object.__setattr__(table, "_bounds", bounds)
     return bounds
-
-
-def bounds_tuple(table):
-    """bounds_of(table) as a plain tuple (built once per Table), for engine.simulate_scene: numba
-    takes a tuple from Python several times faster than a namedtuple (it types a plain tuple in
-    C, a namedtuple in Python)."""
-    flat = table.__dict__.get("_bounds_tuple")
-    if flat is None:
-        flat = tuple(bounds_of(table))
-        object.__setattr__(table, "_bounds_tuple", flat)
-    return flat
