@@ -223,13 +223,14 @@ def reroll(row, radius, params):
 
 
 @helper
-def max_travel(row, state, t, horizon, radius, params):
-    """Upper bound on how far the ball's centre moves in [t, t + horizon]."""
+def max_travel(path, state, horizon):
+    """Upper bound on how far the ball's centre moves in the next `horizon` s, on `path` (its
+    trajectory now: (x, y, vx, vy, ax, ay), as `trajectory` gives it)."""
+    _, _, vx, vy, ax, ay = path
     if state == AIRBORNE:
-        return math.hypot(row[VX], row[VY]) * horizon + REACH_SLACK
+        return math.hypot(vx, vy) * horizon + REACH_SLACK
     if state != SLIDING and state != ROLLING:
         return 0.0
-    x, y, vx, vy, ax, ay = trajectory(row, state, t, radius, params)
     speed = math.hypot(vx, vy)
     acc = math.hypot(ax, ay)
     if state == ROLLING:
