@@ -14,7 +14,7 @@ from .geometry import distance_entry, rail_gap
 from .jit import helper
 from .kinds import AIRBORNE, C_BB, C_BB_REJ, C_CU, C_CU_REJ, C_PO, C_PO_REJ, C_REST, C_TR, POCKETED
 from .motion import max_travel, moving, trajectory, transition_time
-from .tolerances import FAR_MARGIN, PARALLEL_SINE, REACH_SLACK
+from .tolerances import CLEAR, FAR_MARGIN, PARALLEL_SINE, REACH_SLACK
 
 
 @helper
@@ -36,7 +36,16 @@ def out_of_reach(d, dv, da, horizon, reach):
     cx, cy = ex - dx, ey - dy
     span = cx * cx + cy * cy
     u = 0.0 if span == 0.0 else min(max(-(dx * cx + dy * cy) / span, 0.0), 1.0)
-    gap = math.hypot(dx + u * cx, dy + u * cy) - reach
+    px, py = dx + u * cx, dy + u * cy
+    # The gap is compared with 0 or a sagitta + REACH_SLACK, never more than `top`: a chord
+    # clearly beyond top, or clearly within reach, is decided without a square root (CLEAR).
+    s = px * px + py * py
+    top = reach + 0.125 * (abs(dax) + abs(day)) * horizon * horizon + REACH_SLACK
+    if s > top * top * (1.0 + CLEAR):
+        return True
+    if s < reach * reach * (1.0 - CLEAR):
+        return False
+    gap = math.hypot(px, py) - reach
     acc = math.hypot(dax, day)
     if acc == 0.0:
         return gap > 0.0
