@@ -42,8 +42,13 @@ def rail_time(path, horizon, reach, rail):
     x, y, vx, vy, ax, ay = path
     nx, ny = rail[4], rail[5]
     gap = rail_gap(rail, x, y, reach)
-    tau = first_entry(gap, nx * vx + ny * vy, 0.5 * (nx * ax + ny * ay), 0.0, 0.0, horizon, MIN_APPROACH,
-                      MIN_DEPTH)
+    c1, c2 = nx * vx + ny * vy, 0.5 * (nx * ax + ny * ay)
+    # Clear of the rail (by far more than MIN_DEPTH and the round-off of the terms) and
+    # gap - gap(0) = tau (c1 + c2 tau) >= 0 over the whole horizon: first_entry would find no
+    # crossing (half the rails a ball is near, it moves away from).
+    if gap > 1e3 * MIN_DEPTH and c1 >= 0.0 and c1 + c2 * horizon >= 0.0:
+        return math.inf
+    tau = first_entry(gap, c1, c2, 0.0, 0.0, horizon, MIN_APPROACH, MIN_DEPTH)
     if tau == math.inf:
         return tau
     if not alongside(rail, x + vx * tau + 0.5 * ax * tau * tau, y + vy * tau + 0.5 * ay * tau * tau):

@@ -42,10 +42,13 @@ class Result:
     a caller that reads only the final state pays for nothing else. Plain arrays and tuples:
     a Result pickles and deep-copies."""
 
+    # What is derived on first use: None until then (class attributes, so a Result of a shot
+    # whose caller reads only the final state stores none of them).
+    _arrays = _final = _stats = _events = _pressed = None
+
     def __init__(self, balls, physics, table, scene, log, wall, counters):
         self._balls, self.physics, self.table = balls, physics, table
         self._scene, self._log, self._wall, self._counters = scene, log, wall, counters
-        self._arrays = self._final = self._stats = self._events = self._pressed = None
 
     @property
     def _run(self):
