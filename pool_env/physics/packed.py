@@ -19,7 +19,7 @@ from .bundles import CAP, CODE, EVENTS, ROWS, Bounds, Log
 from .jit import helper, kernel
 from .kinds import COUNTERS, DONE, ROW_WIDTH
 
-# Numbers of the table's rows before its rows in the int array: rails, jaws, pockets.
+# The table's int array starts with its numbers of rails, jaws and pockets.
 HEAD = 3
 
 
