@@ -1,0 +1,117 @@
+"""`Game.evaluate(..., records=False)`: a pool game's shots simulated in one compiled call, each outcome judged once."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+
+from .. import rules
+from ..physics import Balls
+from ..physics.batch_run import DROPS, FIRST, GONE, HEAD, RAIL_AFTER, balls_at, simulate_level_batch
+from ..physics.kinds import DONE, POCKETED
+from .batch import simulate_struck
+from .shot import Shot
+
+CUE = 0  # the cue ball's number
+
+
+class Layout(NamedTuple):
+    """Where the balls rest after a shot: xy (N, 2) and pocketed (N,) as a `Balls` holds them."""
+
+    xy: np.ndarray
+    pocketed: np.ndarray
+
+
+@dataclass(eq=False, slots=True)
+class JudgedShot:
+    """What one shot of `Game.evaluate(..., records=False)` did, without its physics `Result`:
+    `shot`, `error` (why it could not be simulated, else None), the rules' `outcome`, `ruling`
+    and `state_after`, `over`, and `balls_after` (a `Layout`: the balls at rest, spotted balls
+    back on the table), all as the `ShotRecord` of the same shot holds them."""
+
+    shot: Shot
+    error: str | None
+    outcome: rules.ShotOutcome | None
+    ruling: rules.Ruling | None
+    state_after: rules.GameState | None
+    over: bool
+    balls_after: Layout
+
+    @property
+    def pocketed(self) -> tuple:
+        """The object balls that dropped, in the order they dropped."""
+        return () if self.outcome is None else self.outcome.pocketed
+
+    @classmethod
+    def of(cls, record) -> JudgedShot:
+        """The `ShotRecord` `record` as a JudgedShot."""
+        balls = record.balls_after
+        return cls(record.shot, record.error, record.outcome, record.ruling, record.state_after, record.over,
+                   Layout(balls.xy, balls.pocketed))
+
+
+def outcome_of_facts(row: list, n: int) -> rules.ShotOutcome:
+    """The `ShotOutcome` of a scene's event facts (`physics.batch_run`'s row, as a list; n balls)."""
+    d, g = row[DROPS], row[GONE]
+    dropped, pockets = row[HEAD:HEAD + 2 * d:2], row[HEAD + 1:HEAD + 2 * d:2]
+    return rules.ShotOutcome(first_contact=None if row[FIRST] < 0 else row[FIRST],
+                             pocketed=tuple(b for b in dropped if b != CUE), pocket_of=dict(zip(dropped, pockets)),
+                             cue_pocketed=CUE in dropped, rail_after_contact=bool(row[RAIL_AFTER]),
+                             object_balls_to_rail=frozenset(b for b in range(n) if row[HEAD + 3 * n + b]),
+                             off_table=tuple(row[HEAD + 2 * n:HEAD + 2 * n + g]))
+
+
+def lean(struck) -> list[int]:
+    """The struck shots the compiled batch takes: struck (no error), every ball on the cloth,
+    on the balls (pocketed flags, sizes) of the first such shot."""
+    out, like = [], None
+    for k, s in enumerate(struck):
+        balls = s.balls
+        if isinstance(balls, Balls) and balls.on_cloth:
+            like = balls if like is None else like
+            if balls.pocketed is like.pocketed and balls.radii is like.radii and balls.masses is like.masses:
+                out.append(k)
+    return out
+
+
+def judge_batch(game, struck) -> list[JudgedShot]:
+    """`game.judge` of every struck shot of a pool game (a `rules.GameState`), as JudgedShots:
+    the level ones simulated in one compiled call (`simulate_level_batch`), each distinct
+    outcome (its event facts, called pocket and ball, push out) read and judged once; the
+    others, and any the compiled run stopped, simulated and judged one by one."""
+    state, table = game.state, game.table
+    out: list[JudgedShot | None] = [None] * len(struck)
+    fast = lean(struck)
+    if fast:
+        like = struck[fast[0]].balls
+        S, st, codes, facts = simulate_level_batch(like, [struck[k].balls.xy for k in fast],
+                                                   [struck[k].balls.v for k in fast],
+                                                   [struck[k].balls.w for k in fast], table, game.physics)
+        known: dict = {}
+        n = S.shape[1]
+        for m, k in enumerate(fast):
+            if codes[m] != DONE:
+                continue
+            s = struck[k]
+            key = (facts[m].tobytes(), s.called_pocket, s.called_ball, s.push_out)
+            judged = known.get(key)
+            if judged is None:
+                outcome = outcome_of_facts(facts[m].tolist(), n)
+                after, ruling = rules.judge(state, outcome, s.called_pocket, s.called_ball, s.push_out)
+                if not game.decisions and getattr(after, "pending", None) is not None:
+                    after = rules.decide(after, after.pending.default)  # no re-rack is a default
+                judged = known[key] = (outcome, ruling, after)
+            outcome, ruling, after = judged
+            if ruling.balls_to_spot:
+                balls = rules.settle(after, ruling, balls_at(s.balls, S[m], st[m]), table)[0]
+                layout = Layout(balls.xy, balls.pocketed)
+            else:
+                layout = Layout(S[m, :, 0:2], st[m] == POCKETED)
+            out[k] = JudgedShot(s.shot, None, outcome, ruling, after, after.over, layout)
+    rulings: dict = {}
+    for k, s in enumerate(struck):
+        if out[k] is None:
+            out[k] = JudgedShot.of(game.judge(s, simulate_struck(s, table, game.physics), rulings))
+    return out
