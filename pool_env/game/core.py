@@ -518,8 +518,9 @@ class Game:
 
         `records=False` returns `JudgedShot`s instead (the records' outcome, ruling, state and
         balls after, without the physics `Result`): in the pool games the level shots are
-        then simulated in one compiled call on this thread and each distinct outcome judged
-        once (`evaluation.judge_batch`), which costs about half as much a shot."""
+        then simulated in compiled calls that each run many (`threads` of them at once) and
+        each distinct outcome is judged once (`evaluation.judge_batch`): a shot's Python work
+        is mostly gone."""
         shots = list(shots)
         if not shots:
             raise ValueError("evaluate needs at least one shot")
@@ -539,7 +540,7 @@ class Game:
         struck = [self._strike_or_fail(shot, action, rng, placements) for shot, action in decoded
                   for _ in range(int(draws))]
         if not records and type(self._state) is rules.GameState:
-            return judge_batch(self, struck)
+            return judge_batch(self, struck, threads)
         results = simulate_struck_batch(struck, self.table, self.physics, threads)
         rulings: dict = {}  # candidate shots often end alike: the rules judge each outcome once
         judged = [self.judge(s, r, rulings) for s, r in zip(struck, results)]

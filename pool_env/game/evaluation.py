@@ -71,14 +71,15 @@ def lean(struck) -> list[int]:
         balls = s.balls
         if isinstance(balls, Balls) and balls.on_cloth:
             like = balls if like is None else like
-            if balls.pocketed is like.pocketed and balls.radii is like.radii and balls.masses is like.masses:
+            if all(a is b or np.array_equal(a, b) for a, b in ((balls.pocketed, like.pocketed),
+                                                               (balls.radii, like.radii), (balls.masses, like.masses))):
                 out.append(k)
     return out
 
 
-def judge_batch(game, struck) -> list[JudgedShot]:
+def judge_batch(game, struck, threads: int | None = 1) -> list[JudgedShot]:
     """`game.judge` of every struck shot of a pool game (a `rules.GameState`), as JudgedShots:
-    the level ones simulated in one compiled call (`simulate_level_batch`), each distinct
+    the level ones simulated in compiled calls (`simulate_level_batch`, `threads` as there), each distinct
     outcome (its event facts, called pocket and ball, push out) read and judged once; the
     others, and any the compiled run stopped, simulated and judged one by one."""
     state, table = game.state, game.table
@@ -88,7 +89,8 @@ def judge_batch(game, struck) -> list[JudgedShot]:
         like = struck[fast[0]].balls
         S, st, codes, facts = simulate_level_batch(like, [struck[k].balls.xy for k in fast],
                                                    [struck[k].balls.v for k in fast],
-                                                   [struck[k].balls.w for k in fast], table, game.physics)
+                                                   [struck[k].balls.w for k in fast], table, game.physics,
+                                                   threads)
         known: dict = {}
         n = S.shape[1]
         for m, k in enumerate(fast):

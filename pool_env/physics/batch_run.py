@@ -2,13 +2,16 @@
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
-from numba import njit
 
 from .balls import Balls
+from .batch import TASKS_PER_THREAD, thread_pool
 from .bundles import bounds_tuple, default_event_cap, reach_of
 from .config import Physics
 from .engine import simulate_scene
+from .jit import allocating, helper
 from .kinds import (
     BALL_BALL,
     BALL_BALL_SETTLE,
@@ -37,7 +40,7 @@ def facts_width(n: int) -> int:
     return HEAD + 4 * n
 
 
-@njit(cache=True, nogil=True)
+@helper
 def _read_facts(log, n_events, pressed, row):  # pragma: no cover - compiled
     """A finished run's events (the first `n_events` of the log) read into `row` (see FIRST)."""
     n = (row.shape[0] - HEAD) // 4
@@ -63,7 +66,7 @@ def _read_facts(log, n_events, pressed, row):  # pragma: no cover - compiled
     row[FIRST], row[RAIL_AFTER], row[DROPS], row[GONE] = first, rail_after, d, g
 
 
-@njit(cache=True, nogil=True)
+@allocating
 def _run_scenes(balls, physics, bounds, moving, cap, out):  # pragma: no cover - compiled
     """Each scene k (xys[k] placed, vs[k] and ws[k] struck) simulated on the level engine,
     its final rows and states, exit code and facts written to `out` (S, st, codes, facts)."""
@@ -94,21 +97,35 @@ def _run_scenes(balls, physics, bounds, moving, cap, out):  # pragma: no cover -
         _read_facts(log, e, pressed, facts[k])
 
 
-def simulate_level_batch(like: Balls, xys, vs, ws, table: Table, physics: Physics):
+def simulate_level_batch(like: Balls, xys, vs, ws, table: Table, physics: Physics, threads: int | None = 1):
     """K struck scenes of the balls `like` (their pocketed flags, sizes and masses; every ball
     on the cloth), scene k the balls at xys[k] (K, N, 2) moving at vs[k] (K, N, 2) spinning
-    at ws[k] (K, N, 3), simulated one after another in one compiled call on the level engine
-    (each exactly as `simulate` runs it, at the default event cap). Returns (S (K, N,
-    ROW_WIDTH) the final state rows, st (K, N) their states, codes (K,) the exit codes, facts
-    (K, facts_width(N)) the event facts the rules read): a scene whose code is not DONE
-    stopped (a misplaced ball, the event cap, a ball perched on another) and has no facts:
+    at ws[k] (K, N, 3), simulated on the level engine in compiled calls that each run a
+    share of the scenes one after another (`threads` at once, None: every core; each scene
+    exactly as `simulate` runs it, at the default event cap). Returns (S (K, N, ROW_WIDTH)
+    the final state rows, st (K, N) their states, codes (K,) the exit codes, facts (K,
+    facts_width(N)) the event facts the rules read): a scene whose code is not DONE stopped
+    (a misplaced ball, the event cap, a ball perched on another) and has no facts:
     `simulate` it to learn why."""
     xys, vs, ws = (np.ascontiguousarray(a, dtype=np.float64) for a in (xys, vs, ws))
     k, n = xys.shape[0], xys.shape[1]
     out = (np.empty((k, n, ROW_WIDTH)), np.empty((k, n), dtype=np.int64), np.empty(k, dtype=np.int64),
            np.empty((k, facts_width(n)), dtype=np.int64))
     balls = (like.air, like.pocketed, like.radii, like.masses, reach_of(like, table, physics.cushion))
-    _run_scenes(balls, physics.engine_args(), bounds_tuple(table), (xys, vs, ws), default_event_cap(n), out)
+    args, bounds, cap = physics.engine_args(), bounds_tuple(table), default_event_cap(n)
+    threads = max(1, min(os.cpu_count() or 1, k)) if threads is None else int(threads)
+    if threads < 1:
+        raise ValueError(f"threads must be >= 1, got {threads!r}")
+    chunk = max(1, -(-k // (threads * TASKS_PER_THREAD))) if threads > 1 else max(k, 1)
+
+    def run(a):
+        part = slice(a, a + chunk)
+        _run_scenes(balls, args, bounds, (xys[part], vs[part], ws[part]), cap, tuple(o[part] for o in out))
+
+    if threads == 1 or k <= chunk:
+        run(0)
+    else:
+        list(thread_pool(threads).map(run, range(0, k, chunk)))
     return out
 
 
