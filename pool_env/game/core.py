@@ -21,7 +21,7 @@ from .actions import (
     encoded_entries,
 )
 from .batch import SHOT_ERRORS, simulate_struck, simulate_struck_batch
-from .evaluation import JudgedShot, judge_batch
+from .evaluation import DrawnNormals, JudgedShot, judge_batch, normals_per_draw
 from .modes import Mode, mode_of
 from .placement import area_centre, place_cue_ball, placement_area
 from .shot import CONTACT_TIME, Shot, noise_of, noisy_shot
@@ -537,8 +537,10 @@ class Game:
                 raise ValueError(f"shot {k}: {exc}") from None
         rng = self._evaluation_rng(seed)
         placements: dict = {}  # candidate shots often place the cue ball on the same spot
-        struck = [self._strike_or_fail(shot, action, rng, placements) for shot, action in decoded
-                  for _ in range(int(draws))]
+        normals, struck = DrawnNormals(rng), []  # each shot's noise in one generator call
+        for shot, action in decoded:
+            normals.arm(int(draws) * normals_per_draw(shot, self.noise))
+            struck += [self._strike_or_fail(shot, action, normals, placements) for _ in range(int(draws))]
         if not records and type(self._state) is rules.GameState:
             return judge_batch(self, struck, threads)
         results = simulate_struck_batch(struck, self.table, self.physics, threads)

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import NamedTuple
 
 import numpy as np
 
@@ -15,13 +14,54 @@ from .batch import simulate_struck
 from .shot import Shot
 
 CUE = 0  # the cue ball's number
+NORMALS_PER_DRAW = 4  # `shot.noisy_shot`'s: aim, speed, side, top (and the elevation of an elevated cue)
 
 
-class Layout(NamedTuple):
-    """Where the balls rest after a shot: xy (N, 2) and pocketed (N,) as a `Balls` holds them."""
+class DrawnNormals:
+    """Stands in for a `numpy.random.Generator` in `shot.noisy_shot`, which asks it only for
+    `normal(0, sigma)`: the normals of all of a shot's draws come from one `standard_normal`
+    call, made at the first ask (`arm` says how many the shot takes; a shot that fails before
+    its noise is drawn takes none). A Generator's `normal(loc, scale)` is loc + scale times
+    its next standard normal, so the values, and the generator after them, are bit for bit
+    those of the calls one by one."""
 
-    xy: np.ndarray
-    pocketed: np.ndarray
+    __slots__ = ("rng", "armed", "values", "at")
+
+    def __init__(self, rng: np.random.Generator):
+        self.rng, self.armed, self.values, self.at = rng, 0, [], 0
+
+    def arm(self, count: int) -> None:
+        """The next shot's draws take `count` normals in all."""
+        if self.at != len(self.values):
+            raise RuntimeError(f"DrawnNormals: the last shot left {len(self.values) - self.at} normals unused")
+        self.armed = count
+
+    def normal(self, loc: float, scale: float) -> float:
+        if self.at == len(self.values):
+            if not self.armed:
+                raise RuntimeError("DrawnNormals: no normals armed for this shot")
+            self.values, self.at, self.armed = self.rng.standard_normal(self.armed).tolist(), 0, 0
+        z = self.values[self.at]
+        self.at += 1
+        return loc + scale * z
+
+
+def normals_per_draw(shot: Shot, noise) -> int:
+    """How many normals `shot.noisy_shot` takes for one draw of `shot` under `noise`."""
+    return 0 if noise is None else NORMALS_PER_DRAW + (shot.elevation > 0.0)
+
+
+class Layout:
+    """Where the balls rest after a shot: `xy` (N, 2) and `pocketed` (N,) as a `Balls` holds
+    them, and len() the number of balls (what the observations read of a `Balls`)."""
+
+    __slots__ = ("xy", "pocketed")
+
+    def __init__(self, xy: np.ndarray, pocketed: np.ndarray):
+        self.xy, self.pocketed = xy, pocketed
+
+    def __len__(self) -> int:
+        return self.xy.shape[0]
 
 
 @dataclass(eq=False, slots=True)
