@@ -7,7 +7,7 @@ import pytest
 
 from pool_env import rules
 from pool_env.game import Game, Shot
-from pool_env.game.evaluation import JudgedShot, outcome_of_facts
+from pool_env.game.evaluation import DrawnNormals, JudgedShot, outcome_of_facts
 from pool_env.physics import BALL_RADIUS, Balls, Physics, Table, simulate, strike
 from pool_env.physics.batch_run import balls_at, simulate_level_batch
 from pool_env.physics.config import cushion_reach
@@ -125,3 +125,36 @@ def test_level_batch_stops_a_misplaced_scene_and_runs_the_others():
     assert codes.tolist() == [DONE, MISPLACED]
     with pytest.raises(ValueError, match="threads"):
         simulate_level_batch(good, xys, [good.v, good.v], [good.w, good.w], TABLE, physics, threads=0)
+
+
+def test_drawn_normals_are_the_generators_normals_one_by_one():
+    scales = [0.01, 0.2, 0.0, 3.0, 0.5] * 3
+    ours, theirs = DrawnNormals(np.random.default_rng(7)), np.random.default_rng(7)
+    ours.arm(len(scales))
+    assert [ours.normal(0.0, s) for s in scales] == [theirs.normal(0.0, s) for s in scales]
+    assert ours.rng.bit_generator.state == theirs.bit_generator.state
+    ours.arm(2)
+    ours.normal(0.0, 1.0)
+    with pytest.raises(RuntimeError, match="1 normals unused"):
+        ours.arm(2)
+
+
+def test_evaluate_of_an_elevated_shot_under_noise_equals_playing_it():
+    # An elevated cue draws a fifth normal per draw (its elevation): the draws after it line up.
+    game = mid_game()
+    snap = game.snapshot()
+    shots = [Shot.aimed((1.0, 0.3), 3.0, elevation=0.3), Shot.aimed((-1.0, 0.2), 2.0)]
+    records = game.evaluate(shots, draws=2, seed=4)
+    draws, own = np.random.default_rng(4), game.rng
+    for k, shot in enumerate(shots):
+        for j in range(2):
+            game.rng = own
+            game.restore(snap)
+            game.rng = draws
+            played = game.play(shot)
+            record = records[2 * k + j]
+            assert np.array_equal(played.force, record.force) and played.elevation == record.elevation
+            assert np.array_equal(played.balls_after.xy, record.balls_after.xy)
+    game.rng = own
+    game.restore(snap)
+    compare(game, shots, draws=2, seed=4)
