@@ -131,6 +131,7 @@ def judge_batch(game, struck, threads: int | None = 1) -> list[JudgedShot]:
                                                    [struck[k].balls.v for k in fast],
                                                    [struck[k].balls.w for k in fast], table, game.physics,
                                                    threads)
+        S.setflags(write=False)  # the layouts are views of it, read-only as a Balls' arrays are
         known: dict = {}
         n = S.shape[1]
         for m, k in enumerate(fast):
