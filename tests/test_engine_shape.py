@@ -9,8 +9,9 @@ import numpy as np
 import pytest
 
 from pool_env.physics import BALL_RADIUS, Balls, Physics, Table, ball_ball, cushion, kinds, simulate
-from pool_env.physics.bundles import bounds_tuple
+from pool_env.physics.bundles import bounds_of
 from pool_env.physics.config import BALL_BALL_MODELS, CUSHION_MODELS
+from pool_env.physics.packed import bounds_packed
 
 PHYSICS = pathlib.Path(__file__).resolve().parents[1] / "pool_env" / "physics"
 PACKAGE = PHYSICS.parent
@@ -151,6 +152,6 @@ def test_an_unpickled_table_gives_the_engine_read_only_arrays_and_the_same_shot(
     balls = Balls([[0.5, 0.5], [1.0, 0.55]], v=[[1.0, 0.0], [0.0, 0.0]])
     before = simulate(balls, table, Physics.standard())
     copy = pickle.loads(pickle.dumps(table))
-    assert all(not a.flags.writeable for a in bounds_tuple(copy) if isinstance(a, np.ndarray))
+    assert all(not a.flags.writeable for a in (*bounds_of(copy), *bounds_packed(copy)) if isinstance(a, np.ndarray))
     after = simulate(balls, copy, Physics.standard())
     assert np.array_equal(after.final.xy, before.final.xy) and after.events == before.events

@@ -44,13 +44,14 @@ memory of simultaneous contacts: met (N, N) when each pair last met, bb_t (N,) w
 last met another, cl_t (N,) when each ball was last in a cluster solve."""
 
 Work = namedtuple("Work", ["ca", "cb", "impulse", "member", "queue", "G", "walls", "wall_ball", "cids", "touched",
-                           "rec_a", "rec_b", "row", "pair_rows", "done"])
+                           "rec_a", "rec_b", "row", "pair_rows", "done", "paths"])
 Work.__doc__ = """Scratch space: the pairs of a contact group (ca, cb (N^2,), impulse (N^2,) their normal
 impulses), its balls (member (N,) flags, queue (N,) ids) and their rows at the contact (G
 (N, ROW_WIDTH)); the cushions touched by a pack or a ball (walls (8, 2) inward normals, wall_ball
 (8,) the ball touching each, cids (3,) cushion ids); the balls an event touched (touched
 (N,)) and the pairs it records (rec_a, rec_b (N^2,)); state rows (row (ROW_WIDTH,),
-pair_rows (2, ROW_WIDTH)); and done (N,), the balls already re-predicted."""
+pair_rows (2, ROW_WIDTH)); done (N,), the balls already re-predicted; and paths (N, 6), every
+ball's trajectory (x, y, vx, vy, ax, ay) at the time of a prediction."""
 
 
 @allocating_helper
@@ -74,7 +75,7 @@ def new_work(n):
     """Scratch space for N balls: one allocation per element type, cut into the fields."""
     ints = np.empty(4 * n * n + 2 * n + 11, dtype=np.int64)
     w = ROW_WIDTH
-    floats = np.empty(n * n + w * n + 16 + w + 2 * w)
+    floats = np.empty(n * n + w * n + 16 + w + 2 * w + 6 * n)
     flags = np.zeros(2 * n, dtype=np.bool_)
     nn = n * n
     ca, cb, rec_a, rec_b = ints[:nn], ints[nn:2 * nn], ints[2 * nn:3 * nn], ints[3 * nn:4 * nn]
@@ -83,9 +84,10 @@ def new_work(n):
     impulse, G = floats[:nn], floats[nn:nn + w * n].reshape((n, w))
     walls = floats[nn + w * n:nn + w * n + 16].reshape((8, 2))
     row = floats[nn + w * n + 16:nn + w * n + 16 + w]
-    pair_rows = floats[nn + w * n + 16 + w:].reshape((2, w))
+    pair_rows = floats[nn + w * n + 16 + w:nn + w * n + 16 + 3 * w].reshape((2, w))
+    paths = floats[nn + w * n + 16 + 3 * w:].reshape((n, 6))
     return Work(ca, cb, impulse, flags[:n], queue, G, walls, wall_ball, cids, touched, rec_a, rec_b, row, pair_rows,
-                flags[n:])
+                flags[n:], paths)
 
 
 def new_log(n_events, n_rows, cap, n_counters):
@@ -204,7 +206,7 @@ def reach_of(balls, table, cushion):
             reach = np.full(key[0], cushion_reach(balls.radius, table.cushion_height, cushion))
         elif cushion in NOSE_HEIGHT_MODELS:
             reach = np.empty(len(balls))
-            _nose_reach(balls.radii, float(table.cushion_height), reach)
+            nose_reach(balls.radii, float(table.cushion_height), reach)
         else:
             reach = np.array(balls.radii, dtype=np.float64)
         _REACH[key] = reach
@@ -212,7 +214,7 @@ def reach_of(balls, table, cushion):
 
 
 @kernel
-def _nose_reach(radii, height, out):
+def nose_reach(radii, height, out):
     """config.cushion_reach of every radius for a nose-height model, in its arithmetic (the
     balls' radii, checked finite and > 0, and the nose height's: no NaN to treat apart)."""
     for i in range(radii.shape[0]):
@@ -228,14 +230,3 @@ def bounds_of(table):
                         table.pocket_reach, float(table.cushion_height), float(table.length), float(table.width))
         object.__setattr__(table, "_bounds", bounds)
     return bounds
-
-
-def bounds_tuple(table):
-    """bounds_of(table) as a plain tuple (built once per Table), for engine.simulate_scene: numba
-    takes a tuple from Python several times faster than a namedtuple (it types a plain tuple in
-    C, a namedtuple in Python)."""
-    flat = table.__dict__.get("_bounds_tuple")
-    if flat is None:
-        flat = tuple(bounds_of(table))
-        object.__setattr__(table, "_bounds_tuple", flat)
-    return flat

@@ -17,7 +17,7 @@ from .geometry import alongside, distance_entry, rail_gap, roll
 from .jit import allocating, helper, kernel
 from .kinds import ROW_WIDTH, SLIDING, VX, VY, WX, WY, WZ
 from .mathavan import mathavan2010
-from .motion import P_E_C, P_F_C, copy_row, reroll, state_of, trajectory
+from .motion import P_E_C, P_F_C, copy_row, reroll, state_of
 from .roots import first_entry
 from .settle import pressed_cushion, settle_cushion
 from .tolerances import MIN_APPROACH, MIN_DEPTH
@@ -31,18 +31,24 @@ SEED, RESTITUTION, HAN2005, MATHAVAN2010 = (
 
 
 @helper
-def rail_time(row, state, t, horizon, radius, reach, params, rail):
-    """Earliest tau in [0, horizon] at which the ball meets `rail` (a nose or a facing) moving
-    into it (or inf); `reach` is the ball's cushion reach (Scene.Rc).
+def rail_time(path, horizon, reach, rail):
+    """Earliest tau in [0, horizon] at which the ball on `path` (its trajectory now, as
+    motion.trajectory gives it) meets `rail` (a nose or a facing) moving into it (or inf);
+    `reach` is the ball's cushion reach (Scene.Rc).
 
     The signed gap n.(p(tau) - p1) - reach is a quadratic in tau; the contact counts only if
     the ball's centre is then alongside the segment (beyond its ends the jaw tips take over).
     """
-    x, y, vx, vy, ax, ay = trajectory(row, state, t, radius, params)
+    x, y, vx, vy, ax, ay = path
     nx, ny = rail[4], rail[5]
     gap = rail_gap(rail, x, y, reach)
-    tau = first_entry(gap, nx * vx + ny * vy, 0.5 * (nx * ax + ny * ay), 0.0, 0.0, horizon, MIN_APPROACH,
-                      MIN_DEPTH)
+    c1, c2 = nx * vx + ny * vy, 0.5 * (nx * ax + ny * ay)
+    # Clear of the rail (by far more than MIN_DEPTH and the round-off of the terms) and
+    # gap - gap(0) = tau (c1 + c2 tau) >= 0 over the whole horizon: first_entry would find no
+    # crossing (half the rails a ball is near, it moves away from).
+    if gap > 1e3 * MIN_DEPTH and c1 >= 0.0 and c1 + c2 * horizon >= 0.0:
+        return math.inf
+    tau = first_entry(gap, c1, c2, 0.0, 0.0, horizon, MIN_APPROACH, MIN_DEPTH)
     if tau == math.inf:
         return tau
     if not alongside(rail, x + vx * tau + 0.5 * ax * tau * tau, y + vy * tau + 0.5 * ay * tau * tau):
@@ -51,11 +57,11 @@ def rail_time(row, state, t, horizon, radius, reach, params, rail):
 
 
 @helper
-def point_time(row, state, t, horizon, radius, params, px, py, reach):
-    """Earliest tau at which the ball's centre comes within `reach` of the fixed point (px, py)
-    while approaching: a jaw tip (reach = Rc + its radius) or a pocket's opening (reach = its
-    radius)."""
-    x, y, vx, vy, ax, ay = trajectory(row, state, t, radius, params)
+def point_time(path, horizon, px, py, reach):
+    """Earliest tau at which the centre of the ball on `path` (as in rail_time) comes within
+    `reach` of the fixed point (px, py) while approaching: a jaw tip (reach = Rc + its
+    radius) or a pocket's opening (reach = its radius)."""
+    x, y, vx, vy, ax, ay = path
     return distance_entry(x - px, y - py, vx, vy, ax, ay, reach, horizon)
 
 

@@ -17,11 +17,10 @@ from .bundles import (
     CODE,
     EVENTS,
     ROWS,
-    Bounds,
-    Log,
     Scene,
     new_schedule,
     new_work,
+    nose_reach,
     pack_into,
     record_event,
     record_row,
@@ -46,6 +45,7 @@ from .kinds import (
     WZ,
 )
 from .motion import classify, copy_row, state_at
+from .packed import cut_output, unpack_bounds
 from .placement import first_misplaced
 from .predict import predict
 from .tolerances import GROUP_WINDOW
@@ -56,28 +56,36 @@ ONE_EVENT, TWO_ROWS = np.int64(1), np.int64(2)
 
 
 @entry
-def simulate_scene(balls, physics, bounds, log, flight):
+def simulate_scene(balls, physics, bounds, out, flight):
     """One call from Python for a whole `simulate`: check where the balls are, build the
     Scene, run. Everything comes in as plain tuples, which numba takes from Python in a
-    fraction of the time namedtuples cost (a 2-ball shot's wrapper was mostly that):
+    fraction of the time namedtuples cost, and as few arrays as can be (see packed.py):
 
-    balls: (xy, v, w, air, pocketed, R, M, Rc, S, st), the Balls' arrays, each ball's cushion
-    reach, and the Scene's rows and states to fill (N, ROW_WIDTH) and (N,); physics:
-    Physics.engine_args(); bounds: bundles.bounds_tuple(table); log: a Log as a tuple;
-    flight: None for a scene no ball can leave the cloth in, else True (see `run`).
+    balls: (xy, v, w, air, pocketed, R, M), the Balls' arrays; physics:
+    Physics.engine_args(); bounds: packed.bounds_packed(table); out: (floats, ints, size,
+    cap), packed.output_buffers(n, size) and the event cap, which get the final rows and
+    states, each ball's cushion reach and the Log (see packed.py); flight: None for a scene
+    no ball can leave the cloth in, else True (see `run`).
     Returns (exit code, spin tracked): MISPLACED (nothing ran) if first_misplaced finds a
     ball that may not be where it is, else engine.run's code.
     """
-    xy, v, w, air, pocketed, R, M, Rc, S, st = balls
+    xy, v, w, air, pocketed, R, M = balls
     params, bb_model, cu_model, spin, makes_spin, nose_model = physics
-    table = Bounds(*bounds)
+    floats, ints, size, cap = out
+    table = unpack_bounds(bounds[0], bounds[1])
+    S, st, Rc, log = cut_output(floats, ints, xy.shape[0], size, cap)
+    if nose_model:
+        nose_reach(R, table.height, Rc)
+    else:
+        for i in range(R.shape[0]):
+            Rc[i] = R[i]
     nose = table.height if nose_model else 0.0
     if first_misplaced(xy, R, Rc, 0.0, pocketed, table, nose)[0] != 0:
         return MISPLACED, False
     any_z_spin = pack_into(xy, v, w, air, pocketed, S, st)
     tracked = spin and (any_z_spin or makes_spin)
     scene = Scene(S, st, R, Rc, M, params, bb_model, cu_model, tracked)
-    return run(scene, table, Log(*log), flight), tracked
+    return run(scene, table, log, flight), tracked
 
 
 @allocating

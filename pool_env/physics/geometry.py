@@ -7,7 +7,7 @@ import numpy as np
 from .jit import helper
 from .kinds import VX, VY, WX, WY
 from .roots import first_entry
-from .tolerances import MIN_APPROACH, MIN_DEPTH, POLISH_GAP
+from .tolerances import CLEAR, MIN_APPROACH, MIN_DEPTH, POLISH_GAP
 
 # Rail rows in the table arrays: [x1, y1, x2, y2, nx, ny], the segment on the cushion nose
 # line from (x1, y1) to (x2, y2) and n its unit normal into the table.
@@ -18,6 +18,19 @@ def along_rail(rail, x, y):
     """Where the point (x, y) projects onto the rail segment: 0 at its start, 1 at its end."""
     dx, dy = rail[2] - rail[0], rail[3] - rail[1]
     return ((x - rail[0]) * dx + (y - rail[1]) * dy) / (dx * dx + dy * dy)
+
+
+@helper
+def longer_than(x, y, length):
+    """math.hypot(x, y) > length, to the bit: decided from x^2 + y^2 when that is clear by
+    far more than its round-off (CLEAR), with hypot (a library call, the engine's commonest)
+    only near the boundary. For lengths far above 1e-150 m (their squares not subnormal)."""
+    s, limit = x * x + y * y, length * length
+    if s > limit * (1.0 + CLEAR):
+        return True
+    if s < limit * (1.0 - CLEAR):
+        return False
+    return math.hypot(x, y) > length
 
 
 @helper

@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-from .geometry import roll
+from .geometry import longer_than, roll
 from .jit import helper
 from .kinds import AIRBORNE, ROLLING, SLIDING, SPINNING, STATIONARY, T0, VX, VY, VZ, WX, WY, WZ, X, Y, Z
 from .tolerances import EPS_V, EPS_W, GENTLE_TIME, REACH_SLACK
@@ -167,9 +167,9 @@ def classify(row, radius):
     if row[Z] > 0.0 or row[VZ] != 0.0:
         return AIRBORNE
     ux, uy = slip(row[VX], row[VY], row[WX], row[WY], radius)
-    if math.hypot(ux, uy) > EPS_V:
+    if longer_than(ux, uy, EPS_V):
         return SLIDING
-    if math.hypot(row[VX], row[VY]) > EPS_V:
+    if longer_than(row[VX], row[VY], EPS_V):
         roll(row, radius)
         return ROLLING
     row[VX] = row[VY] = row[WX] = row[WY] = 0.0
@@ -192,9 +192,9 @@ def state_of(row, radius):
     """The motion state `classify` would give the row, without snapping it (stationary
     stands for spinning too)."""
     ux, uy = slip(row[VX], row[VY], row[WX], row[WY], radius)
-    if math.hypot(ux, uy) > EPS_V:
+    if longer_than(ux, uy, EPS_V):
         return SLIDING
-    if math.hypot(row[VX], row[VY]) > EPS_V:
+    if longer_than(row[VX], row[VY], EPS_V):
         return ROLLING
     return STATIONARY
 
@@ -223,13 +223,14 @@ def reroll(row, radius, params):
 
 
 @helper
-def max_travel(row, state, t, horizon, radius, params):
-    """Upper bound on how far the ball's centre moves in [t, t + horizon]."""
+def max_travel(path, state, horizon):
+    """Upper bound on how far the ball's centre moves in the next `horizon` s, on `path` (its
+    trajectory now: (x, y, vx, vy, ax, ay), as `trajectory` gives it)."""
+    _, _, vx, vy, ax, ay = path
     if state == AIRBORNE:
-        return math.hypot(row[VX], row[VY]) * horizon + REACH_SLACK
+        return math.hypot(vx, vy) * horizon + REACH_SLACK
     if state != SLIDING and state != ROLLING:
         return 0.0
-    x, y, vx, vy, ax, ay = trajectory(row, state, t, radius, params)
     speed = math.hypot(vx, vy)
     acc = math.hypot(ax, ay)
     if state == ROLLING:

@@ -4,7 +4,7 @@ import math
 
 import numpy as np
 
-from .geometry import cushion_gap
+from .geometry import cushion_gap, longer_than
 from .jit import helper, kernel
 from .tolerances import CONTACT_TOLERANCE
 
@@ -20,22 +20,38 @@ def first_misplaced(xy, radii, reach, slack, pocketed, bounds, nose):
     passes. `slack` (m) widens the openings (and the caller adds it to the reach) for balls
     that may sit anywhere within it of their positions (a jittered rack)."""
     tol = CONTACT_TOLERANCE
-    rails, jaws = bounds.rails, bounds.jaws
+    rails, jaws, pockets = bounds.rails, bounds.jaws, bounds.pockets
     for i in range(xy.shape[0]):
         if pocketed[i]:
             continue
         x, y = xy[i, 0], xy[i, 1]
-        for k in range(bounds.pockets.shape[0]):
-            if math.hypot(x - bounds.pockets[k, 0], y - bounds.pockets[k, 1]) < bounds.pockets[k, 2] + slack:
+        for k in range(pockets.shape[0]):
+            if not longer_than(x - pockets[k, 0], y - pockets[k, 1], pockets[k, 2] + slack) and math.hypot(
+                    x - pockets[k, 0], y - pockets[k, 1]) < pockets[k, 2] + slack:
                 return 2, i, k
         if not on_playing_area(x, y, bounds):
             return 1, i, -1
         for c in range(rails.shape[0] + jaws.shape[0]):
+            if _pocket_far(bounds, c, x, y, reach[i]):
+                continue
             if cushion_gap(rails, jaws, c, x, y, reach[i]) < -tol:
                 return 4, i, c
         if 2.0 * radii[i] <= nose:
             return 3, i, -1
     return 0, -1, -1
+
+
+@helper
+def _pocket_far(bounds, c, x, y, reach):
+    """True if cushion c is a facing or a jaw tip of a pocket whose reach circle (which holds
+    its facings and tips) is farther than `reach` from the centre (x, y): the ball cannot
+    touch that cushion, let alone be pressed into it (cushion_gap's work, spared)."""
+    n_rails = bounds.rails.shape[0]
+    k = bounds.rail_pockets[c] if c < n_rails else bounds.jaw_pockets[c - n_rails]
+    if k < 0:
+        return False
+    circle = bounds.reach
+    return longer_than(x - circle[k, 0], y - circle[k, 1], circle[k, 2] + reach)
 
 
 @kernel

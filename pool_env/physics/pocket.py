@@ -4,13 +4,13 @@
 from .geometry import distance_entry
 from .jit import helper
 from .kinds import VX, VY, WX, WY, WZ
-from .motion import trajectory
 
 
 @helper
-def capture_time(row, state, t, horizon, radius, params, pocket):
-    """Earliest tau in [0, horizon] at which the centre enters the opening [cx, cy, r] (or inf)."""
-    x, y, vx, vy, ax, ay = trajectory(row, state, t, radius, params)
+def capture_time(path, horizon, pocket):
+    """Earliest tau in [0, horizon] at which the centre of the ball on `path` (its trajectory
+    now, as motion.trajectory gives it) enters the opening [cx, cy, r] (or inf)."""
+    x, y, vx, vy, ax, ay = path
     return distance_entry(x - pocket[0], y - pocket[1], vx, vy, ax, ay, pocket[2], horizon)
 
 

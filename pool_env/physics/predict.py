@@ -14,7 +14,7 @@ from .geometry import distance_entry, rail_gap
 from .jit import helper
 from .kinds import AIRBORNE, C_BB, C_BB_REJ, C_CU, C_CU_REJ, C_PO, C_PO_REJ, C_REST, C_TR, POCKETED
 from .motion import max_travel, moving, trajectory, transition_time
-from .tolerances import PARALLEL_SINE, REACH_SLACK
+from .tolerances import CLEAR, FAR_MARGIN, PARALLEL_SINE, REACH_SLACK
 
 
 @helper
@@ -36,7 +36,16 @@ def out_of_reach(d, dv, da, horizon, reach):
     cx, cy = ex - dx, ey - dy
     span = cx * cx + cy * cy
     u = 0.0 if span == 0.0 else min(max(-(dx * cx + dy * cy) / span, 0.0), 1.0)
-    gap = math.hypot(dx + u * cx, dy + u * cy) - reach
+    px, py = dx + u * cx, dy + u * cy
+    # The gap is compared with 0 or a sagitta + REACH_SLACK, never more than `top`: a chord
+    # clearly beyond top, or clearly within reach, is decided without a square root (CLEAR).
+    s = px * px + py * py
+    top = reach + 0.125 * (abs(dax) + abs(day)) * horizon * horizon + REACH_SLACK
+    if s > top * top * (1.0 + CLEAR):
+        return True
+    if s < reach * reach * (1.0 - CLEAR):
+        return False
+    gap = math.hypot(px, py) - reach
     acc = math.hypot(dax, day)
     if acc == 0.0:
         return gap > 0.0
@@ -47,17 +56,33 @@ def out_of_reach(d, dv, da, horizon, reach):
 
 
 @helper
-def pair_time(S, st, R, params, t_tr, i, k, now, counters):
+def outside_travel(dx, dy, far):
+    """True if the point d = (dx, dy) from the ball's centre is farther than `far`: the cheap
+    test before out_of_reach, which spares it (and its square roots) for the pockets a ball
+    is nowhere near.
+
+    With far = travel + reach + (|dax| + |day|) horizon^2 / 8 + FAR_MARGIN (travel:
+    motion.max_travel, REACH_SLACK included; |dax| + |day| >= |da|, without a square root),
+    every point of the chord out_of_reach measures is within travel - REACH_SLACK of the
+    centre, so its gap exceeds its largest sagitta + REACH_SLACK: whatever this rejects
+    out_of_reach rejects too (FAR_MARGIN covers round-off), and the counters and every
+    prediction stay the same."""
+    return dx * dx + dy * dy > far * far
+
+
+@helper
+def pair_time(paths, st, R, t_tr, i, k, now, counters):
     """Absolute time of the next contact of balls i and k (inf if none before either's next
-    transition); S, st, R, params from the Scene, t_tr the Schedule's transition times.
-    (Plain arrays, not the bundles: this runs N times an event.) Both balls on the cloth: a
-    pair with an airborne ball is airborne.pair_time's (`predict` chooses)."""
+    transition); paths (N, 6) every ball's trajectory now (Work.paths), st, R from the Scene,
+    t_tr the Schedule's transition times. (Plain arrays, not the bundles: this runs N times
+    an event.) Both balls on the cloth: a pair with an airborne ball is airborne.pair_time's
+    (`predict` chooses)."""
     if not (moving(st[i]) or moving(st[k])) or st[i] == POCKETED or st[k] == POCKETED:
         counters[C_REST] += 1
         return np.inf
     horizon = max(min(t_tr[i], t_tr[k]) - now, 0.0)
-    xi, yi, vxi, vyi, axi, ayi = trajectory(S[i], st[i], now, R[i], params)
-    xk, yk, vxk, vyk, axk, ayk = trajectory(S[k], st[k], now, R[k], params)
+    xi, yi, vxi, vyi, axi, ayi = paths[i, 0], paths[i, 1], paths[i, 2], paths[i, 3], paths[i, 4], paths[i, 5]
+    xk, yk, vxk, vyk, axk, ayk = paths[k, 0], paths[k, 1], paths[k, 2], paths[k, 3], paths[k, 4], paths[k, 5]
     dx, dy, dvx, dvy, dax, day = xk - xi, yk - yi, vxk - vxi, vyk - vyi, axk - axi, ayk - ayi
     reach = R[i] + R[k]
     if out_of_reach((dx, dy), (dvx, dvy), (dax, day), horizon, reach):
@@ -68,30 +93,35 @@ def pair_time(S, st, R, params, t_tr, i, k, now, counters):
 
 
 @helper
-def boundary_times(scene, bounds, sched, i, now, counters):
+def boundary_times(scene, bounds, sched, i, now, counters, path):
     """Ball i's next cushion contact (into sched.t_cu, cu_id: rails and facings by row, jaw
     tips numbered after them) and next drop into a pocket (sched.t_po, po_id). A pocket's
     facings and jaw tips are looked at only if the ball can come within its reach circle.
-    A ball on the cloth: an airborne ball's are airborne.boundary_times' (`predict` chooses)."""
-    S, st, params = scene.S, scene.st, scene.params
+    `path`: its trajectory now (motion.trajectory's tuple). A ball on the cloth: an airborne
+    ball's are airborne.boundary_times' (`predict` chooses)."""
+    st = scene.st
     t_cu, cu = np.inf, -1
     t_po, po = np.inf, -1
     if moving(st[i]):
         r, rc = scene.R[i], scene.Rc[i]
         horizon = max(sched.t_tr[i] - now, 0.0)
-        travel = max_travel(S[i], st[i], now, horizon, r, params)
-        x, y, vx, vy, ax, ay = trajectory(S[i], st[i], now, r, params)
-        t_cu, cu = _rails_time(scene, bounds, i, (now, horizon), (x, y), -1, travel, counters)
+        x, y, vx, vy, ax, ay = path
+        travel = max_travel(path, st[i], horizon)
+        t_cu, cu = _rails_time(scene, bounds, i, (now, horizon), path, -1, travel, counters)
         reach = bounds.reach
+        # Beyond this of a reach circle's rim the ball cannot come within it (out_of_reach
+        # then rejects the pocket: see outside_travel); worked out once for all pockets.
+        far = travel + r + 0.125 * (abs(ax) + abs(ay)) * horizon * horizon + FAR_MARGIN
         for k in range(reach.shape[0]):
-            if out_of_reach((x - reach[k, 0], y - reach[k, 1]), (vx, vy), (ax, ay), horizon, reach[k, 2] + r):
+            if outside_travel(x - reach[k, 0], y - reach[k, 1], far + reach[k, 2]) or out_of_reach(
+                    (x - reach[k, 0], y - reach[k, 1]), (vx, vy), (ax, ay), horizon, reach[k, 2] + r):
                 counters[C_PO_REJ] += 1
                 continue
             counters[C_PO] += 1
-            t = now + pocket.capture_time(S[i], st[i], now, horizon, r, params, bounds.pockets[k])
+            t = now + pocket.capture_time(path, horizon, bounds.pockets[k])
             if t < t_po:
                 t_po, po = t, k
-            t, c = _rails_time(scene, bounds, i, (now, horizon), (x, y), k, travel, counters)
+            t, c = _rails_time(scene, bounds, i, (now, horizon), path, k, travel, counters)
             if t < t_cu:
                 t_cu, cu = t, c
             jaws = bounds.jaws
@@ -99,23 +129,22 @@ def boundary_times(scene, bounds, sched, i, now, counters):
                 if bounds.jaw_pockets[p] != k:
                     continue
                 counters[C_CU] += 1
-                t = now + cushion.point_time(S[i], st[i], now, horizon, r, params, jaws[p, 0], jaws[p, 1],
-                                             rc + jaws[p, 2])
+                t = now + cushion.point_time(path, horizon, jaws[p, 0], jaws[p, 1], rc + jaws[p, 2])
                 if t < t_cu:
                     t_cu, cu = t, bounds.rails.shape[0] + p
     sched.t_cu[i], sched.cu_id[i], sched.t_po[i], sched.po_id[i] = t_cu, cu, t_po, po
 
 
 @helper
-def _rails_time(scene, bounds, i, span, xy, owner, travel, counters):
+def _rails_time(scene, bounds, i, span, path, owner, travel, counters):
     """Ball i's first contact with the rails whose rail_pockets entry is `owner` (-1: the
-    noses; k: pocket k's facings) within span = (now, horizon), the ball's centre at xy now:
-    (absolute time, rail row), or (inf, -1). Noses farther than the ball can travel are
-    skipped (a pocket's facings passed the pocket's broad phase already)."""
-    S, st, r, rc = scene.S, scene.st, scene.R[i], scene.Rc[i]
+    noses; k: pocket k's facings) within span = (now, horizon), on `path` (its trajectory
+    now): (absolute time, rail row), or (inf, -1). Noses farther than the ball can travel
+    are skipped (a pocket's facings passed the pocket's broad phase already)."""
+    rc = scene.Rc[i]
     rails = bounds.rails
     now, horizon = span
-    x, y = xy
+    x, y = path[0], path[1]
     best, which = np.inf, -1
     for c in range(rails.shape[0]):
         if bounds.rail_pockets[c] != owner:
@@ -124,7 +153,7 @@ def _rails_time(scene, bounds, i, span, xy, owner, travel, counters):
             counters[C_CU_REJ] += 1
             continue
         counters[C_CU] += 1
-        t = now + cushion.rail_time(S[i], st[i], now, horizon, r, rc, scene.params, rails[c])
+        t = now + cushion.rail_time(path, horizon, rc, rails[c])
         if t < best:
             best, which = t, c
     return best, which
@@ -144,19 +173,24 @@ def predict(scene, bounds, sched, work, n_touched, now, counters, flight):
         i = touched[m]
         counters[C_TR] += 1
         t_tr[i] = transition_time(S[i], st[i], R[i], params)
+    # Every ball's trajectory now, worked out once for all its cushions, pockets and pairs.
+    paths = work.paths
     for k in range(n):
         done[k] = False
+        paths[k, 0], paths[k, 1], paths[k, 2], paths[k, 3], paths[k, 4], paths[k, 5] = trajectory(
+            S[k], st[k], now, R[k], params)
     for m in range(n_touched):
         i = touched[m]
         done[i] = True
         if flight is not None and st[i] == AIRBORNE:
             airborne.boundary_times(scene, bounds, sched, i, now, counters)
         else:
-            boundary_times(scene, bounds, sched, i, now, counters)
+            boundary_times(scene, bounds, sched, i, now, counters,
+                           (paths[i, 0], paths[i, 1], paths[i, 2], paths[i, 3], paths[i, 4], paths[i, 5]))
         for k in range(n):
             if done[k]:
                 continue
             if flight is not None and (st[i] == AIRBORNE or st[k] == AIRBORNE):
                 pair[i, k] = pair[k, i] = airborne.pair_time(S, st, R, params, t_tr, i, k, now, counters)
             else:
-                pair[i, k] = pair[k, i] = pair_time(S, st, R, params, t_tr, i, k, now, counters)
+                pair[i, k] = pair[k, i] = pair_time(paths, st, R, t_tr, i, k, now, counters)

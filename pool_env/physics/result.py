@@ -6,9 +6,10 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .bundles import EVENTS, ROWS, Log, Scene
+from .bundles import EVENTS, ROWS, Scene
 from .engine import sample
 from .kinds import COUNTERS, EVENT_KINDS, POCKETED, ROW_WIDTH, VZ, Z
+from .packed import event_views, final_views, output_views
 from .pressed import pressed_cushion_events
 
 
@@ -34,30 +35,38 @@ class Event(NamedTuple):
 class Result:
     """The outcome of `simulate`: see `events`, `at`, `sample`, `final`, `duration`, `stats`.
 
-    Built from a finished run (its final Scene and its Log, as those namedtuples or plain
-    tuples of their fields, and for the fixed-step methods their own counters; None means
-    the event engine's, read from the Log); everything is derived from them on first use, so
+    Built from a finished run: its final Scene and its Log, as those namedtuples, or for the
+    event engine scene None and log its output as it came (floats, ints, n, size, spin
+    tracked: see packed.py); and for the fixed-step methods their own counters (None means
+    the event engine's, read from the Log). Everything is derived from them on first use, so
     a caller that reads only the final state pays for nothing else. Plain arrays and tuples:
     a Result pickles and deep-copies."""
+
+    # What is derived on first use: None until then (class attributes, so a Result of a shot
+    # whose caller reads only the final state stores none of them).
+    _arrays = _final = _stats = _events = _pressed = None
 
     def __init__(self, balls, physics, table, scene, log, wall, counters):
         self._balls, self.physics, self.table = balls, physics, table
         self._scene, self._log, self._wall, self._counters = scene, log, wall, counters
-        self._arrays = self._final = self._stats = self._events = self._pressed = None
 
     @property
     def _run(self):
-        """The run's Scene and Log as namedtuples (made from plain tuples once, on first use)."""
-        if type(self._scene) is tuple:
-            self._scene = Scene._make(self._scene)
-        if type(self._log) is tuple:
-            self._log = Log._make(self._log)
+        """The run's Scene and Log as namedtuples (cut from the event engine's output once, on
+        first use)."""
+        if self._scene is None:
+            floats, ints, n, size, spin = self._log
+            S, st, Rc, self._log = output_views(floats, ints, n, size)
+            params, bb_model, cu_model = self.physics.engine_args()[:3]
+            self._scene = Scene(S, st, self._balls.radii, Rc, self._balls.masses, params, bb_model, cu_model, spin)
         return self._scene, self._log
 
     @property
     def event_arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """The events as arrays (times, kind ids into EVENT_KINDS, i, j): what `events` holds,
         without building a Python object per event."""
+        if self._arrays is None and self._scene is None:
+            self._arrays = event_views(*self._log[:4])
         if self._arrays is None:
             log = self._run[1]
             n = int(log.size[EVENTS])
@@ -92,7 +101,7 @@ class Result:
     def final(self):
         """The balls when everything rests (Balls; `.pocketed` marks balls off the table)."""
         if self._final is None:
-            S, st = self._scene[:2]  # a Scene or its plain tuple: the rows and states come first
+            S, st = final_views(*self._log[:3]) if self._scene is None else self._scene[:2]
             self._final = self._balls._trusted(S[:, 0:2].copy(), S[:, 2:4].copy(), S[:, 4:7].copy(), st == POCKETED,
                                                self._balls, _air(S))
         return self._final

@@ -10,10 +10,11 @@ import time
 import numpy as np
 
 from . import engine, fixed, seed_loop
-from .bundles import EVENTS, Log, bounds_of, bounds_tuple, default_event_cap, log_arrays, reach_of
+from .bundles import EVENTS, bounds_of, default_event_cap, reach_of
 from .config import NOSE_HEIGHT_MODELS, Physics
-from .kinds import BUFFER_FULL, COUNTERS, EVENT_CAP, MISPLACED, PERCHED, ROW_WIDTH
+from .kinds import BUFFER_FULL, EVENT_CAP, MISPLACED, PERCHED
 from .objects import Balls, Table
+from .packed import bounds_packed, output_buffers, output_views
 from .placement import first_misplaced
 from .result import NotModelledError, Result, SimulationError, cap_message
 
@@ -108,35 +109,32 @@ def _run_events(balls, table, physics, max_events):
     if cap < 0:
         check_on_table(balls, table, physics)  # a misplaced ball is named first, as the other methods do
         raise ValueError(f"max_events must be >= 0, got {max_events!r}")
-    reach = reach_of(balls, table, physics.cushion)
     args = physics.engine_args()
     # No ball in the air: the level engine, compiled without airborne.py (see engine.run).
     flight = None if balls.on_cloth else True
+    bounds = bounds_packed(table)
     # Output buffers start small (a break takes ~100 events) and grow on demand; a rerun from
     # the start (simulate_scene packs the rows afresh: the run works in place) is exact, the
     # simulation being deterministic.
     size = min(cap, 256 + 16 * n)
     while True:
-        S, st = np.empty((n, ROW_WIDTH)), np.empty(n, dtype=np.int64)
-        log = log_arrays(size, n + 2 * size + 2, cap, len(COUNTERS))
+        floats, ints = output_buffers(n, size)
         code, spin = engine.simulate_scene((balls.xy, balls.v, balls.w, balls.air, balls.pocketed, balls.radii,
-                                            balls.masses, reach, S, st), args, bounds_tuple(table), log, flight)
+                                            balls.masses), args, bounds, (floats, ints, size, cap), flight)
         if code != BUFFER_FULL:
             break
         size = min(cap, 4 * size)
     if code == MISPLACED:
         check_on_table(balls, table, physics)  # raises the ValueError that names the ball
-    if code == EVENT_CAP:
-        log = Log._make(log)
-        raise SimulationError(cap_message(cap, log, int(log.size[EVENTS])))
-    if code == PERCHED:
-        log = Log._make(log)
+    if code == EVENT_CAP or code == PERCHED:
+        log = output_views(floats, ints, n, size)[3]
         e = int(log.size[EVENTS])
+        if code == EVENT_CAP:
+            raise SimulationError(cap_message(cap, log, e))
         raise NotModelledError(f"at t = {log.t[e]:.6g} s ball {int(log.i[e])} came to rest on top of ball "
                               f"{int(log.j[e])} (one of them in the air): a ball resting on another is not modelled")
-    # The Scene and the Log as plain tuples: the Result makes them namedtuples if it needs them.
-    scene = (S, st, balls.radii, reach, balls.masses, args[0], args[1], args[2], spin)
-    return Result(balls, physics, table, scene, log, time.perf_counter() - wall, None)
+    # The output as it came: the Result cuts it into views when it needs them.
+    return Result(balls, physics, table, None, (floats, ints, n, size, spin), time.perf_counter() - wall, None)
 
 
 # Whether engine.simulate_scene is compiled in this process (set after the first run).

@@ -29,6 +29,15 @@ BOUNCE_STOP_HEIGHT = 5e-3
 # Slack (m) added to a ball's travel bound and to the broad phase's clearance, so a bound
 # computed with round-off never rejects a contact that happens.
 REACH_SLACK = 1e-12
+# A squared length more than this fraction from a threshold's square decides a comparison of
+# the length with the threshold without the square root (geometry.longer_than,
+# predict.out_of_reach): a million times the round-off of a sum of squares, so the answer is
+# the square root's, to the bit.
+CLEAR = 1e-9
+# Added to the distance beyond which predict.outside_travel rejects a pocket before the broad
+# phase: far above the round-off of distances on a table (1e-15 m), far below any gap that
+# matters, so that test never rejects what the broad phase would let through.
+FAR_MARGIN = 1e-9
 
 # --- contact detection (roots.first_entry and its callers) ---------------------------------
 # Contacts approaching slower than this (m/s) are tangent touches, not collisions: far below

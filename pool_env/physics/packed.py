@@ -1,0 +1,128 @@
+"""The event engine's one call from Python takes the table and the run's output as two flat arrays each.
+
+Numba's dispatch costs about 60 ns per array argument and numpy about 250 ns per allocation,
+so `simulate` passes the table as one float and one int array (built once per Table) and
+gets its output in one float and one int array (two allocations, not ten); compiled code
+(`unpack_bounds`, `cut_output`) and Python (`output_views`) cut them into the same views,
+at the offsets of `output_offsets`.
+
+Output layout, for n balls and room for `size` events (E = size + 1: the event over the cap
+is kept; H = n + 2 size + 2 history rows): floats hold the final rows S (n, ROW_WIDTH), the
+cushion reach Rc (n,), the event times (E,) and the history (H, ROW_WIDTH + 1); ints the
+final states st (n,), the event kinds, i and j (E,) each, the history's ball ids (H,), the
+counters and the Log's size row.
+"""
+
+import numpy as np
+
+from .bundles import CAP, CODE, EVENTS, ROWS, Bounds, Log
+from .jit import helper, kernel
+from .kinds import COUNTERS, DONE, ROW_WIDTH
+
+# Numbers of the table's rows before its rows in the int array: rails, jaws, pockets.
+HEAD = 3
+
+
+def bounds_packed(table):
+    """The table's Bounds as (floats, ints), read-only (the views compiled code cuts from them
+    then have the types of bounds_of's arrays: one compiled engine for both), once per Table."""
+    packed = table.__dict__.get("_bounds_packed")
+    if packed is None:
+        floats = np.concatenate([table.rails.ravel(), table.jaws.ravel(), table.pockets.ravel(),
+                                 table.pocket_reach.ravel(),
+                                 [float(table.cushion_height), float(table.length), float(table.width)]])
+        ints = np.concatenate([[table.rails.shape[0], table.jaws.shape[0], table.pockets.shape[0]],
+                               table.rail_pockets, table.jaw_pockets]).astype(np.int64)
+        floats.setflags(write=False)
+        ints.setflags(write=False)
+        packed = (floats, ints)
+        object.__setattr__(table, "_bounds_packed", packed)
+    return packed
+
+
+@helper
+def unpack_bounds(floats, ints):
+    """bounds_packed's arrays as the table's Bounds (views)."""
+    k, j, p = ints[0], ints[1], ints[2]
+    a = 6 * k
+    b = a + 3 * j
+    c = b + 3 * p
+    d = c + 3 * p
+    return Bounds(floats[:a].reshape((k, 6)), ints[HEAD:HEAD + k], floats[a:b].reshape((j, 3)),
+                  ints[HEAD + k:HEAD + k + j], floats[b:c].reshape((p, 3)), floats[c:d].reshape((p, 3)),
+                  floats[d], floats[d + 1], floats[d + 2])
+
+
+@kernel
+def output_offsets(n, size):
+    """Where each output array ends: (S, Rc, t, hist) in the floats, (st, kind, i, j,
+    hist_ball, counters, size) in the ints; the last of each is the array's length."""
+    w = ROW_WIDTH
+    e, h = size + 1, n + 2 * size + 2
+    s_end = n * w
+    rc_end = s_end + n
+    t_end = rc_end + e
+    hist_end = t_end + h * (w + 1)
+    kind_end = n + e
+    j_end = kind_end + 2 * e
+    ball_end = j_end + h
+    counters_end = ball_end + len(COUNTERS)
+    return (s_end, rc_end, t_end, hist_end), (n, kind_end, kind_end + e, j_end, ball_end, counters_end,
+                                              counters_end + 4)
+
+
+def output_buffers(n, size):
+    """Fresh (floats, ints) for a run of n balls with room for `size` events."""
+    f, i = _offsets(n, size)
+    return np.empty(f[-1]), np.empty(i[-1], dtype=np.int64)
+
+
+@helper
+def cut_output(floats, ints, n, size, cap):
+    """The output arrays as (S, st, Rc, Log) views, the log empty (no events, no rows, the
+    counters at 0, the cap `cap`)."""
+    (s_end, rc_end, t_end, hist_end), (st_end, kind_end, i_end, j_end, ball_end, counters_end,
+                                       size_end) = output_offsets(n, size)
+    log = Log(floats[rc_end:t_end], ints[st_end:kind_end], ints[kind_end:i_end], ints[i_end:j_end],
+              floats[t_end:hist_end].reshape((n + 2 * size + 2, ROW_WIDTH + 1)),
+              ints[j_end:ball_end], ints[ball_end:counters_end], ints[counters_end:size_end])
+    for c in range(log.counters.shape[0]):
+        log.counters[c] = 0
+    log.size[EVENTS], log.size[ROWS], log.size[CAP], log.size[CODE] = 0, 0, cap, DONE
+    return floats[:s_end].reshape((n, ROW_WIDTH)), ints[:st_end], floats[s_end:rc_end], log
+
+
+_OFFSETS = {}
+
+
+def _offsets(n, size):
+    """output_offsets in Python (its own code, uncompiled), remembered per (n, size)."""
+    out = _OFFSETS.get((n, size))
+    if out is None:
+        if len(_OFFSETS) >= 256:
+            _OFFSETS.clear()
+        out = _OFFSETS[(n, size)] = output_offsets.py_func(n, size)
+    return out
+
+
+def final_views(floats, ints, n):
+    """The final rows S (n, ROW_WIDTH) and states st (n,) of an output."""
+    return floats[:n * ROW_WIDTH].reshape(n, ROW_WIDTH), ints[:n]
+
+
+def event_views(floats, ints, n, size):
+    """The events of an output as arrays (times, kinds, i, j), as many as it holds."""
+    (_, rc_end, _, _), (st_end, kind_end, i_end, j_end, _, _, size_end) = _offsets(n, size)
+    count = int(ints[size_end - 4 + EVENTS])
+    return (floats[rc_end:rc_end + count], ints[st_end:st_end + count], ints[kind_end:kind_end + count],
+            ints[i_end:i_end + count])
+
+
+def output_views(floats, ints, n, size):
+    """The whole output as (S, st, Rc, Log), numpy views cut as cut_output cuts them."""
+    (s_end, rc_end, t_end, hist_end), (st_end, kind_end, i_end, j_end, ball_end, counters_end,
+                                       size_end) = _offsets(n, size)
+    log = Log(floats[rc_end:t_end], ints[st_end:kind_end], ints[kind_end:i_end], ints[i_end:j_end],
+              floats[t_end:hist_end].reshape(-1, ROW_WIDTH + 1), ints[j_end:ball_end], ints[ball_end:counters_end],
+              ints[counters_end:size_end])
+    return floats[:s_end].reshape(n, ROW_WIDTH), ints[:st_end], floats[s_end:rc_end], log
