@@ -8,7 +8,7 @@ import numpy as np
 
 from .balls import Balls
 from .batch import TASKS_PER_THREAD, thread_pool
-from .bundles import bounds_tuple, default_event_cap, reach_of
+from .bundles import EVENTS, ROWS, default_event_cap
 from .config import Physics
 from .engine import simulate_scene
 from .jit import allocating, helper
@@ -18,11 +18,11 @@ from .kinds import (
     BALL_CUSHION,
     BALL_OFF_TABLE,
     BALL_POCKET,
-    COUNTERS,
     DONE,
     POCKETED,
     ROW_WIDTH,
 )
+from .packed import bounds_packed, output_offsets
 from .pressed import pressed_cushion_events
 from .table import Table
 
@@ -69,30 +69,34 @@ def _read_facts(log, n_events, pressed, row):  # pragma: no cover - compiled
 @allocating
 def _run_scenes(balls, physics, bounds, moving, cap, out):  # pragma: no cover - compiled
     """Each scene k (xys[k] placed, vs[k] and ws[k] struck) simulated on the level engine,
-    its final rows and states, exit code and facts written to `out` (S, st, codes, facts)."""
-    air, pocketed, R, M, Rc = balls
+    its final rows and states, exit code and facts written to `out` (S, st, codes, facts).
+    `bounds` is (packed.bounds_packed(table), the table's rails and jaws): the cushions are
+    taken from Python, not cut here from the packed arrays (a view returned by compiled code
+    without reference counting must not reach code with it)."""
+    air, pocketed, R, M = balls
     xys, vs, ws = moving
     S, st, codes, facts = out
+    packed, rails, jaws = bounds
     n = xys.shape[1]
-    rows = n + 2 * cap + 2
-    size, counters = np.zeros(4, dtype=np.int64), np.zeros(len(COUNTERS), dtype=np.int64)
-    log = (np.empty(cap + 1), np.empty(cap + 1, dtype=np.int64), np.empty(cap + 1, dtype=np.int64),
-           np.empty(cap + 1, dtype=np.int64), np.empty((rows, ROW_WIDTH + 1)), np.empty(rows, dtype=np.int64),
-           counters, size)
+    (s_end, rc_end, t_end, hist_end), (st_end, kind_end, i_end, j_end, ball_end, _, size_end) = \
+        output_offsets(n, cap)
+    floats, ints = np.empty(hist_end), np.empty(size_end, dtype=np.int64)
+    log = (floats[rc_end:t_end], ints[st_end:kind_end], ints[kind_end:i_end], ints[i_end:j_end])
+    hist, hist_ball = floats[t_end:hist_end].reshape((n + 2 * cap + 2, ROW_WIDTH + 1)), ints[j_end:ball_end]
     for k in range(xys.shape[0]):
-        size[0], size[1], size[2], size[3] = 0, 0, cap, DONE
-        counters[:] = 0
-        code, _ = simulate_scene((xys[k], vs[k], ws[k], air, pocketed, R, M, Rc, S[k], st[k]), physics, bounds, log,
-                                 None)
+        code, _ = simulate_scene((xys[k], vs[k], ws[k], air, pocketed, R, M), physics, packed,
+                                 (floats, ints, cap, cap), None)
         codes[k] = code
         if code != DONE:
             continue
-        e, h = size[0], size[1]
+        S[k] = floats[:s_end].reshape((n, ROW_WIDTH))
+        st[k] = ints[:st_end]
+        e, h = ints[size_end - 4 + EVENTS], ints[size_end - 4 + ROWS]
         pressed = np.zeros(e, dtype=np.bool_)
         for m in range(e):
             if log[1][m] == BALL_CUSHION:
-                pressed = pressed_cushion_events((log[0][:e], log[1][:e], log[2][:e], log[3][:e]), log[4][:h],
-                                                 log[5][:h], R, Rc, physics[0], bounds[0], bounds[2])
+                pressed = pressed_cushion_events((log[0][:e], log[1][:e], log[2][:e], log[3][:e]), hist[:h],
+                                                 hist_ball[:h], R, floats[s_end:rc_end], physics[0], rails, jaws)
                 break
         _read_facts(log, e, pressed, facts[k])
 
@@ -111,8 +115,9 @@ def simulate_level_batch(like: Balls, xys, vs, ws, table: Table, physics: Physic
     k, n = xys.shape[0], xys.shape[1]
     out = (np.empty((k, n, ROW_WIDTH)), np.empty((k, n), dtype=np.int64), np.empty(k, dtype=np.int64),
            np.empty((k, facts_width(n)), dtype=np.int64))
-    balls = (like.air, like.pocketed, like.radii, like.masses, reach_of(like, table, physics.cushion))
-    args, bounds, cap = physics.engine_args(), bounds_tuple(table), default_event_cap(n)
+    balls = (like.air, like.pocketed, like.radii, like.masses)
+    args, cap = physics.engine_args(), default_event_cap(n)
+    bounds = (bounds_packed(table), table.rails, table.jaws)
     threads = max(1, min(os.cpu_count() or 1, k)) if threads is None else int(threads)
     if threads < 1:
         raise ValueError(f"threads must be >= 1, got {threads!r}")
