@@ -189,7 +189,7 @@ class SearchAgent(CandidateShots, Agent):
             if records and time.perf_counter() - start > self.seconds:
                 break
             records += self.sim.evaluate(shots[at:at + chunk], draws=self.noise_samples, seed=self.rng,
-                                         threads=self.threads)
+                                         threads=self.threads, records=False)
         return records
 
     def look_ahead(self, values, chosen, judged, start) -> None:

@@ -21,6 +21,7 @@ from .actions import (
     encoded_entries,
 )
 from .batch import SHOT_ERRORS, simulate_struck, simulate_struck_batch
+from .evaluation import DrawnNormals, JudgedShot, judge_batch, normals_per_draw
 from .modes import Mode, mode_of
 from .placement import area_centre, place_cue_ball, placement_area
 from .shot import CONTACT_TIME, Shot, noise_of, noisy_shot
@@ -503,7 +504,8 @@ class Game:
         self.rng.bit_generator.state = copy.deepcopy(snapshot.rng_state)
         return self
 
-    def evaluate(self, shots, draws: int = 1, seed=None, threads: int | None = 1) -> list[ShotRecord]:
+    def evaluate(self, shots, draws: int = 1, seed=None, threads: int | None = 1,
+                 records: bool = True) -> list[ShotRecord] | list[JudgedShot]:
         """K candidate `shots` (Shots or action vectors) x `draws` noise draws each, from the
         state now, simulated in one `simulate_batch` call (`threads` as there); the game does not
         change. Returns the K x draws records, shot major (record k * draws + j is draw j of
@@ -512,7 +514,13 @@ class Game:
         is used (and advanced); None copies the game's own (so with draws=1, record k equals
         `restore(snapshot)` then `play(shot k)`). Record k * draws + j equals restoring the
         snapshot, setting `rng` to that generator as it stands after the draws before it, and
-        playing shot k. ValueError for no shots, draws < 1 or a bad shot (naming which)."""
+        playing shot k. ValueError for no shots, draws < 1 or a bad shot (naming which).
+
+        `records=False` returns `JudgedShot`s instead (the records' outcome, ruling, state and
+        balls after, without the physics `Result`): in the pool games the level shots are
+        then simulated in compiled calls that each run many (`threads` of them at once) and
+        each distinct outcome is judged once (`evaluation.judge_batch`): a shot's Python work
+        is mostly gone."""
         shots = list(shots)
         if not shots:
             raise ValueError("evaluate needs at least one shot")
@@ -529,11 +537,16 @@ class Game:
                 raise ValueError(f"shot {k}: {exc}") from None
         rng = self._evaluation_rng(seed)
         placements: dict = {}  # candidate shots often place the cue ball on the same spot
-        struck = [self._strike_or_fail(shot, action, rng, placements) for shot, action in decoded
-                  for _ in range(int(draws))]
+        normals, struck = DrawnNormals(rng), []  # each shot's noise in one generator call
+        for shot, action in decoded:
+            normals.arm(int(draws) * normals_per_draw(shot, self.noise))
+            struck += [self._strike_or_fail(shot, action, normals, placements) for _ in range(int(draws))]
+        if not records and type(self._state) is rules.GameState:
+            return judge_batch(self, struck, threads)
         results = simulate_struck_batch(struck, self.table, self.physics, threads)
         rulings: dict = {}  # candidate shots often end alike: the rules judge each outcome once
-        return [self.judge(s, r, rulings) for s, r in zip(struck, results)]
+        judged = [self.judge(s, r, rulings) for s, r in zip(struck, results)]
+        return judged if records else [JudgedShot.of(record) for record in judged]
 
     def _strike_or_fail(self, shot: Shot, action, rng, placements=None) -> StruckShot:
         """`strike` of a decoded shot, a placement that finds no free spot recorded as the shot's failure."""

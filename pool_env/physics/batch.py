@@ -21,7 +21,8 @@ _pools: dict[int, ThreadPoolExecutor] = {}
 _pools_lock = threading.Lock()
 
 
-def _pool(threads):
+def thread_pool(threads: int) -> ThreadPoolExecutor:
+    """The process's pool of `threads` threads (made on first use, then kept)."""
     with _pools_lock:
         if threads not in _pools:
             _pools[threads] = ThreadPoolExecutor(max_workers=threads, thread_name_prefix="pool_env-batch")
@@ -85,5 +86,5 @@ def simulate_batch(balls_list, table, physics=None, max_events: int | None = Non
         for start in starts:
             run(start)
     else:
-        list(_pool(threads).map(run, starts))
+        list(thread_pool(threads).map(run, starts))
     return out

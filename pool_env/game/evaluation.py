@@ -1,0 +1,160 @@
+"""`Game.evaluate(..., records=False)`: a pool game's shots simulated in one compiled call, each outcome judged once."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import rules
+from ..physics import Balls
+from ..physics.batch_run import DROPS, FIRST, GONE, HEAD, RAIL_AFTER, balls_at, simulate_level_batch
+from ..physics.kinds import DONE, POCKETED
+from .batch import simulate_struck
+from .shot import Shot
+
+CUE = 0  # the cue ball's number
+NORMALS_PER_DRAW = 4  # `shot.noisy_shot`'s: aim, speed, side, top (and the elevation of an elevated cue)
+
+
+class DrawnNormals:
+    """Stands in for a `numpy.random.Generator` in `shot.noisy_shot`, which asks it only for
+    `normal(0, sigma)`: the normals of all of a shot's draws come from one `standard_normal`
+    call, made at the first ask (`arm` says how many the shot takes; a shot that fails before
+    its noise is drawn takes none). A Generator's `normal(loc, scale)` is loc + scale times
+    its next standard normal, so the values, and the generator after them, are bit for bit
+    those of the calls one by one."""
+
+    __slots__ = ("rng", "armed", "values", "at")
+
+    def __init__(self, rng: np.random.Generator):
+        self.rng, self.armed, self.values, self.at = rng, 0, [], 0
+
+    def arm(self, count: int) -> None:
+        """The next shot's draws take `count` normals in all."""
+        if self.at != len(self.values):
+            raise RuntimeError(f"DrawnNormals: the last shot left {len(self.values) - self.at} normals unused")
+        self.armed = count
+
+    def normal(self, loc: float, scale: float) -> float:
+        if self.at == len(self.values):
+            if not self.armed:
+                raise RuntimeError("DrawnNormals: no normals armed for this shot")
+            self.values, self.at, self.armed = self.rng.standard_normal(self.armed).tolist(), 0, 0
+        z = self.values[self.at]
+        self.at += 1
+        return loc + scale * z
+
+
+def normals_per_draw(shot: Shot, noise) -> int:
+    """How many normals `shot.noisy_shot` takes for one draw of `shot` under `noise`."""
+    return 0 if noise is None else NORMALS_PER_DRAW + (shot.elevation > 0.0)
+
+
+class Layout:
+    """Where the balls rest after a shot: `xy` (N, 2) and `pocketed` (N,) as a `Balls` holds
+    them, and len() the number of balls (what the observations read of a `Balls`)."""
+
+    __slots__ = ("xy", "pocketed")
+
+    def __init__(self, xy: np.ndarray, pocketed: np.ndarray):
+        self.xy, self.pocketed = xy, pocketed
+
+    def __len__(self) -> int:
+        return self.xy.shape[0]
+
+
+@dataclass(eq=False, slots=True)
+class JudgedShot:
+    """What one shot of `Game.evaluate(..., records=False)` did, without its physics `Result`:
+    `shot`, `error` (why it could not be simulated, else None), the rules' `outcome`, `ruling`
+    and `state_after`, `over`, and `balls_after` (a `Layout`: the balls at rest, spotted balls
+    back on the table), all as the `ShotRecord` of the same shot holds them."""
+
+    shot: Shot
+    error: str | None
+    outcome: rules.ShotOutcome | None
+    ruling: rules.Ruling | None
+    state_after: rules.GameState | None
+    over: bool
+    balls_after: Layout
+
+    @property
+    def pocketed(self) -> tuple:
+        """The object balls that dropped, in the order they dropped."""
+        return () if self.outcome is None else self.outcome.pocketed
+
+    @classmethod
+    def of(cls, record) -> JudgedShot:
+        """The `ShotRecord` `record` as a JudgedShot."""
+        balls = record.balls_after
+        return cls(record.shot, record.error, record.outcome, record.ruling, record.state_after, record.over,
+                   Layout(balls.xy, balls.pocketed))
+
+
+def outcome_of_facts(row: list, n: int) -> rules.ShotOutcome:
+    """The `ShotOutcome` of a scene's event facts (`physics.batch_run`'s row, as a list; n balls)."""
+    d, g = row[DROPS], row[GONE]
+    dropped, pockets = row[HEAD:HEAD + 2 * d:2], row[HEAD + 1:HEAD + 2 * d:2]
+    return rules.ShotOutcome(first_contact=None if row[FIRST] < 0 else row[FIRST],
+                             pocketed=tuple(b for b in dropped if b != CUE), pocket_of=dict(zip(dropped, pockets)),
+                             cue_pocketed=CUE in dropped, rail_after_contact=bool(row[RAIL_AFTER]),
+                             object_balls_to_rail=frozenset(b for b in range(n) if row[HEAD + 3 * n + b]),
+                             off_table=tuple(row[HEAD + 2 * n:HEAD + 2 * n + g]))
+
+
+def lean(struck) -> list[int]:
+    """The struck shots the compiled batch takes: struck (no error), every ball on the cloth,
+    on the balls (pocketed flags, sizes) of the first such shot."""
+    out, like = [], None
+    for k, s in enumerate(struck):
+        balls = s.balls
+        if isinstance(balls, Balls) and balls.on_cloth:
+            like = balls if like is None else like
+            if all(a is b or np.array_equal(a, b) for a, b in ((balls.pocketed, like.pocketed),
+                                                               (balls.radii, like.radii), (balls.masses, like.masses))):
+                out.append(k)
+    return out
+
+
+def judge_batch(game, struck, threads: int | None = 1) -> list[JudgedShot]:
+    """`game.judge` of every struck shot of a pool game (a `rules.GameState`), as JudgedShots:
+    the level ones simulated in compiled calls (`simulate_level_batch`, `threads` as there), each distinct
+    outcome (its event facts, called pocket and ball, push out) read and judged once; the
+    others, and any the compiled run stopped, simulated and judged one by one."""
+    state, table = game.state, game.table
+    out: list[JudgedShot | None] = [None] * len(struck)
+    fast = lean(struck)
+    if fast:
+        like = struck[fast[0]].balls
+        S, st, codes, facts = simulate_level_batch(like, [struck[k].balls.xy for k in fast],
+                                                   [struck[k].balls.v for k in fast],
+                                                   [struck[k].balls.w for k in fast], table, game.physics,
+                                                   threads)
+        S.setflags(write=False)  # the layouts are views of it, read-only as a Balls' arrays are
+        known: dict = {}
+        n = S.shape[1]
+        for m, k in enumerate(fast):
+            if codes[m] != DONE:
+                continue
+            s = struck[k]
+            key = (facts[m].tobytes(), s.called_pocket, s.called_ball, s.push_out)
+            judged = known.get(key)
+            if judged is None:
+                outcome = outcome_of_facts(facts[m].tolist(), n)
+                after, ruling = rules.judge(state, outcome, s.called_pocket, s.called_ball, s.push_out)
+                if not game.decisions and getattr(after, "pending", None) is not None:
+                    after = rules.decide(after, after.pending.default)  # no re-rack is a default
+                judged = known[key] = (outcome, ruling, after)
+            outcome, ruling, after = judged
+            if ruling.balls_to_spot:
+                balls = rules.settle(after, ruling, balls_at(s.balls, S[m], st[m]), table)[0]
+                layout = Layout(balls.xy, balls.pocketed)
+            else:
+                layout = Layout(S[m, :, 0:2], st[m] == POCKETED)
+            out[k] = JudgedShot(s.shot, None, outcome, ruling, after, after.over, layout)
+    rulings: dict = {}
+    for k, s in enumerate(struck):
+        if out[k] is None:
+            out[k] = JudgedShot.of(game.judge(s, simulate_struck(s, table, game.physics), rulings))
+    return out

@@ -1,0 +1,140 @@
+"""`simulate_level_batch`: struck scenes of one layout run in one compiled call, read into final rows and facts."""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+
+from .balls import Balls
+from .batch import TASKS_PER_THREAD, thread_pool
+from .bundles import EVENTS, ROWS, default_event_cap
+from .config import Physics
+from .engine import simulate_scene
+from .jit import allocating, helper
+from .kinds import (
+    BALL_BALL,
+    BALL_BALL_SETTLE,
+    BALL_CUSHION,
+    BALL_OFF_TABLE,
+    BALL_POCKET,
+    DONE,
+    POCKETED,
+    ROW_WIDTH,
+)
+from .packed import bounds_packed, output_offsets
+from .pressed import pressed_cushion_events
+from .table import Table
+
+CUE = 0
+# A scene's facts (`simulate_level_batch`), one int64 row: the first ball the cue ball
+# touched (-1: none), a cushion touched after that contact (0/1), the drops and the balls off
+# the table counted, then N (ball, pocket) pairs of drops in order, N balls off the table in
+# order and N flags of the balls driven to a cushion (a frozen ball only pressed into its
+# cushion is not: `Result.pressed_cushion_events`).
+FIRST, RAIL_AFTER, DROPS, GONE, HEAD = 0, 1, 2, 3, 4
+
+
+def facts_width(n: int) -> int:
+    """The width of a facts row of n balls."""
+    return HEAD + 4 * n
+
+
+@helper
+def _read_facts(log, n_events, pressed, row):  # pragma: no cover - compiled
+    """A finished run's events (the first `n_events` of the log) read into `row` (see FIRST)."""
+    n = (row.shape[0] - HEAD) // 4
+    first, seen, rail_after, d, g = -1, False, False, 0, 0
+    row[:] = 0
+    for k in range(n_events):
+        kind, i, j = log[1][k], log[2][k], log[3][k]
+        if kind == BALL_BALL or kind == BALL_BALL_SETTLE:
+            if not seen and (i == CUE or j == CUE):
+                first, seen = (j if i == CUE else i), True
+        elif kind == BALL_CUSHION:
+            if pressed[k]:  # a ball frozen to this cushion pressed into it: not driven to it
+                continue
+            rail_after = rail_after or seen
+            if i != CUE:
+                row[HEAD + 3 * n + i] = 1
+        elif kind == BALL_POCKET:
+            row[HEAD + 2 * d], row[HEAD + 2 * d + 1] = i, j
+            d += 1
+        elif kind == BALL_OFF_TABLE:
+            row[HEAD + 2 * n + g] = i
+            g += 1
+    row[FIRST], row[RAIL_AFTER], row[DROPS], row[GONE] = first, rail_after, d, g
+
+
+@allocating
+def _run_scenes(balls, physics, bounds, moving, cap, out):  # pragma: no cover - compiled
+    """Each scene k (xys[k] placed, vs[k] and ws[k] struck) simulated on the level engine,
+    its final rows and states, exit code and facts written to `out` (S, st, codes, facts).
+    `bounds` is (packed.bounds_packed(table), the table's rails and jaws): the cushions are
+    taken from Python, not cut here from the packed arrays (a view returned by compiled code
+    without reference counting must not reach code with it)."""
+    air, pocketed, R, M = balls
+    xys, vs, ws = moving
+    S, st, codes, facts = out
+    packed, rails, jaws = bounds
+    n = xys.shape[1]
+    (s_end, rc_end, t_end, hist_end), (st_end, kind_end, i_end, j_end, ball_end, _, size_end) = \
+        output_offsets(n, cap)
+    floats, ints = np.empty(hist_end), np.empty(size_end, dtype=np.int64)
+    log = (floats[rc_end:t_end], ints[st_end:kind_end], ints[kind_end:i_end], ints[i_end:j_end])
+    hist, hist_ball = floats[t_end:hist_end].reshape((n + 2 * cap + 2, ROW_WIDTH + 1)), ints[j_end:ball_end]
+    for k in range(xys.shape[0]):
+        code, _ = simulate_scene((xys[k], vs[k], ws[k], air, pocketed, R, M), physics, packed,
+                                 (floats, ints, cap, cap), None)
+        codes[k] = code
+        if code != DONE:
+            continue
+        S[k] = floats[:s_end].reshape((n, ROW_WIDTH))
+        st[k] = ints[:st_end]
+        e, h = ints[size_end - 4 + EVENTS], ints[size_end - 4 + ROWS]
+        pressed = np.zeros(e, dtype=np.bool_)
+        for m in range(e):
+            if log[1][m] == BALL_CUSHION:
+                pressed = pressed_cushion_events((log[0][:e], log[1][:e], log[2][:e], log[3][:e]), hist[:h],
+                                                 hist_ball[:h], R, floats[s_end:rc_end], physics[0], rails, jaws)
+                break
+        _read_facts(log, e, pressed, facts[k])
+
+
+def simulate_level_batch(like: Balls, xys, vs, ws, table: Table, physics: Physics, threads: int | None = 1):
+    """K struck scenes of the balls `like` (their pocketed flags, sizes and masses; every ball
+    on the cloth), scene k the balls at xys[k] (K, N, 2) moving at vs[k] (K, N, 2) spinning
+    at ws[k] (K, N, 3), simulated on the level engine in compiled calls that each run a
+    share of the scenes one after another (`threads` at once, None: every core; each scene
+    exactly as `simulate` runs it, at the default event cap). Returns (S (K, N, ROW_WIDTH)
+    the final state rows, st (K, N) their states, codes (K,) the exit codes, facts (K,
+    facts_width(N)) the event facts the rules read): a scene whose code is not DONE stopped
+    (a misplaced ball, the event cap, a ball perched on another) and has no facts:
+    `simulate` it to learn why."""
+    xys, vs, ws = (np.ascontiguousarray(a, dtype=np.float64) for a in (xys, vs, ws))
+    k, n = xys.shape[0], xys.shape[1]
+    out = (np.empty((k, n, ROW_WIDTH)), np.empty((k, n), dtype=np.int64), np.empty(k, dtype=np.int64),
+           np.empty((k, facts_width(n)), dtype=np.int64))
+    balls = (like.air, like.pocketed, like.radii, like.masses)
+    args, cap = physics.engine_args(), default_event_cap(n)
+    bounds = (bounds_packed(table), table.rails, table.jaws)
+    threads = max(1, min(os.cpu_count() or 1, k)) if threads is None else int(threads)
+    if threads < 1:
+        raise ValueError(f"threads must be >= 1, got {threads!r}")
+    chunk = max(1, -(-k // (threads * TASKS_PER_THREAD))) if threads > 1 else max(k, 1)
+
+    def run(a):
+        part = slice(a, a + chunk)
+        _run_scenes(balls, args, bounds, (xys[part], vs[part], ws[part]), cap, tuple(o[part] for o in out))
+
+    if threads == 1 or k <= chunk:
+        run(0)
+    else:
+        list(thread_pool(threads).map(run, range(0, k, chunk)))
+    return out
+
+
+def balls_at(like: Balls, S, st) -> Balls:
+    """The balls at rest in the final rows S (N, ROW_WIDTH) and states st (N,) of a level
+    scene of `like` (`Result.final` of that run)."""
+    return Balls._trusted(S[:, 0:2].copy(), S[:, 2:4].copy(), S[:, 4:7].copy(), st == POCKETED, like, None)
