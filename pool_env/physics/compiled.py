@@ -1,6 +1,6 @@
 """Which compiled engine runs: the ahead-of-time extension built at install, else numba's JIT.
 
-`pip install` builds the extension `engine_aot` (build_aot.py: numba.pycc compiles every
+`pip install` builds the extension `engine_aot` (pool_env/build_aot.py: numba.pycc compiles every
 compiled function Python calls in a set of warm-up shots, with the argument types those calls
 had). When it is present, was built from these very sources (a hash of the physics package's
 sources, stored beside it, matches) and POOL_ENV_JIT is not set, the decorators of jit.py make
@@ -12,6 +12,7 @@ without the extension. Otherwise the decorators are numba's own, as they always 
 
 from __future__ import annotations
 
+import ast
 import hashlib
 import importlib
 import json
@@ -38,16 +39,19 @@ def sources_hash() -> str:
 
 
 def arg_key(a):
-    """A Python value's type as far as choosing among compiled versions goes (mirrors numba's
-    typeof for what the engine takes: arrays by dtype, dimensions, layout and writability,
-    tuples by their items, None, bools, ints and floats)."""
+    """A Python value's type as far as choosing among compiled versions goes (after numba's
+    typeof for what the engine takes: arrays by dtype, dimensions, layout and writability;
+    None, bools, ints, floats and numpy scalars by type). A tuple is keyed by its length alone:
+    the one function Python passes tuples to (engine.simulate_scene, the engine's entry) has
+    one caller, simulate.py, which builds them with fixed types; checking each of their ~30
+    items would cost more than a 2-ball shot's whole simulation."""
     t = type(a)
     if t is np.ndarray:
         flags = a.flags
         layout = "C" if flags.c_contiguous else ("F" if flags.f_contiguous else "A")
         return a.dtype.char, a.ndim, layout, flags.writeable
     if t is tuple:
-        return tuple(arg_key(x) for x in a)
+        return "tuple", len(a)
     if a is None or t is bool or t is int or t is float:
         return t.__name__
     if isinstance(a, np.generic):
@@ -55,19 +59,20 @@ def arg_key(a):
     return t.__module__, t.__qualname__, id(t)  # matches nothing the build stored: the JIT runs
 
 
-def args_key(args) -> str:
-    """All of a call's arguments' key, as one string (what the build stores)."""
-    return repr(tuple(arg_key(a) for a in args))
+# arg_key of the types whose key is the type's name (a tuple's is its length), looked up first
+# (a 2-ball shot's call into the engine is all tuples and None).
+_NAMED = {type(None): "NoneType", bool: "bool", int: "int", float: "float"}
 
 
-def _load():
-    """The extension's exports {function's qualified name: {args key: function}}, or None
-    (and why) when the JIT is to run."""
-    mode = os.environ.get("POOL_ENV_JIT", "")
-    if mode == "record":
-        return None, "recording the calls to build the extension"
-    if mode not in ("", "0"):
-        return None, "POOL_ENV_JIT is set"
+def args_key(args) -> tuple:
+    """All of a call's arguments' key (the build stores its repr)."""
+    return tuple([_NAMED.get(type(a)) or arg_key(a) for a in args])
+
+
+def extension():
+    """The extension's exports {function's qualified name: {args key: function}} and "aot"; or
+    None and why it cannot run: "not built", "not importable (...)", "stale" (built from other
+    sources than these)."""
     try:
         table = json.loads(TABLE.read_text())
     except (OSError, ValueError):
@@ -77,20 +82,32 @@ def _load():
     except ImportError as e:
         return None, f"not importable ({e})"
     if table.get("hash") != sources_hash() or module.source_hash() != table["hash_int"]:
-        warnings.warn("pool_env: the ahead-of-time compiled engine is older than the physics sources; using "
-                      "numba's JIT (rebuild it: `python -m pool_env.physics.build_aot`, or reinstall)",
-                      RuntimeWarning, stacklevel=3)
         return None, "stale"
     exports = {}
     for function, key, name in table["exports"]:
-        exports.setdefault(function, {})[key] = getattr(module, name)
-    return exports, f"ahead-of-time extension ({TABLE.with_suffix('').name})"
+        exports.setdefault(function, {})[ast.literal_eval(key)] = getattr(module, name)
+    return exports, "aot"
+
+
+def _load():
+    """extension(), unless POOL_ENV_JIT asks for the JIT (or the build is recording)."""
+    mode = os.environ.get("POOL_ENV_JIT", "")
+    if mode == "record":
+        return None, "recording the calls to build the extension"
+    if mode not in ("", "0"):
+        return None, "POOL_ENV_JIT is set"
+    exports, why = extension()
+    if why == "stale":
+        warnings.warn("pool_env: the ahead-of-time compiled engine is older than the physics sources; using "
+                      "numba's JIT (rebuild it: `python -m pool_env.build_aot`, or reinstall)",
+                      RuntimeWarning, stacklevel=4)
+    return exports, why
 
 
 # The extension's exports, or None when the JIT runs; and why (bench speed reports it).
 EXPORTS, WHY = _load()
 # The calls recorded (the function, its args key, the numba signature the call ran) while
-# build_aot runs its warm-up shots, under POOL_ENV_JIT=record; else None.
+# pool_env.build_aot runs its warm-up shots, under POOL_ENV_JIT=record; else None.
 RECORD: list | None = [] if WHY.startswith("recording") else None
 
 

@@ -1,4 +1,4 @@
-"""`python -m pool_env.physics.build_aot`: compile the engine ahead of time (what `pip install` runs).
+"""`python -m pool_env.build_aot`: compile the engine ahead of time (what `pip install` runs).
 
 It runs a set of warm-up shots under numba's JIT, recording every call Python makes into the
 physics' compiled code with its argument types, then compiles those functions with those
@@ -19,16 +19,16 @@ import tempfile
 import time
 from pathlib import Path
 
-from . import compiled
-
-PHYSICS = __package__  # the package whose calls are compiled (its sources are the hash's)
+PHYSICS = "pool_env.physics"  # the package whose calls are compiled (its sources are the hash's)
+EXTENSION, TABLE = "engine_aot", "engine_aot.json"  # as in pool_env/physics/compiled.py
+PHYSICS_DIR = Path(__file__).resolve().parent / "physics"
 
 
 def warm_up_shots():
     """The shots whose calls into compiled code the extension serves: a break on each table
     (level), a 2-ball shot, shots with a ball in the air and off an elevated cue, the
     trajectory sampler, and a batch."""
-    from . import Balls, Physics, Table, rack, simulate, simulate_batch, strike, warm_up
+    from .physics import Balls, Physics, Table, rack, simulate, simulate_batch, strike, warm_up
 
     physics = Physics.standard()
     for table in (Table.eight_foot(), Table.seed(), Table.snooker(), Table.carom()):
@@ -45,6 +45,8 @@ def warm_up_shots():
 def record():
     """{function: {args key: numba signature}} of the calls the warm-up shots make (run under
     POOL_ENV_JIT=record)."""
+    from .physics import compiled
+
     if compiled.RECORD is None:
         raise RuntimeError("build_aot records only under POOL_ENV_JIT=record")
     warm_up_shots()
@@ -55,17 +57,20 @@ def record():
     return calls
 
 
-def _release_gil_for(nogil_functions):
-    """Make pycc compile the wrappers of `nogil_functions` to release the GIL as numba's JIT does
-    for them (pycc's own flags are the same for every export)."""
+def _flags_per_function(options):
+    """Make pycc compile each export's wrapper with its function's own numba options, as the
+    JIT does (pycc's own flags are the same for every export): releasing the GIL (`nogil`),
+    and reference counting only where the function allocates (`_nrt`: without it, each array
+    argument costs a reference-counted wrapper per call). options: {Python function: options}."""
     from numba.pycc import compiler
 
     original = compiler.compile_extra
 
     def compile_extra(typingctx, targetctx, func, args, return_type, flags, **kws):
-        if func in nogil_functions:
+        if func in options:
             flags = flags.copy()
-            flags.release_gil = True
+            flags.release_gil = bool(options[func].get("nogil"))
+            flags.nrt = options[func].get("_nrt", True)
         return original(typingctx, targetctx, func, args, return_type, flags, **kws)
 
     compiler.compile_extra = compile_extra
@@ -76,31 +81,32 @@ def build(output_dir: Path) -> dict:
     from numba import __version__ as numba_version
     from numba.pycc import CC
 
+    from .physics import compiled
+
     start = time.process_time()
     calls = record()
     recorded = time.process_time() - start
-    cc = CC(compiled.EXTENSION)
+    cc = CC(EXTENSION)
     cc.output_dir = str(output_dir)
     cc.target_cpu = "host"  # built on the machine it runs on (pip install), like the JIT
-    exports, nogil = [], set()
+    exports, options = [], {}
     for f, signatures in sorted(calls.items(), key=lambda item: item[0].name):
         for key, signature in signatures.items():
             name = f"f{len(exports)}"
             cc.export(name, signature)(f.py_func)
-            exports.append((f.name, key, name))
-            if f.options.get("nogil"):
-                nogil.add(f.py_func)
+            exports.append((f.name, repr(key), name))
+            options[f.py_func] = f.options
     digest = compiled.sources_hash()
     hash_int = int(digest[:15], 16)
     namespace = {}
     exec(f"def source_hash():\n    return {hash_int}\n", namespace)  # the hash, compiled into the extension
     cc.export("source_hash", "int64()")(namespace["source_hash"])
-    _release_gil_for(nogil)
+    _flags_per_function(options)
     cc.compile()
     table = {"hash": digest, "hash_int": hash_int, "exports": exports, "numba": numba_version,
              "target_cpu": cc.target_cpu, "record_seconds": round(recorded, 1),
              "seconds": round(time.process_time() - start, 1)}
-    (output_dir / compiled.TABLE.name).write_text(json.dumps(table, indent=1) + "\n")
+    (output_dir / TABLE).write_text(json.dumps(table, indent=1) + "\n")
     return table
 
 
@@ -110,17 +116,17 @@ def run_build(output_dir: Path) -> dict:
     output_dir.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory() as cache:
         env = dict(os.environ, POOL_ENV_JIT="record", NUMBA_CACHE_DIR=cache)
-        root = str(compiled.PACKAGE.parents[1])
+        root = str(PHYSICS_DIR.parents[1])
         env["PYTHONPATH"] = os.pathsep.join(p for p in (root, env.get("PYTHONPATH")) if p)
-        subprocess.run([sys.executable, "-m", f"{PHYSICS}.build_aot", "--output-dir", str(output_dir), "--in-process"],
+        subprocess.run([sys.executable, "-m", __spec__.name, "--output-dir", str(output_dir), "--in-process"],
                        env=env, check=True)
-    return json.loads((output_dir / compiled.TABLE.name).read_text())
+    return json.loads((output_dir / TABLE).read_text())
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m pool_env.physics.build_aot", description=__doc__,
+    parser = argparse.ArgumentParser(prog="python -m pool_env.build_aot", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--output-dir", type=Path, default=compiled.PACKAGE,
+    parser.add_argument("--output-dir", type=Path, default=PHYSICS_DIR,
                         help="where to write the extension and its table (default: beside the sources)")
     parser.add_argument("--in-process", action="store_true", help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
