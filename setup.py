@@ -42,15 +42,18 @@ class BuildEngine(build_ext):
     def copy_extensions_to_source(self):
         """In place (an editable install): the extension and its table, if they were built."""
         for ext in self.extensions:
+            inplace, self.inplace = self.inplace, False
             built = Path(self.get_ext_fullpath(ext.name))
-            if not built.is_file():
-                continue
-            package_dir = ROOT.joinpath(*ext.name.split(".")[:-1])
-            for path in (built, built.with_name(TABLE)):
-                shutil.copyfile(path, package_dir / path.name)
+            self.inplace = inplace
+            if built.is_file():
+                target = Path(self.get_ext_fullpath(ext.name))
+                for path, copy in ((built, target), (built.with_name(TABLE), target.with_name(TABLE))):
+                    shutil.copyfile(path, copy)
 
-    def get_outputs(self):
-        return [p for ext in self.extensions for p in (self.get_ext_fullpath(ext.name),) if Path(p).is_file()]
+    def get_outputs(self):  # only what was built: a failed build leaves the JIT, not a broken install
+        return [p for p in super().get_outputs() if Path(p).is_file()]
 
+    def get_output_mapping(self):
+        return {k: v for k, v in super().get_output_mapping().items() if Path(k).is_file()}
 
 setup(ext_modules=[Extension(NAME, sources=[])], cmdclass={"build_ext": BuildEngine})
