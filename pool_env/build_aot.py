@@ -17,19 +17,26 @@ import subprocess
 import sys
 import tempfile
 import time
+import warnings
 from pathlib import Path
 
+import numba
+
+# The extension being rebuilt may be stale (the sources edited since): no warning for that here;
+# nor for numba.pycc's pending deprecation.
+with warnings.catch_warnings():
+    warnings.simplefilter("ignore")
+    from numba.pycc import CC, compiler
+
+    from .physics import Balls, Physics, Table, compiled, rack, simulate, simulate_batch, strike, warm_up
+
 PHYSICS = "pool_env.physics"  # the package whose calls are compiled (its sources are the hash's)
-EXTENSION, TABLE = "engine_aot", "engine_aot.json"  # as in pool_env/physics/compiled.py
-PHYSICS_DIR = Path(__file__).resolve().parent / "physics"
 
 
 def warm_up_shots():
     """The shots whose calls into compiled code the extension serves: a break on each table
     (level), a 2-ball shot, shots with a ball in the air and off an elevated cue, the
     trajectory sampler, and a batch."""
-    from .physics import Balls, Physics, Table, rack, simulate, simulate_batch, strike, warm_up
-
     physics = Physics.standard()
     for table in (Table.eight_foot(), Table.seed(), Table.snooker(), Table.carom()):
         balls = rack(table, seed=0) if table.pockets.shape[0] else Balls([[0.5, 0.5], [1.0, 0.6], [1.5, 0.4]])
@@ -45,8 +52,6 @@ def warm_up_shots():
 def record():
     """{function: {args key: numba signature}} of the calls the warm-up shots make (run under
     POOL_ENV_JIT=record)."""
-    from .physics import compiled
-
     if compiled.RECORD is None:
         raise RuntimeError("build_aot records only under POOL_ENV_JIT=record")
     warm_up_shots()
@@ -62,8 +67,6 @@ def _flags_per_function(options):
     JIT does (pycc's own flags are the same for every export): releasing the GIL (`nogil`),
     and reference counting only where the function allocates (`_nrt`: without it, each array
     argument costs a reference-counted wrapper per call). options: {Python function: options}."""
-    from numba.pycc import compiler
-
     original = compiler.compile_extra
 
     def compile_extra(typingctx, targetctx, func, args, return_type, flags, **kws):
@@ -78,15 +81,10 @@ def _flags_per_function(options):
 
 def build(output_dir: Path) -> dict:
     """Record, compile, and write the extension and its table into output_dir; the table."""
-    from numba import __version__ as numba_version
-    from numba.pycc import CC
-
-    from .physics import compiled
-
     start = time.process_time()
     calls = record()
     recorded = time.process_time() - start
-    cc = CC(EXTENSION)
+    cc = CC(compiled.EXTENSION)
     cc.output_dir = str(output_dir)
     cc.target_cpu = "host"  # built on the machine it runs on (pip install), like the JIT
     exports, options = [], {}
@@ -103,10 +101,10 @@ def build(output_dir: Path) -> dict:
     cc.export("source_hash", "int64()")(namespace["source_hash"])
     _flags_per_function(options)
     cc.compile()
-    table = {"hash": digest, "hash_int": hash_int, "exports": exports, "numba": numba_version,
+    table = {"hash": digest, "hash_int": hash_int, "exports": exports, "numba": numba.__version__,
              "target_cpu": cc.target_cpu, "record_seconds": round(recorded, 1),
              "seconds": round(time.process_time() - start, 1)}
-    (output_dir / TABLE).write_text(json.dumps(table, indent=1) + "\n")
+    (output_dir / compiled.TABLE.name).write_text(json.dumps(table, indent=1) + "\n")
     return table
 
 
@@ -116,17 +114,17 @@ def run_build(output_dir: Path) -> dict:
     output_dir.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory() as cache:
         env = dict(os.environ, POOL_ENV_JIT="record", NUMBA_CACHE_DIR=cache)
-        root = str(PHYSICS_DIR.parents[1])
+        root = str(compiled.PACKAGE.parents[1])
         env["PYTHONPATH"] = os.pathsep.join(p for p in (root, env.get("PYTHONPATH")) if p)
         subprocess.run([sys.executable, "-m", __spec__.name, "--output-dir", str(output_dir), "--in-process"],
                        env=env, check=True)
-    return json.loads((output_dir / TABLE).read_text())
+    return json.loads((output_dir / compiled.TABLE.name).read_text())
 
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="python -m pool_env.build_aot", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--output-dir", type=Path, default=PHYSICS_DIR,
+    parser.add_argument("--output-dir", type=Path, default=compiled.PACKAGE,
                         help="where to write the extension and its table (default: beside the sources)")
     parser.add_argument("--in-process", action="store_true", help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
