@@ -234,7 +234,8 @@ def measure_all(versions, args):
         runs = interleaved(versions, args.runs, lambda v, c=code: run_python(c, v))
         for name, samples in runs.items():
             figures[name][key] = statistics.median(run["seconds"] for run in samples)
-            figures[name].setdefault("engine", samples[-1].get("engine"))
+            if key == "first_shot":
+                figures[name]["engine"] = samples[-1]["engine"]
     for v in versions:
         build = aot_build(v)
         figures[v.name]["aot_build"] = None if build is None else build["seconds"]

@@ -38,30 +38,28 @@ def sources_hash() -> str:
     return h.hexdigest()
 
 
+# The types keyed by their name alone, looked up first (a shot's call into the engine is four
+# tuples and None or True).
+_NAMED = {t: t.__name__ for t in (tuple, type(None), bool, int, float)}
+
+
 def arg_key(a):
     """A Python value's type as far as choosing among compiled versions goes (after numba's
     typeof for what the engine takes: arrays by dtype, dimensions, layout and writability;
-    None, bools, ints, floats and numpy scalars by type). A tuple is keyed by its length alone:
-    the one function Python passes tuples to (engine.simulate_scene, the engine's entry) has
-    one caller, simulate.py, which builds them with fixed types; checking each of their ~30
-    items would cost more than a 2-ball shot's whole simulation."""
+    None, bools, ints, floats and numpy scalars by type). A tuple is keyed as a tuple, whatever
+    it holds: the one function Python passes tuples to (engine.simulate_scene, the engine's
+    entry) has one caller, simulate.py, which builds them with fixed types; checking each of
+    their ~30 items would cost more than a 2-ball shot's whole simulation."""
     t = type(a)
     if t is np.ndarray:
         flags = a.flags
         layout = "C" if flags.c_contiguous else ("F" if flags.f_contiguous else "A")
         return a.dtype.char, a.ndim, layout, flags.writeable
-    if t is tuple:
-        return "tuple", len(a)
-    if a is None or t is bool or t is int or t is float:
-        return t.__name__
+    if t in _NAMED:
+        return _NAMED[t]
     if isinstance(a, np.generic):
         return "np", a.dtype.char
     return t.__module__, t.__qualname__, id(t)  # matches nothing the build stored: the JIT runs
-
-
-# arg_key of the types whose key is the type's name (a tuple's is its length), looked up first
-# (a 2-ball shot's call into the engine is all tuples and None).
-_NAMED = {type(None): "NoneType", bool: "bool", int: "int", float: "float"}
 
 
 def args_key(args) -> tuple:
