@@ -7,7 +7,7 @@ sources, stored beside it, matches) and POOL_ENV_JIT is not set, the decorators 
 each compiled function a `Compiled`: a call from Python with argument types the extension was
 built for runs the extension's code, and numba is not even imported; any other call
 (other types, a function the extension lacks) compiles it with numba's JIT on first use, as
-without the extension. Otherwise the decorators are numba's own, as they always were.
+without the extension. Otherwise the decorators are numba's own.
 """
 
 from __future__ import annotations
@@ -172,8 +172,8 @@ def _recorded(f, args):
 
 
 def compiled_function(func, options):
-    """What jit.py's decorators make of `func`: numba's dispatcher when the JIT runs (or the
-    build records), else a `Compiled`."""
+    """What jit.py's decorators make of `func`: numba's dispatcher when the JIT runs, else (the
+    extension runs, or the build records its calls) a `Compiled`."""
     if EXPORTS is None and RECORD is None:
         from numba import njit
 
