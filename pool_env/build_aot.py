@@ -22,8 +22,8 @@ from pathlib import Path
 
 import numba
 
-# The extension being rebuilt may be stale (the sources edited since): no warning for that here;
-# nor for numba.pycc's pending deprecation.
+# numba.pycc warns of its pending deprecation on import: it works in the numba the build
+# requires, and its output needs no numba at run time.
 with warnings.catch_warnings():
     warnings.simplefilter("ignore")
     from numba.pycc import CC, compiler

@@ -17,7 +17,6 @@ import hashlib
 import importlib
 import json
 import os
-import warnings
 from pathlib import Path
 
 import numpy as np
@@ -88,18 +87,15 @@ def extension():
 
 
 def _load():
-    """extension(), unless POOL_ENV_JIT asks for the JIT (or the build is recording)."""
+    """extension(), unless POOL_ENV_JIT asks for the JIT (or the build is recording). A stale
+    extension is set aside without a word (WHY says so): after an edit of the physics, its
+    tests and commands run as before, under the JIT, until the extension is rebuilt."""
     mode = os.environ.get("POOL_ENV_JIT", "")
     if mode == "record":
         return None, "recording the calls to build the extension"
     if mode not in ("", "0"):
         return None, "POOL_ENV_JIT is set"
-    exports, why = extension()
-    if why == "stale":
-        warnings.warn("pool_env: the ahead-of-time compiled engine is older than the physics sources; using "
-                      "numba's JIT (rebuild it: `python -m pool_env.build_aot`, or reinstall)",
-                      RuntimeWarning, stacklevel=4)
-    return exports, why
+    return extension()
 
 
 # The extension's exports, or None when the JIT runs; and why (bench speed reports it).
