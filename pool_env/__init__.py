@@ -1,6 +1,8 @@
 """pool_env: exact, fast pool physics, the games played on it, and Gymnasium and PettingZoo envs."""
 
-import gymnasium
+import importlib.abc
+import importlib.util
+import sys
 
 __version__ = "0.1.0"
 __all__ = ["Game", "Shot", "make_player", "PoolBreakEnv", "PoolGameEnv", "PoolVectorEnv", "PoolGameVectorEnv",
@@ -8,9 +10,9 @@ __all__ = ["Game", "Shot", "make_player", "PoolBreakEnv", "PoolGameEnv", "PoolVe
            "__version__"]
 
 # The env ids, one registry: registered by entry-point strings so that `import pool_env` stays
-# light (no numba, no physics). `gymnasium.make_vec(id, num_envs=N,
-# vectorization_mode="vector_entry_point")` makes the native vector env (one simulate_batch
-# call per round of shots), with the id's kwargs passed on.
+# light (no numba, no physics, and no gymnasium until it is imported: see _register_envs).
+# `gymnasium.make_vec(id, num_envs=N, vectorization_mode="vector_entry_point")` makes the
+# native vector env (one simulate_batch call per round of shots), with the id's kwargs passed on.
 ENV_IDS = {
     "PoolBreak-v0": ("pool_env.envs.break_env:PoolBreakEnv", "pool_env.envs.vector:PoolVectorEnv", {"max_shots": 1}),
     "PoolBreakRun-v0": ("pool_env.envs.break_env:PoolBreakEnv", "pool_env.envs.vector:PoolVectorEnv",
@@ -26,9 +28,40 @@ ENV_IDS = {
     "Snooker-v0": ("pool_env.envs.game_env:PoolGameEnv", "pool_env.envs.vector:PoolGameVectorEnv",
                    {"game": "snooker", "opponent": "snooker", "max_shots": 300}),
 }
-for _id, (_entry, _vector, _kwargs) in ENV_IDS.items():
-    if _id not in gymnasium.registry:
-        gymnasium.register(id=_id, entry_point=_entry, vector_entry_point=_vector, kwargs=_kwargs)
+
+
+def _register_envs():
+    import gymnasium
+
+    for env_id, (entry, vector, kwargs) in ENV_IDS.items():
+        if env_id not in gymnasium.registry:
+            gymnasium.register(id=env_id, entry_point=entry, vector_entry_point=vector, kwargs=kwargs)
+
+
+class _RegisterWithGymnasium(importlib.abc.MetaPathFinder):
+    """Registers the env ids right after gymnasium is imported, if it was not yet when pool_env
+    was: the physics alone (`from pool_env.physics import ...`) then never imports gymnasium."""
+
+    def find_spec(self, name, path=None, target=None):
+        if name != "gymnasium":
+            return None
+        sys.meta_path.remove(self)
+        spec = importlib.util.find_spec(name)
+        if spec is not None and spec.loader is not None:
+            run = spec.loader.exec_module
+
+            def exec_module(module):
+                run(module)
+                _register_envs()
+
+            spec.loader.exec_module = exec_module
+        return spec
+
+
+if "gymnasium" in sys.modules:
+    _register_envs()
+else:
+    sys.meta_path.insert(0, _RegisterWithGymnasium())
 
 _LAZY = {  # name: (module, attribute), imported on first use
     "Game": ("pool_env.game", "Game"), "Shot": ("pool_env.game", "Shot"),

@@ -38,7 +38,7 @@ PROGRAM = textwrap.dedent("""
 
 @pytest.mark.slow
 def test_a_level_shot_compiles_no_airborne_function(tmp_path):
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path))
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path), POOL_ENV_JIT="1")  # numba compiles (no extension)
     out = subprocess.run([sys.executable, "-c", PROGRAM], env=env, capture_output=True, text=True, timeout=900)
     assert out.returncode == 0, out.stderr[-3000:]
     data = json.loads(out.stdout.strip().splitlines()[-1])

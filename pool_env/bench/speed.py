@@ -32,6 +32,7 @@ TARGETS = {
     "import": 0.5,
     "first_shot": 0.3,
     "cold_compile": 10.0,
+    "aot_build": None,  # no target: the install's one-off compile (pool_env/build_aot.py)
     "mid_game": None,  # no target: reported beside the break and the 2-ball shot
 }
 # The FastFiz comparison's target: its executeShot over our simulate on the 2-ball shot.
@@ -45,7 +46,8 @@ FIGURES = (
     ("mid_game", "mid-game shot (2 m/s at the lowest ball, after a break)", "<="),
     ("import", "import pool_env, fresh process", "<"),
     ("first_shot", "first shot, fresh process, warm numba cache", "<="),
-    ("cold_compile", "cold compile (empty numba cache)", "<="),
+    ("cold_compile", "cold compile, numba JIT (POOL_ENV_JIT=1, empty numba cache)", "<="),
+    ("aot_build", "ahead-of-time compile at install (CPU, as the build recorded it)", "<="),
 )
 
 # Fresh-interpreter programs: each prints one JSON line, with the file pool_env came from (so
@@ -61,7 +63,10 @@ FIRST_SHOT = (
     "t = Table.eight_foot(); "
     "simulate(strike(rack(t, seed=0), force=(8 * 0.170097 / 0.005, 0.0)), t, Physics.standard()); "
     "seconds = time.perf_counter() - t0; "
-    "import pool_env; print(json.dumps({'file': pool_env.__file__, 'seconds': seconds}))"
+    "import importlib, importlib.util, pool_env; "
+    "engine = 'jit' if importlib.util.find_spec('pool_env.physics.compiled') is None else "
+    "importlib.import_module('pool_env.physics.compiled').engine(); "
+    "print(json.dumps({'file': pool_env.__file__, 'seconds': seconds, 'engine': engine}))"
 )
 WORKER = """
 import json, math, statistics, sys, time
@@ -106,7 +111,9 @@ print(json.dumps({"file": pool_env.__file__, "break": brk, "events": events, "tw
                   "two_ball_events": simulate(balls, table, physics).stats["events"],
                   "mid_game": mid, "mid_game_events": mid_events}))
 """
-OURS = str(Path(__file__).resolve().parents[2])  # the checkout this module belongs to
+OURS = str(Path(__file__).resolve().parents[2])
+# The engines a first shot can run (pool_env.physics.compiled.engine()).
+ENGINES = {"aot": "the ahead-of-time extension", "jit": "numba's JIT"}  # the checkout this module belongs to
 
 
 class Version(NamedTuple):
@@ -166,9 +173,20 @@ def shot_figures(runs):
 
 def cold_run(version):
     """The first shot in a fresh process with an empty numba cache (NUMBA_CACHE_DIR set to a
-    new folder): numba compiles everything the shot uses."""
+    new folder) under numba's JIT (POOL_ENV_JIT=1, not the ahead-of-time extension): numba
+    compiles everything the shot uses."""
     with tempfile.TemporaryDirectory() as cache:
-        return run_python(FIRST_SHOT, version, env=dict(os.environ, NUMBA_CACHE_DIR=cache))["seconds"]
+        env = dict(os.environ, NUMBA_CACHE_DIR=cache, POOL_ENV_JIT="1")
+        return run_python(FIRST_SHOT, version, env=env)["seconds"]
+
+
+def aot_build(version):
+    """The ahead-of-time extension's build as its table recorded it ({"seconds": CPU s, ...}),
+    or None where there is none."""
+    try:
+        return json.loads((Path(version.root) / "pool_env" / "physics" / "engine_aot.json").read_text())
+    except (OSError, ValueError):
+        return None
 
 
 def fastfiz_python(args):
@@ -213,9 +231,15 @@ def measure_all(versions, args):
         figures[name].update(shot_figures(runs))
     # The workers above loaded every version's compiled code, so its numba cache is warm.
     for key, code in (("import", IMPORT), ("first_shot", FIRST_SHOT)):
-        times = interleaved(versions, args.runs, lambda v, c=code: run_python(c, v)["seconds"])
-        for name, samples in times.items():
-            figures[name][key] = statistics.median(samples)
+        runs = interleaved(versions, args.runs, lambda v, c=code: run_python(c, v))
+        for name, samples in runs.items():
+            figures[name][key] = statistics.median(run["seconds"] for run in samples)
+            if key == "first_shot":
+                figures[name]["engine"] = samples[-1]["engine"]
+    for v in versions:
+        build = aot_build(v)
+        figures[v.name]["aot_build"] = None if build is None else build["seconds"]
+        figures[v.name]["aot_exports"] = None if build is None else len(build["exports"])
     if not args.no_cold:
         for name, samples in interleaved(versions, args.cold_runs, cold_run).items():
             figures[name]["cold_compile"] = statistics.median(samples)
@@ -239,6 +263,9 @@ def _notes(key, ours, theirs, args):
         ev = ours["mid_game_events"]
         note = (f"{len(ev)} racks whose cue ball stayed up, {statistics.median(ev):.0f} events "
                 f"(range {min(ev)}-{max(ev)})")
+    elif key == "aot_build":
+        note = (f"numba.pycc, {ours['aot_exports']} functions' versions (pool_env/build_aot.py); "
+                "its first shot is the figure above")
     elif key == "cold_compile":
         runs = ours["cold_runs"]
         note = (f"first shot, numba compiling everything: median of {len(runs)} "
@@ -246,6 +273,8 @@ def _notes(key, ours, theirs, args):
     else:
         what = "fresh interpreter" if key == "import" else "import + rack + strike + simulate"
         note = f"{what}, median of {args.runs}"
+        if key == "first_shot":
+            note += f"; engine: {ENGINES.get(ours['engine'], ours['engine'])}"
     if theirs and key in ("break", "two_ball", "mid_game") and args.rounds > 1:
         if key == "mid_game":
             ratios = [a / b for a, b in zip(ours["mid_by_round"], theirs["mid_by_round"])]
@@ -271,12 +300,14 @@ def print_table(figures, against, args):
         goal = "-" if target is None else f"{op} {fmt_time(target)}"
         if value is None:
             cells = [what, "not measured", goal, "-"] + (["-", "-"] if theirs else [])
-            print("| " + " | ".join(cells + ["skipped (--quick)" if args.quick else "skipped (--no-cold)"]) + " |")
+            why = "no ahead-of-time extension built" if key == "aot_build" else \
+                "skipped (--quick)" if args.quick else "skipped (--no-cold)"
+            print("| " + " | ".join(cells + [why]) + " |")
             continue
         met = "-" if target is None else ("yes" if (value < target if op == "<" else value <= target) else "NO")
         cells = [what, fmt_time(value), goal, met]
         if theirs:
-            cells += [fmt_time(theirs[key]), f"{value / theirs[key]:.2f}"]
+            cells += ["-", "-"] if theirs.get(key) is None else [fmt_time(theirs[key]), f"{value / theirs[key]:.2f}"]
         print("| " + " | ".join(cells + [_notes(key, ours, theirs, args)]) + " |")
 
 

@@ -1,4 +1,4 @@
-"""How the simulator's compiled code is compiled: five numba decorators, one home for their options.
+"""How the simulator's compiled code is compiled: five decorators, one home for their options.
 
 Every compiled function is cached on disk (`cache=True`: only the first run on a machine pays
 the compile). Functions that allocate no arrays are compiled without numba's reference
@@ -13,21 +13,30 @@ Numba compiles a callee once per argument-type signature, and a constant argumen
 `f(x, True)`, or a variable still holding its first constant) is typed as a literal: each
 call site with another constant compiles the callee again. Such arguments are written
 `np.int64(1)` or `np.bool_(True)`: typed, not literal, so one compiled version serves all.
+
+When the ahead-of-time extension built at install is present and current, the decorators
+make each function a compiled.Compiled (numba is imported only if a call needs the JIT); see
+compiled.py.
 """
 
-from numba import njit
+from .compiled import compiled_function
+
+
+def _decorator(**options):
+    return lambda func: compiled_function(func, dict(cache=True, **options))
+
 
 # No allocation: no reference counting. Callable from Python and from compiled code.
-kernel = njit(cache=True, _nrt=False, no_cfunc_wrapper=True)
+kernel = _decorator(_nrt=False, no_cfunc_wrapper=True)
 # No allocation, called only from compiled code.
-helper = njit(cache=True, _nrt=False, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+helper = _decorator(_nrt=False, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 # Allocates arrays (np.empty and the like): reference counting on. Releases the GIL while it
 # runs when called from Python (engine.run, fixed.run), so threads simulate scenes in parallel.
-allocating = njit(cache=True, _nrt=True, nogil=True, no_cfunc_wrapper=True)
+allocating = _decorator(_nrt=True, nogil=True, no_cfunc_wrapper=True)
 # The one call from Python per simulation (engine.simulate_scene): allocates nothing itself, so
 # numba takes its array arguments without reference counting, which halves the dispatch of
-# ~25 arrays (with it each array gets a fresh meminfo, made and freed on every call); what it
+# its 12 arrays (with it each array gets a fresh meminfo, made and freed on every call); what it
 # calls allocates with reference counting on, as usual. Releases the GIL, as `allocating`.
-entry = njit(cache=True, _nrt=False, nogil=True, no_cfunc_wrapper=True)
+entry = _decorator(_nrt=False, nogil=True, no_cfunc_wrapper=True)
 # Allocates, called only from compiled code.
-allocating_helper = njit(cache=True, _nrt=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+allocating_helper = _decorator(_nrt=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)

@@ -9,7 +9,7 @@ import time
 
 import numpy as np
 
-from . import engine, fixed, seed_loop
+from . import compiled, engine, fixed, seed_loop
 from .bundles import EVENTS, bounds_of, default_event_cap, reach_of
 from .config import NOSE_HEIGHT_MODELS, Physics
 from .kinds import BUFFER_FULL, EVENT_CAP, MISPLACED, PERCHED
@@ -150,7 +150,10 @@ def compiled_here() -> bool:
 
 def engine_is_cached() -> bool:
     """True if numba's on-disk cache holds the compiled engine (a run loads it in well under a
-    second); False on a machine where it was never compiled (or the cache was cleared)."""
+    second); False on a machine where it was never compiled (or the cache was cleared). True
+    when the ahead-of-time extension runs (compiled.py): nothing is compiled."""
+    if compiled.engine() == "aot":
+        return True
     try:
         return os.path.exists(engine.simulate_scene._cache._cache_file._index_path)
     except AttributeError:  # numba's private layout changed: assume cached, say nothing
