@@ -3,7 +3,8 @@
 Each engine runs in its own fresh process (the mode is chosen at import): the same scenes must
 give bit-identical events and final states, the JIT must take over when the extension is
 missing or stale, and the first shot under the extension imports neither numba nor gymnasium.
-The comparisons skip where the extension is not built (POOL_ENV_NO_AOT, a failed build).
+The comparisons skip where the extension is not built (POOL_ENV_NO_AOT, a failed build), and
+fail instead with POOL_ENV_REQUIRE_AOT=1 (as CI sets: its install must have built it).
 """
 
 import json
@@ -21,6 +22,13 @@ from pool_env.physics import compiled
 
 ROOT = Path(__file__).resolve().parents[1]
 BUILT = compiled.extension()[1] == "aot"
+
+
+def test_the_extension_is_built_where_it_must_be():
+    if os.environ.get("POOL_ENV_REQUIRE_AOT") == "1":
+        assert BUILT, f"POOL_ENV_REQUIRE_AOT=1 but the ahead-of-time engine is {compiled.extension()[1]}"
+
+
 needs_extension = pytest.mark.skipif(not BUILT, reason=f"ahead-of-time engine: {compiled.extension()[1]}")
 
 # Digests of every engine run's raw output (final rows and states, the event log), in order,
