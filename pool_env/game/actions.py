@@ -97,7 +97,7 @@ def cue_force(action, spin: bool):
     values = a.tolist()  # Python floats: the same IEEE arithmetic as numpy's, without its per-call cost
     if not all(math.isfinite(v) for v in values):
         raise ValueError(f"action must be finite, got {values}")
-    force, tip = cue_entries([min(max(v, -1.0), 1.0) for v in values], spin)  # np.clip(a, -1, 1)
+    force, tip = cue_entries(clip_entries(values), spin)
     return np.array(force), np.array(tip)
 
 
@@ -173,11 +173,17 @@ def encode_decision(layout: ActionLayout, option, options) -> np.ndarray:
     return action
 
 
+def clip_entries(values) -> list:
+    """`np.clip(values, -1, 1)` of Python floats as a list: an entry in range (nearly all) is
+    kept after one chained comparison, the others (NaN too) go through min and max as before."""
+    return [v if -1.0 <= v <= 1.0 else min(max(v, -1.0), 1.0) for v in values]
+
+
 def decode_entries(layout: ActionLayout, values, area=None, n_pockets: int = 6, targets=(), push_out=False,
                    clipped=False) -> Shot:
     """`decode_action` of an action's entries already checked (`layout.size` finite Python floats;
     `clipped`: already in [-1, 1], as `encoded_entries` makes them)."""
-    a = values if clipped else [min(max(v, -1.0), 1.0) for v in values]  # np.clip(a, -1, 1)
+    a = values if clipped else clip_entries(values)
     spin = layout.spin or layout.placement
     force, tip = cue_entries(a[0:4] if spin else a[0:2], spin)
     elevation = elevation_entry(a[-1]) if layout.elevation else 0.0
@@ -215,7 +221,7 @@ def encoded_entries(layout: ActionLayout, shot: Shot, area=None, n_pockets: int 
     action holds them), without building the array: `decode_entries` of them is the shot an
     env plays for the action of `shot`."""
     rounded = array("f", action_entries(layout, shot, area, n_pockets, targets)).tolist()  # as numpy's float32 cast
-    return [min(max(v, -1.0), 1.0) for v in rounded]
+    return clip_entries(rounded)
 
 
 def action_entries(layout: ActionLayout, shot: Shot, area=None, n_pockets: int = 6, targets=()) -> list:
