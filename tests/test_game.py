@@ -273,3 +273,22 @@ def test_the_8_is_called_when_it_is_the_ball_on_and_not_on_the_break():
     game.reset(balls=solids_done, state=state)
     assert game.legal_targets == frozenset({8}) and game.calls_pocket
     assert not Game("nine_ball").calls_pocket
+
+
+def test_a_decoded_shot_is_the_checked_shot_of_its_fields():
+    """decode_action builds its Shot without Shot's checks: over every layout's extreme and
+    random actions (clipped entries, a zero force, tips past the miscue limit), the Shot the
+    checks make of the same fields is equal, field for field and type for type."""
+    rng = np.random.default_rng(3)
+    area = placement_area(TABLE, "anywhere")
+    for layout_ in LAYOUTS.values():
+        actions = [np.zeros(layout_.size), np.full(layout_.size, 1.0), np.full(layout_.size, -7.0)]
+        actions += [rng.uniform(-1.5, 1.5, layout_.size) for _ in range(50)]
+        for a in actions:
+            shot = decode_action(layout_, a, area, targets=TARGETS, push_out=True)
+            fields = (shot.force, shot.tip, shot.place, shot.pocket, shot.elevation, shot.ball, shot.push_out)
+            checked = Shot(*fields)
+            assert checked == shot
+            assert [type(v) for v in fields] == [type(getattr(checked, f)) for f in
+                                                  ("force", "tip", "place", "pocket", "elevation", "ball", "push_out")]
+            assert all(type(v) is float for pair in (shot.force, shot.tip, shot.place or ()) for v in pair)

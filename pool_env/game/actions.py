@@ -9,7 +9,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..physics import BALL_MASS
-from .shot import CONTACT_TIME, MAX_ELEVATION, MAX_FORCE, MAX_SPEED, MAX_TIP_OFFSET, Shot
+from .shot import CONTACT_TIME, MAX_ELEVATION, MAX_FORCE, MAX_SPEED, MAX_TIP_OFFSET, Shot, valid_shot
 
 MIN_MAGNITUDE = 0.02  # weaker cue-force entries are raised to this (0.24 m/s)
 
@@ -97,7 +97,7 @@ def cue_force(action, spin: bool):
     values = a.tolist()  # Python floats: the same IEEE arithmetic as numpy's, without its per-call cost
     if not all(math.isfinite(v) for v in values):
         raise ValueError(f"action must be finite, got {values}")
-    force, tip = cue_entries([min(max(v, -1.0), 1.0) for v in values], spin)  # np.clip(a, -1, 1)
+    force, tip = cue_entries(clip_entries(values), spin)
     return np.array(force), np.array(tip)
 
 
@@ -173,9 +173,17 @@ def encode_decision(layout: ActionLayout, option, options) -> np.ndarray:
     return action
 
 
-def decode_entries(layout: ActionLayout, values, area=None, n_pockets: int = 6, targets=(), push_out=False) -> Shot:
-    """`decode_action` of an action's entries already checked (`layout.size` finite Python floats)."""
-    a = [min(max(v, -1.0), 1.0) for v in values]  # np.clip(a, -1, 1)
+def clip_entries(values) -> list:
+    """`np.clip(values, -1, 1)` of Python floats as a list: an entry in range (nearly all) is
+    kept after one chained comparison, the others (NaN too) go through min and max as before."""
+    return [v if -1.0 <= v <= 1.0 else min(max(v, -1.0), 1.0) for v in values]
+
+
+def decode_entries(layout: ActionLayout, values, area=None, n_pockets: int = 6, targets=(), push_out=False,
+                   clipped=False) -> Shot:
+    """`decode_action` of an action's entries already checked (`layout.size` finite Python floats;
+    `clipped`: already in [-1, 1], as `encoded_entries` makes them)."""
+    a = values if clipped else clip_entries(values)
     spin = layout.spin or layout.placement
     force, tip = cue_entries(a[0:4] if spin else a[0:2], spin)
     elevation = elevation_entry(a[-1]) if layout.elevation else 0.0
@@ -191,6 +199,11 @@ def decode_entries(layout: ActionLayout, values, area=None, n_pockets: int = 6, 
     if layout.called_ball and len(targets):
         ball = int(targets[min(int((a[7] + 1.0) * 0.5 * len(targets)), len(targets) - 1)])
     pushed = bool(layout.decision and push_out and a[layout.decision_index] > 0.0)
+    # cue_entries keeps the force and tip in range and elevation_entry the elevation: the Shot
+    # is valid, and its checks are left out when the other fields are as a Shot keeps them.
+    if (place is None or (type(place[0]) is float and type(place[1]) is float)) \
+            and (pocket is None or pocket >= 0) and (ball is None or ball >= 1):
+        return valid_shot(force, tip, place, pocket, elevation, ball, pushed)
     return Shot(force, tip, place, pocket, elevation, ball, pushed)
 
 
@@ -208,7 +221,7 @@ def encoded_entries(layout: ActionLayout, shot: Shot, area=None, n_pockets: int 
     action holds them), without building the array: `decode_entries` of them is the shot an
     env plays for the action of `shot`."""
     rounded = array("f", action_entries(layout, shot, area, n_pockets, targets)).tolist()  # as numpy's float32 cast
-    return [min(max(v, -1.0), 1.0) for v in rounded]
+    return clip_entries(rounded)
 
 
 def action_entries(layout: ActionLayout, shot: Shot, area=None, n_pockets: int = 6, targets=()) -> list:

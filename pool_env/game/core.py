@@ -385,7 +385,7 @@ class Game:
         area, pockets = self.placement_area(), self.table.pockets.shape[0]
         targets = self._called_targets()
         entries = encoded_entries(self.layout, shot, area, pockets, targets)
-        decoded = decode_entries(self.layout, entries, area, pockets, targets, self.may_push_out)
+        decoded = decode_entries(self.layout, entries, area, pockets, targets, self.may_push_out, clipped=True)
         return self._strike(decoded, tuple(entries), rng)
 
     def _shot_and_action(self, shot) -> tuple:

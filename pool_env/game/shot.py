@@ -179,3 +179,19 @@ def noisy_shot(force, offset, noise, rng, elevation=0.0):
         elevation = min(max(elevation + rng.normal(0.0, noise["elevation"]), 0.0), MAX_ELEVATION)
     magnitude = speed * BALL_MASS / CONTACT_TIME
     return np.array((magnitude * math.cos(angle), magnitude * math.sin(angle))), np.array((side, top)), elevation
+
+
+def valid_shot(force, tip, place, pocket, elevation, ball, push_out) -> Shot:
+    """The `Shot` of fields a decoder made valid and normalised already (floats within range,
+    tuples of floats, an int pocket >= 0 and ball >= 1 or None, a bool): built without
+    `Shot.__post_init__`'s checks, which would change nothing (every env shot is decoded)."""
+    shot = object.__new__(Shot)
+    set_ = object.__setattr__
+    set_(shot, "force", force)
+    set_(shot, "tip", tip)
+    set_(shot, "place", place)
+    set_(shot, "pocket", pocket)
+    set_(shot, "elevation", elevation)
+    set_(shot, "ball", ball)
+    set_(shot, "push_out", push_out)
+    return shot

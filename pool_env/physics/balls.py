@@ -100,10 +100,18 @@ class Balls:
         self._set(xy, v, w, pocketed, radii, masses, air)
 
     def _set(self, xy, v, w, pocketed, radii, masses, air=None):
-        self.xy, self.v, self.w = read_only(xy), read_only(v), read_only(w)
-        self.pocketed = read_only(pocketed)
+        # read_only's setflags inline: Balls are made several times a shot
+        xy.setflags(write=False)
+        v.setflags(write=False)
+        w.setflags(write=False)
+        pocketed.setflags(write=False)
+        self.xy, self.v, self.w, self.pocketed = xy, v, w, pocketed
         self._radii, self._masses = radii, masses
-        self.air = _on_cloth(xy.shape[0]) if air is None else read_only(air)
+        if air is None:
+            air = _on_cloth(xy.shape[0])
+        else:
+            air.setflags(write=False)
+        self.air = air
 
     @classmethod
     def _trusted(cls, xy, v, w, pocketed, like, air=None):
