@@ -1,7 +1,7 @@
 """`python -m pool_env.build_aot`: compile the engine ahead of time (what `pip install` runs).
 
-It runs a set of warm-up shots and games under numba's JIT, recording every call Python makes
-into the compiled code of the physics, the players and the game with its argument types, then compiles those functions with those
+It runs a set of warm-up shots under numba's JIT, recording every call Python makes into the
+physics' compiled code with its argument types, then compiles those functions with those
 types into the extension module `engine_aot` with numba.pycc (for this machine's CPU), beside a
 table of what it holds and the hash of the sources it was compiled from (compiled.py reads
 both). The JIT compiles from scratch (an empty numba cache: pycc links the JIT's code, which
@@ -28,13 +28,10 @@ with warnings.catch_warnings():
     warnings.simplefilter("ignore")
     from numba.pycc import CC, compiler
 
-    from .game import Game, game_observation, game_view, simulate_struck
     from .physics import Balls, Physics, Table, compiled, rack, simulate, simulate_batch, strike, warm_up
     from .physics.batch_run import simulate_level_batch
-    from .players import GameGhostBallAgent
 
-# The modules whose calls are compiled: those of compiled.PACKAGES (their sources are the hash's).
-MODULES = tuple(f"pool_env.{package}." for package in compiled.PACKAGES)
+PHYSICS = "pool_env.physics"  # the package whose calls are compiled (its sources are the hash's)
 
 
 def warm_up_shots():
@@ -55,40 +52,15 @@ def warm_up_shots():
     warm_up()
 
 
-def warm_up_games():
-    """9-ball and 8-ball games of the ghost-ball player against itself, as the game envs play
-    their opponent (its view of the game, its shots struck as encoded) and read the shooter's
-    observation, and a batch of views planned together (the native vector env's): the calls of
-    the planner, the observations and the rules' reading of a shot."""
-    for name in ("nine_ball", "eight_ball"):
-        game = Game(name)
-        player = GameGhostBallAgent.from_env(game)
-        views = []
-        for seed in range(4):
-            game.reset(seed=seed, breaker=seed % 2)
-            for _ in range(60):
-                if game.over:
-                    break
-                if game.pending is not None:
-                    game.decide(game.pending.default)
-                    continue
-                game_observation(game.balls, game.state, game.shooter, 0, 100, game.table)
-                views.append(game_view(game.balls, game.state, game.shooter, 0, 100, game.table))
-                struck = game.strike_encoded(player.decide(views[-1]))
-                game.resolve(struck, simulate_struck(struck, game.table, game.physics))
-        player.decide_batch(views[:8])
-
-
 def record():
     """{function: {args key: numba signature}} of the calls the warm-up shots make (run under
     POOL_ENV_JIT=record)."""
     if compiled.RECORD is None:
         raise RuntimeError("build_aot records only under POOL_ENV_JIT=record")
     warm_up_shots()
-    warm_up_games()
     calls = {}
     for f, key, types in compiled.RECORD:
-        if f.__module__.startswith(MODULES):
+        if f.__module__.startswith(PHYSICS + "."):
             calls.setdefault(f, {})[key] = f.dispatcher.overloads[types].signature
     return calls
 

@@ -2,8 +2,8 @@
 
 `pip install` builds the extension `engine_aot` (pool_env/build_aot.py: numba.pycc compiles every
 compiled function Python calls in a set of warm-up shots, with the argument types those calls
-had). When it is present, was built from these very sources (a hash of the sources of the
-packages in PACKAGES, stored beside it, matches) and POOL_ENV_JIT is not set, the decorators of jit.py make
+had). When it is present, was built from these very sources (a hash of the physics package's
+sources, stored beside it, matches) and POOL_ENV_JIT is not set, the decorators of jit.py make
 each compiled function a `Compiled`: a call from Python with argument types the extension was
 built for runs the extension's code, and numba is not even imported; any other call
 (other types, a function the extension lacks) compiles it with numba's JIT on first use, as
@@ -24,20 +24,16 @@ import numpy as np
 PACKAGE = Path(__file__).resolve().parent
 EXTENSION = "engine_aot"  # the extension module's name, in this package
 TABLE = PACKAGE / f"{EXTENSION}.json"  # its exports, the sources' hash, how it was built
-# The packages of pool_env whose compiled functions the extension holds: the physics, the
-# players' planner and the game's observations.
-PACKAGES = ("physics", "players", "game")
-# The sources the extension is compiled from: every module of those packages (a change to any
-# makes the extension stale: compiled code keeps the constants it read), jit.py's decorators'
-# options with them.
-SOURCES = sorted(f"{package}/{p.name}" for package in PACKAGES for p in (PACKAGE.parent / package).glob("*.py"))
+# The sources the extension is compiled from: every module of the package (a change to any
+# makes the extension stale), and jit.py's decorators' options with them.
+SOURCES = sorted(p.name for p in PACKAGE.glob("*.py"))
 
 
 def sources_hash() -> str:
-    """The hash of those packages' sources (names and contents), as the build stores it."""
+    """The hash of the physics package's sources (names and contents), as the build stores it."""
     h = hashlib.sha256()
     for name in SOURCES:
-        h.update(name.encode() + b"\0" + (PACKAGE.parent / name).read_bytes() + b"\0")
+        h.update(name.encode() + b"\0" + (PACKAGE / name).read_bytes() + b"\0")
     return h.hexdigest()
 
 
