@@ -34,7 +34,8 @@ Log = namedtuple("Log", ["t", "kind", "i", "j", "hist", "hist_ball", "counters",
 Log.__doc__ = """What a run writes: events (t, kind, i, j: (E,) each), state segments (hist (H, ROW_WIDTH + 1): a
 state row and its state code, hist_ball (H,) whose row), the method's counters, and size = [events
 written, history rows written, event cap, exit code]."""
-EVENTS, ROWS, CAP, CODE = range(4)
+SIZE_FIELDS = 4  # the Log's size row: its events, history rows, event cap and exit code
+EVENTS, ROWS, CAP, CODE = range(SIZE_FIELDS)
 
 Schedule = namedtuple("Schedule", ["t_tr", "t_cu", "cu_id", "t_po", "po_id", "pair", "met", "bb_t", "cl_t"])
 Schedule.__doc__ = """Every ball's next predicted events (absolute times, inf for none): t_tr (N,) motion

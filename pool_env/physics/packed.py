@@ -15,7 +15,7 @@ counters and the Log's size row.
 
 import numpy as np
 
-from .bundles import CAP, CODE, EVENTS, ROWS, Bounds, Log
+from .bundles import CAP, CODE, EVENTS, ROWS, SIZE_FIELDS, Bounds, Log
 from .jit import helper, kernel
 from .kinds import COUNTERS, DONE, ROW_WIDTH
 
@@ -68,7 +68,7 @@ def output_offsets(n, size):
     ball_end = j_end + h
     counters_end = ball_end + len(COUNTERS)
     return (s_end, rc_end, t_end, hist_end), (n, kind_end, kind_end + e, j_end, ball_end, counters_end,
-                                              counters_end + 4)
+                                              counters_end + SIZE_FIELDS)
 
 
 def output_buffers(n, size):
@@ -112,8 +112,8 @@ def final_views(floats, ints, n):
 
 def event_views(floats, ints, n, size):
     """The events of an output as arrays (times, kinds, i, j), as many as it holds."""
-    (_, rc_end, _, _), (st_end, kind_end, i_end, j_end, _, _, size_end) = _offsets(n, size)
-    count = int(ints[size_end - 4 + EVENTS])
+    (_, rc_end, _, _), (st_end, kind_end, i_end, _, _, counters_end, _) = _offsets(n, size)
+    count = int(ints[counters_end + EVENTS])
     return (floats[rc_end:rc_end + count], ints[st_end:st_end + count], ints[kind_end:kind_end + count],
             ints[i_end:i_end + count])
 
