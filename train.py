@@ -7,10 +7,11 @@
                                          # 9-ball: practice run-outs through the ghost-ball action
                                          # wrapper, judged by the win rate against the ghost-ball player
 
-One file, read top to bottom (in the spirit of CleanRL): the options, then `main`, whose
-phases follow it in the order they run (the words and tables of the report they write come from
-agents/report.py): the run folder and logging, the vectorised envs and
-the model, training (learning-curve evaluations, a progress bar on a terminal and a progress
+Read top to bottom (in the spirit of CleanRL): the options, then `main`, whose phases follow
+it in the order they run; the callbacks during training are in agents/train_callbacks.py, the
+evaluations and the video at the end in agents/run_eval.py, the words and tables of the report
+in agents/report.py. The phases: the run folder and logging, the vectorised envs and the
+model, training (learning-curve evaluations, a progress bar on a terminal and a progress
 line every few seconds in train.log and on a redirected stdout, TensorBoard), the final
 evaluation of the trained model, RandomAgent and the geometric heuristic on the same fixed
 seeds (table printed and written to results.md with a verdict, eval.json written), the
@@ -182,6 +183,7 @@ def main(args: Args) -> Path:
     """The whole job. Each phase is a function below, in the order it runs. Each imports what it
     needs (not the top of the file): subprocess envs re-import this file, and --help stays instant."""
     from agents.report import plot_learning_curve
+    from agents.run_eval import film, final_evaluation
 
     started = time.perf_counter()
     run = open_run(args)                                 # run folder, logging, the env's facts, compiled physics
@@ -233,6 +235,7 @@ class Run:
 def open_run(args: Args) -> Run:
     """The run folder and logging (everything this run makes goes in the folder), args.json, the env."""
     import pool_env
+    from agents.run_eval import quiet_env
     from pool_env.physics import warm_up
 
     name = args.run_name or f"{datetime.now():%Y%m%d-%H%M%S}-{args.env_id}-{args.algo}-s{args.seed}"
@@ -292,6 +295,8 @@ def make_model(args: Args, run: Run):
     from stable_baselines3.common.utils import LinearSchedule
     from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv
 
+    from agents.run_eval import quiet_env
+
     torch.set_num_threads(1)  # small networks: one thread is fastest, and leaves the cores to the envs
     (run.dir / "monitor").mkdir(exist_ok=True)
     train_kwargs = run.env_kwargs if run.train_kwargs is None else run.train_kwargs
@@ -330,7 +335,10 @@ def make_model(args: Args, run: Run):
 
 
 def train(args: Args, run: Run, model):
-    """Learn (callbacks below), save the last model, then keep the best learning-curve checkpoint as model.zip."""
+    """Learn (callbacks: agents/train_callbacks.py), save the last model, then keep the best
+    learning-curve checkpoint as model.zip."""
+    from agents.train_callbacks import make_callbacks
+
     curve, callbacks = make_callbacks(args, run)
     train_start = time.perf_counter()
     model.learn(total_timesteps=args.timesteps, callback=callbacks, progress_bar=args.progress_bar, tb_log_name="tb")
@@ -352,275 +360,6 @@ def train(args: Args, run: Run, model):
     if curve.failed_shots:
         log.info("%d training shots hit the simulator's event cap (episode truncated, reward 0)", curve.failed_shots)
     return model, curve, train_time
-
-
-def make_callbacks(args: Args, run: Run):
-    """What runs during training: deterministic evaluations on fixed seeds (the learning curve and
-    the best checkpoint), PPO's exploration schedule, and a progress line every few seconds."""
-    from stable_baselines3.common.callbacks import BaseCallback, CallbackList
-
-    from agents import SB3Agent, evaluate
-
-    class CurveCallback(BaseCallback):
-        def __init__(self, every: int):
-            super().__init__()
-            self.every, self.next_at, self.points, self.failed_shots = every, 0, [], 0
-            self.best, self.trained_steps = None, 0
-
-        @property
-        def kept_untrained(self) -> bool:  # the first evaluation comes before any policy update
-            return bool(args.keep_best and self.points and self.best is self.points[0])
-
-        def _on_step(self) -> bool:
-            self.failed_shots += sum(bool(info.get("error")) for info in self.locals["infos"])
-            if self.every and self.num_timesteps >= self.next_at:
-                self.next_at += self.every
-                self.measure()
-            return True
-
-        def _on_training_end(self) -> None:
-            self.trained_steps = int(self.num_timesteps)
-
-        def measure(self):
-            if run.game:  # games against the opponent: the reward is +1 a win, -1 a loss
-                result = play_games(trained_agent(args, run, self.model), args, run, run.curve_seeds)
-                point = {"timesteps": int(self.num_timesteps), "reward": result["reward"],
-                         "win_rate": result["win_rate"]["mean"]}
-            else:
-                result = evaluate(SB3Agent(self.model), args.env_id, run.curve_seeds, run.env_kwargs)
-                point = {"timesteps": int(self.num_timesteps), "reward": result["reward"],
-                         "pocketed_per_shot": result["pocketed_per_shot"]["mean"],
-                         "scratch_rate": result["scratch_rate"]["mean"]}
-            self.points.append(point)
-            if self.best is None or point["reward"]["mean"] > self.best["reward"]["mean"]:
-                self.best = point
-                self.model.save(run.dir / "best_model.zip")
-            self.logger.record("eval/mean_reward", point["reward"]["mean"])
-            for key in ("scratch_rate", "win_rate"):
-                if key in point:
-                    self.logger.record(f"eval/{key}", point[key])
-            self.logger.dump(self.num_timesteps)
-
-    # No more often than the policy changes (PPO updates once per rollout of n_steps * n_envs).
-    every = max(args.timesteps // max(args.curve_points, 1), args.n_steps * args.n_envs if args.algo == "ppo" else 1)
-    curve = CurveCallback(every if args.curve_points else 0)
-    anneal = [anneal_std(args)] if args.algo == "ppo" and args.anneal_std else []
-    callbacks = [curve, progress_callback(args), *anneal]
-    return curve, CallbackList(callbacks)
-
-
-def anneal_std(args: Args):
-    """PPO's exploration schedule as a callback: the policy's log std from --log-std-init to --log-std-final."""
-    from stable_baselines3.common.callbacks import BaseCallback
-
-    class AnnealStd(BaseCallback):
-        """Exploration from coarse to fine: the reward is a rugged function of the aim (a fifth of a
-        ball radius can halve it), so the Gaussian policy's spread follows a fixed schedule,
-        wide at first and narrow at the end, instead of being learned."""
-
-        def _on_training_start(self) -> None:
-            self.model.policy.log_std.requires_grad_(False)
-
-        def _on_rollout_start(self) -> None:
-            progress = min(self.num_timesteps / args.timesteps, 1.0)
-            value = args.log_std_init + progress * (args.log_std_final - args.log_std_init)
-            self.model.policy.log_std.data.fill_(value)
-            self.logger.record("train/log_std", value)
-
-        def _on_step(self) -> bool:
-            return True
-
-    return AnnealStd()
-
-
-def progress_callback(args: Args):
-    """A callback that logs a progress line (agents.report.progress_line) every --progress-every seconds."""
-    from stable_baselines3.common.callbacks import BaseCallback
-
-    from agents.report import progress_line
-
-    class Progress(BaseCallback):
-        """A progress line every --progress-every seconds, to train.log and (unless the progress bar
-        draws on a terminal) stdout: for runs redirected to a file or under CI. Cheap: it reads the
-        clock only every 64th step."""
-
-        def _on_training_start(self) -> None:
-            self.start = self.last = time.perf_counter()
-
-        def _on_step(self) -> bool:
-            if args.progress_every > 0 and self.n_calls % 64 == 0:
-                now = time.perf_counter()
-                if now - self.last >= args.progress_every:
-                    self.last = now
-                    rewards = [episode["r"] for episode in self.model.ep_info_buffer]  # SB3 keeps the last 100
-                    log.info(progress_line(self.num_timesteps, args.timesteps, now - self.start, rewards),
-                             extra={"progress": True})
-            return True
-
-    return Progress()
-
-
-def final_evaluation(args: Args, run: Run, model, curve) -> dict:
-    """The trained model and the baselines on the same fixed seeds: the table and the paired reward
-    differences (logged and written to results.md), the verdict, eval_episodes.json; returns eval.json's content."""
-    from agents import BreakAgent, SB3Agent, baselines, evaluate, format_table, paired_difference
-    from agents.report import verdict
-
-    if run.game:
-        return game_evaluation(args, run, model, curve)
-    eval_start = time.perf_counter()
-    agents = {"trained": SB3Agent(model), **baselines(run.probe, seed=args.seed)}
-    if not run.multi_shot:  # the naive break too: full power straight at the head ball
-        agents["head-on break"] = BreakAgent.from_env(run.probe, row=1, offset=0.0)
-    results = {name: evaluate(agent, args.env_id, run.eval_seeds, run.env_kwargs) for name, agent in agents.items()}
-    eval_time = time.perf_counter() - eval_start
-    seeds = f"{len(run.eval_seeds)} fixed seeds ({run.eval_seeds[0]}..{run.eval_seeds[-1]})"
-    table = format_table(results)
-    log.info("evaluation on %s; mean ± 95%% CI, sd in brackets:\n%s", seeds, table)
-    differences = {f"trained - {name}": paired_difference(results["trained"], results[name])
-                   for name in results if name != "trained"}
-    for key, diff in differences.items():
-        log.info("reward %s: %+.3f ± %.3f (paired, same seeds)", key, diff["mean"], diff["ci95"])
-    words = verdict(differences, curve.trained_steps, args.min_timesteps, curve.best if curve.kept_untrained else None,
-                    len(run.eval_seeds))
-    log.info("verdict: %s", words)
-
-    kept = (f"the checkpoint at {curve.best['timesteps']:,} timesteps, the best of {len(curve.points)} evaluations "
-            f"on {len(run.curve_seeds)} learning-curve seeds" if args.keep_best and curve.best else "the last model")
-    (run.dir / "results.md").write_text("\n".join([
-        f"# {args.algo.upper()} on {args.env_id}, seed {args.seed}", "",
-        f"Trained {curve.trained_steps:,} timesteps; the model is {kept}.", "",
-        f"Final evaluation on {seeds}, the same for every agent; mean ± 95 % confidence interval, sd in brackets:",
-        "", table, "", "Reward difference, trained minus each baseline, paired on the same seeds (± 95 % CI):", "",
-        *(f"- {key}: {d['mean']:+.3f} ± {d['ci95']:.3f}" for key, d in differences.items()), "",
-        f"Verdict: {words}.", ""]))
-    log.info("results table: %s", run.dir / "results.md")
-    (run.dir / "eval_episodes.json").write_text(json.dumps({n: r["per_episode"] for n, r in results.items()}))
-    return {
-        "env_id": args.env_id, "env_kwargs": run.env_kwargs, "algo": args.algo,
-        "timesteps": int(model.num_timesteps), "trained_timesteps": curve.trained_steps,
-        "eval_seeds": {"first": run.eval_seeds[0], "count": len(run.eval_seeds)},
-        "agents": {name: {k: v for k, v in r.items() if k != "per_episode"} for name, r in results.items()},
-        "reward_differences": differences,
-        "verdict": words,
-        "learning_curve": curve.points,
-        "wall_time_s": {"evaluation": eval_time},
-        "args": dataclasses.asdict(args),
-    }
-
-
-def film(args: Args, run: Run, model) -> float:
-    """A video of the trained agent, every shot whole; returns its wall time."""
-    import gymnasium as gym
-
-    import pool_env
-
-    video_start = time.perf_counter()
-    video_env = gym.make(args.env_id, render_mode="rgb_array_list", **run.env_kwargs)
-    frames = pool_env.record_video(video_env, trained_agent(args, run, model), str(run.dir / "trained.mp4"),
-                                   episodes=args.video_episodes, seed=args.eval_seed)
-    video_env.close()
-    log.info("video: %s (%d frames)", run.dir / "trained.mp4", frames)
-    return time.perf_counter() - video_start
-
-
-def trained_agent(args: Args, run: Run, model):
-    """The trained model as a player of the bare env (through GhostBallAction's mapping when trained with it)."""
-    from agents import SB3Agent
-
-    agent = SB3Agent(model)
-    if run.game and args.ghost_ball_action:
-        from pool_env.envs.wrappers import GhostBallActionAgent
-
-        return GhostBallActionAgent(agent, run.probe)
-    return agent
-
-
-def play_games(agent, args: Args, run: Run, seeds) -> dict:
-    """`agent` against args.opponent, one game per seed, the agent breaking the even-numbered ones:
-    game_summary of the records, which it keeps under "per_episode". As in agents.tournament, the
-    breaker is the env's agent and the other player its opponent, so the breaker's turn is always a
-    step of the env (never played inside its reset) and its break-and-runs count as they happen."""
-
-    from agents import RandomAgent
-    from agents.match import alternate, env_winner, run_episode
-    from agents.report import game_summary
-    from pool_env.players.game_ghost_ball import GameGhostBallAgent
-
-    as_agent = quiet_env(args.env_id, **run.env_kwargs)  # the agent breaks; args.opponent replies
-    as_opponent = quiet_env(args.env_id, **{**run.env_kwargs, "opponent": lambda obs: agent.act(obs)})
-    other = (GameGhostBallAgent.from_env(as_opponent) if args.opponent == "ghost_ball"
-             else RandomAgent(as_opponent.action_space, seed=0))
-    games = []
-    for seed, breaker, other_name in alternate(seeds, "agent", "opponent"):
-        env, player = (as_agent, agent) if breaker == "agent" else (as_opponent, other)
-        for each in (agent, other):
-            if hasattr(each, "reset"):
-                each.reset(seed=int(seed))
-        steps = []
-        end = run_episode(env, player.act, int(seed), steps.append)
-        shots = sum(1 + step.info["opponent_shots"] for step in steps)  # both players' shots
-        games.append({"seed": int(seed), "agent_breaks": breaker == "agent",
-                      "winner": env_winner(end.info, breaker, other_name), "shots": shots})
-    as_agent.close()
-    as_opponent.close()
-    return {**game_summary(games), "per_episode": games}
-
-
-def game_evaluation(args: Args, run: Run, model, curve) -> dict:
-    """Game envs: the trained model, the opponent's own player (ghost_ball) and random, each
-    playing args.opponent on the same seeds, breaks alternating: win rates with 95 % Wilson
-    intervals (logged and written to results.md), the verdict, eval_episodes.json; returns eval.json's content."""
-    from agents import RandomAgent
-    from agents.report import game_table, game_verdict, no_claim_reasons
-    from pool_env.players.game_ghost_ball import GameGhostBallAgent
-
-    eval_start = time.perf_counter()
-    agents = {"trained": trained_agent(args, run, model), "ghost_ball": GameGhostBallAgent.from_env(run.probe),
-              "random": RandomAgent(run.probe.action_space, seed=args.seed)}
-    results = {name: play_games(agent, args, run, run.eval_seeds) for name, agent in agents.items()}
-    eval_time = time.perf_counter() - eval_start
-    seeds = f"{len(run.eval_seeds)} fixed seeds ({run.eval_seeds[0]}..{run.eval_seeds[-1]})"
-    table = game_table(results)
-    log.info("win rates against %s on %s, breaks alternating (95 %% Wilson intervals):\n%s", args.opponent, seeds,
-             table)
-    reasons = no_claim_reasons(curve.trained_steps, args.min_timesteps, curve.best if curve.kept_untrained else None,
-                               len(run.eval_seeds))
-    words = game_verdict(results["trained"]["win_rate"], args.opponent, reasons)
-    log.info("verdict: %s", words)
-    kept = (f"the checkpoint at {curve.best['timesteps']:,} timesteps, the best of {len(curve.points)} evaluations "
-            f"on {len(run.curve_seeds)} learning-curve games" if args.keep_best and curve.best else "the last model")
-    how = ("practice run-outs (no opponent)" if args.practice else f"games against {args.opponent}"
-           + (" with shaping" if args.shaping else ""))
-    (run.dir / "results.md").write_text("\n".join([
-        f"# {args.algo.upper()} on {args.env_id}{' through GhostBallAction' if args.ghost_ball_action else ''}, "
-        f"seed {args.seed}", "",
-        f"Trained {curve.trained_steps:,} timesteps (shots) on {how}; the model is {kept}.", "",
-        f"Final evaluation: each agent plays {args.opponent} on {seeds}, the same for every agent, breaking the "
-        "even-numbered games; win rate (an unfinished game counts half) with the 95 % Wilson interval:", "",
-        table, "", f"Verdict: {words}.", ""]))
-    log.info("results table: %s", run.dir / "results.md")
-    (run.dir / "eval_episodes.json").write_text(json.dumps({n: r["per_episode"] for n, r in results.items()}))
-    return {
-        "env_id": args.env_id, "env_kwargs": run.env_kwargs, "train_kwargs": run.train_kwargs, "algo": args.algo,
-        "ghost_ball_action": args.ghost_ball_action, "opponent": args.opponent,
-        "timesteps": int(model.num_timesteps), "trained_timesteps": curve.trained_steps,
-        "eval_seeds": {"first": run.eval_seeds[0], "count": len(run.eval_seeds)},
-        "agents": {name: {k: v for k, v in r.items() if k != "per_episode"} for name, r in results.items()},
-        "verdict": words, "learning_curve": curve.points, "wall_time_s": {"evaluation": eval_time},
-        "args": dataclasses.asdict(args),
-    }
-
-
-def quiet_env(env_id: str, **kwargs):
-    """gym.make without gymnasium's warnings: a shot the simulator cannot finish (rare) ends its
-    episode with info["error"], which this script counts and logs instead."""
-    import gymnasium as gym
-
-    import pool_env  # noqa: F401  (registers the ids, also in subprocesses)
-
-    gym.logger.min_level = gym.logger.ERROR
-    return gym.make(env_id, **kwargs)
 
 
 if __name__ == "__main__":
