@@ -17,8 +17,9 @@ from pool_env.players import make_player as registry_player
 from .benchmark_tasks import BENCHMARK_VERSION, GAME_MAX_SHOTS, TASK_NAMES, TINY_GAMES, TINY_TASKS, Task, select_tasks
 from .learned import LearnedPlayer, ValueNet
 from .match import alternate, player_seed, points, run_episode
+from .ratings import player_stats
 from .stats import wilson
-from .tournament import Timed, display_name, percent, play_game, player_stats, step_shots, strip_timings
+from .tournament import Timed, display_name, percent, play_game, step_shots, strip_timings
 
 AGENT, OPPONENT = "agent", "opponent"  # the names the records use (a player may meet itself)
 METRICS = ("games", "wins", "draws", "win_rate", "ci95", "balls_per_turn", "break_and_runs", "breaks",

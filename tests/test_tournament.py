@@ -5,7 +5,9 @@ import math
 
 import pytest
 
+from agents import ratings as rating
 from agents import tournament as tour
+from agents.stats import wilson
 
 GAMES = 4
 
@@ -56,11 +58,11 @@ def test_wilson_by_hand():
     z = 1.959964
     # 5 of 10: centre 1/2; half-width z / (1 + z^2/10) * sqrt(0.25/10 + z^2/400)
     half = z / (1 + z * z / 10) * math.sqrt(0.025 + z * z / 400)
-    assert tour.wilson(5, 10) == pytest.approx((0.5 - half, 0.5 + half), abs=1e-12)
+    assert wilson(5, 10) == pytest.approx((0.5 - half, 0.5 + half), abs=1e-12)
     assert half == pytest.approx(0.263407, abs=1e-6)
     # 0 of 4: the lower end is 0, the upper z^2 / (n + z^2)
-    assert tour.wilson(0, 4) == pytest.approx((0.0, z * z / (4 + z * z)), abs=1e-12)
-    assert tour.wilson(0, 0) == (0.0, 1.0)
+    assert wilson(0, 4) == pytest.approx((0.0, z * z / (4 + z * z)), abs=1e-12)
+    assert wilson(0, 0) == (0.0, 1.0)
 
 
 def _record(a, b, winner):
@@ -72,10 +74,10 @@ def test_elo_ranks_the_stronger_player_higher(run):
     assert elo["ghost_ball"] > elo["random"]
     assert (elo["ghost_ball"] + elo["random"]) / 2 == pytest.approx(1500.0)
     # 4-0 with the virtual draw: 4.5 to 0.5, odds 9, a gap of 400 log10(9)
-    ratings = tour.elo([_record("x", "y", "x") for _ in range(4)], ["x", "y"])
+    ratings = rating.elo([_record("x", "y", "x") for _ in range(4)], ["x", "y"])
     assert ratings["x"] - ratings["y"] == pytest.approx(400 * math.log10(9), abs=1e-6)
     # a cycle of equal records: equal ratings, average 1500
-    cycle = tour.elo([_record("x", "y", "x"), _record("y", "z", "y"), _record("z", "x", "z")], ["x", "y", "z"])
+    cycle = rating.elo([_record("x", "y", "x"), _record("y", "z", "y"), _record("z", "x", "z")], ["x", "y", "z"])
     assert all(r == pytest.approx(1500.0) for r in cycle.values())
 
 
@@ -87,10 +89,10 @@ def test_break_and_run_on_a_hand_built_record():
                  "shots": [shot("b"), shot("a", foul="scratch", pocketed=[0]), shot("b", pocketed=[9])]}
     lost_break = {"players": ["a", "b"], "breaker": "a", "winner": "b",
                   "shots": [shot("a", pocketed=[4]), shot("a"), shot("b", pocketed=[1, 9])]}
-    assert tour.is_break_and_run(run_out)
-    assert not tour.is_break_and_run(came_back) and not tour.is_break_and_run(lost_break)
+    assert rating.is_break_and_run(run_out)
+    assert not rating.is_break_and_run(came_back) and not rating.is_break_and_run(lost_break)
     records = [run_out, came_back, lost_break]
-    a, b = tour.player_stats(records, "a"), tour.player_stats(records, "b")
+    a, b = rating.player_stats(records, "a"), rating.player_stats(records, "b")
     assert (a["breaks"], a["break_and_runs"], a["break_and_run_rate"]) == (2, 1, 0.5)
     assert (b["breaks"], b["break_and_runs"]) == (1, 0)
     assert (a["wins"], b["wins"]) == (1, 2)
@@ -128,7 +130,7 @@ def test_a_player_that_raises_forfeits():
     record = tour.play_game("nine_ball", "random", "broken", players, timers, seed=0, noise=None)
     assert record["winner"] == "random" and record["forfeit"] == "broken"
     assert "ValueError: bug" in record["end_reason"]
-    assert tour.player_stats([record], "broken")["forfeits"] == 1
+    assert rating.player_stats([record], "broken")["forfeits"] == 1
 
 
 def test_ten_ball_tournament_runs(tmp_path):
