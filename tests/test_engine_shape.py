@@ -123,7 +123,7 @@ def test_package_has_no_import_cycle():
 
 def test_physics_functions_stay_short():
     """No function in pool_env/physics over 80 lines; no compiled one over 10 parameters."""
-    compiled = {"kernel", "helper", "allocating", "allocating_helper"}
+    compiled = {"kernel", "helper", "allocating", "allocating_helper", "entry", "inlined"}
     for path in PHYSICS.glob("*.py"):
         for node in ast.walk(ast.parse(path.read_text())):
             if isinstance(node, ast.FunctionDef):

@@ -1,9 +1,9 @@
 """Airborne balls: their contacts in flight (balls, cushion noses, jaw tips), landing, bouncing, leaving the table.
 
 The engine reaches this module only for a ball in the AIRBORNE state (predict.predict,
-engine._resolve and _resolve_cushions test the state), and only in the 3D engine: a scene
-with every ball on the cloth runs the level engine, in which those branches are pruned
-before typing (see engine.run), so a level shot neither compiles nor runs any of it
+engine._resolve and _resolve_cushions test the state), and only in the full engine: a scene
+with every ball on the cloth (and the core collision models) runs the core engine, in which
+those branches are pruned before typing (see engine.run), so it neither compiles nor runs any of it
 (`airborne_predictions` in Result.stats counts what it predicts). A ball in flight moves as motion.py says: xy
 linear, its centre's height z above its resting height quadratic under g, spin constant.
 

@@ -159,12 +159,14 @@ def resolve(model, bi, bj, ri, rj, mi, mj, params):
         return True
     rolled_i = state_of(bi, ri) != SLIDING
     rolled_j = state_of(bj, rj) != SLIDING
-    if model == SEED:
-        seed(bi, bj, nx, ny, ri, rj, mi, mj, params)
-    elif model == ELASTIC:
-        elastic(bi, bj, nx, ny, ri, rj, mi, mj, params)
-    else:
+    # `model` None is frictional, and numba prunes the other branches before typing (the
+    # event engine's core: see engine.run).
+    if model is None or model == FRICTIONAL:
         frictional(bi, bj, nx, ny, ri, rj, mi, mj, params)
+    elif model == SEED:
+        seed(bi, bj, nx, ny, ri, rj, mi, mj, params)
+    else:
+        elastic(bi, bj, nx, ny, ri, rj, mi, mj, params)
     cloth = False
     if rolled_i:
         cloth = reroll(bi, ri, params) or cloth
@@ -233,7 +235,7 @@ def resolve_group(model, S, R, M, params, pairs, n_c, e, normal_only, n_walls):
             S[k, VX], S[k, VY] = v0x[k], v0y[k]
         p[:] = 0.0
         _poisson(S, M, pairs, n_c, nx, ny, deg, response, p, n_walls)
-    restitution = 1.0 if (model == SEED and not normal_only) else e
+    restitution = 1.0 if (model is not None and model == SEED and not normal_only) else e  # None: see resolve
     for k in range(n):
         if deg[k] > 0:
             S[k, VX] += restitution * (S[k, VX] - v0x[k])
@@ -242,9 +244,9 @@ def resolve_group(model, S, R, M, params, pairs, n_c, e, normal_only, n_walls):
                 roll(S[k], R[k])
     for c in range(n_c):
         pairs.impulse[c] = (1.0 + restitution) * p[c]
-    if model == SEED and not normal_only:
+    if model is not None and model == SEED and not normal_only:
         _seed_group(S, R, pairs, n_c, e, nx, ny, deg)
-    elif model == FRICTIONAL and not normal_only:
+    elif (model is None or model == FRICTIONAL) and not normal_only:
         _friction_group(S, R, M, pairs, n_c, nx, ny, deg)
     cloth = gentle
     for w in range(n_walls):

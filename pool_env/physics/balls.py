@@ -139,7 +139,7 @@ class Balls:
 
     @property
     def on_cloth(self) -> bool:
-        """True if every ball is on the cloth (no z, no vz): the level engine can simulate them.
+        """True if every ball is on the cloth (no z, no vz): no ball can leave the cloth then (see engine.run).
         Balls made without z and vz share one zeros array, so this is an identity test."""
         return self.air is _on_cloth(self.air.shape[0]) or not np.count_nonzero(self.air)
 

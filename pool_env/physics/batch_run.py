@@ -8,7 +8,7 @@ import numpy as np
 
 from .balls import Balls
 from .batch import TASKS_PER_THREAD, thread_pool
-from .bundles import EVENTS, ROWS, default_event_cap
+from .bundles import EVENTS, ROWS, default_event_cap, scratch_sizes
 from .config import Physics
 from .engine import simulate_scene
 from .jit import allocating, helper
@@ -67,9 +67,10 @@ def _read_facts(log, n_events, pressed, row):  # pragma: no cover - compiled
 
 
 @allocating
-def _run_scenes(balls, physics, bounds, moving, cap, out):  # pragma: no cover - compiled
-    """Each scene k (xys[k] placed, vs[k] and ws[k] struck) simulated on the level engine,
-    its final rows and states, exit code and facts written to `out` (S, st, codes, facts).
+def _run_scenes(balls, physics, bounds, moving, cap, out, full):  # pragma: no cover - compiled
+    """Each scene k (xys[k] placed, vs[k] and ws[k] struck) simulated on the event engine (its
+    core if `full` is None, as simulate.py chooses: see engine.run), its final rows and
+    states, exit code and facts written to `out` (S, st, codes, facts).
     `bounds` is (packed.bounds_packed(table), the table's rails and jaws): the cushions are
     taken from Python, not cut here from the packed arrays (a view returned by compiled code
     without reference counting must not reach code with it)."""
@@ -80,12 +81,14 @@ def _run_scenes(balls, physics, bounds, moving, cap, out):  # pragma: no cover -
     n = xys.shape[1]
     (s_end, rc_end, t_end, hist_end), (st_end, kind_end, i_end, j_end, ball_end, _, size_end) = \
         output_offsets(n, cap)
-    floats, ints = np.empty(hist_end), np.empty(size_end, dtype=np.int64)
+    sched_floats, sched_ints, work_floats, work_ints = scratch_sizes(n)  # each run's scratch, after its output
+    floats = np.empty(hist_end + sched_floats + work_floats)
+    ints = np.empty(size_end + sched_ints + work_ints, dtype=np.int64)
     log = (floats[rc_end:t_end], ints[st_end:kind_end], ints[kind_end:i_end], ints[i_end:j_end])
     hist, hist_ball = floats[t_end:hist_end].reshape((n + 2 * cap + 2, ROW_WIDTH + 1)), ints[j_end:ball_end]
     for k in range(xys.shape[0]):
         code, _ = simulate_scene((xys[k], vs[k], ws[k], air, pocketed, R, M), physics, packed,
-                                 (floats, ints, cap, cap), None)
+                                 (floats, ints, cap, cap), full)
         codes[k] = code
         if code != DONE:
             continue
@@ -104,7 +107,7 @@ def _run_scenes(balls, physics, bounds, moving, cap, out):  # pragma: no cover -
 def simulate_level_batch(like: Balls, xys, vs, ws, table: Table, physics: Physics, threads: int | None = 1):
     """K struck scenes of the balls `like` (their pocketed flags, sizes and masses; every ball
     on the cloth), scene k the balls at xys[k] (K, N, 2) moving at vs[k] (K, N, 2) spinning
-    at ws[k] (K, N, 3), simulated on the level engine in compiled calls that each run a
+    at ws[k] (K, N, 3), simulated on the event engine in compiled calls that each run a
     share of the scenes one after another (`threads` at once, None: every core; each scene
     exactly as `simulate` runs it, at the default event cap). Returns (S (K, N, ROW_WIDTH)
     the final state rows, st (K, N) their states, codes (K,) the exit codes, facts (K,
@@ -116,7 +119,11 @@ def simulate_level_batch(like: Balls, xys, vs, ws, table: Table, physics: Physic
     out = (np.empty((k, n, ROW_WIDTH)), np.empty((k, n), dtype=np.int64), np.empty(k, dtype=np.int64),
            np.empty((k, facts_width(n)), dtype=np.int64))
     balls = (like.air, like.pocketed, like.radii, like.masses)
-    args, cap = physics.engine_args(), default_event_cap(n)
+    cap = default_event_cap(n)
+    args = physics.core_engine_args()  # every ball on the cloth: the core engine for the core models
+    full = None if args is not None else True
+    if full:
+        args = physics.engine_args()
     bounds = (bounds_packed(table), table.rails, table.jaws)
     threads = max(1, min(os.cpu_count() or 1, k)) if threads is None else int(threads)
     if threads < 1:
@@ -125,7 +132,7 @@ def simulate_level_batch(like: Balls, xys, vs, ws, table: Table, physics: Physic
 
     def run(a):
         part = slice(a, a + chunk)
-        _run_scenes(balls, args, bounds, (xys[part], vs[part], ws[part]), cap, tuple(o[part] for o in out))
+        _run_scenes(balls, args, bounds, (xys[part], vs[part], ws[part]), cap, tuple(o[part] for o in out), full)
 
     if threads == 1 or k <= chunk:
         run(0)

@@ -11,7 +11,7 @@ from collections import namedtuple
 import numpy as np
 
 from .config import NOSE_HEIGHT_MODELS, cushion_reach
-from .jit import allocating, allocating_helper, helper, kernel
+from .jit import allocating, helper, kernel
 from .kinds import BUFFER_FULL, DONE, EVENT_CAP, POCKETED, ROW_WIDTH, VZ, Z
 
 Scene = namedtuple("Scene", ["S", "st", "R", "Rc", "M", "params", "bb_model", "cu_model", "spin"])
@@ -47,46 +47,61 @@ last met another, cl_t (N,) when each ball was last in a cluster solve."""
 Work = namedtuple("Work", ["ca", "cb", "impulse", "member", "queue", "G", "walls", "wall_ball", "cids", "touched",
                            "rec_a", "rec_b", "row", "pair_rows", "done", "paths"])
 Work.__doc__ = """Scratch space: the pairs of a contact group (ca, cb (N^2,), impulse (N^2,) their normal
-impulses), its balls (member (N,) flags, queue (N,) ids) and their rows at the contact (G
+impulses), its balls (member (N,) flags, 0 or 1, queue (N,) ids) and their rows at the contact (G
 (N, ROW_WIDTH)); the cushions touched by a pack or a ball (walls (8, 2) inward normals, wall_ball
 (8,) the ball touching each, cids (3,) cushion ids); the balls an event touched (touched
 (N,)) and the pairs it records (rec_a, rec_b (N^2,)); state rows (row (ROW_WIDTH,),
-pair_rows (2, ROW_WIDTH)); done (N,), the balls already re-predicted; and paths (N, 6), every
+pair_rows (2, ROW_WIDTH)); done (N,) flags, the balls already re-predicted; and paths (N, 6), every
 ball's trajectory (x, y, vx, vy, ax, ay) at the time of a prediction."""
 
 
-@allocating_helper
-def new_schedule(n):
-    """Nothing predicted yet, no ball has met another. Three allocations cut into the nine
-    fields (each allocation costs as much as a short prediction)."""
-    times = np.empty(5 * n + 2 * n * n)
+@helper
+def scratch_sizes(n):
+    """How many floats and ints a run's Schedule and Work are cut from: (the Schedule's floats,
+    its ints, the Work's floats, its ints). The caller allocates them with the run's output
+    (packed.output_buffers), so the event loop allocates nothing (see engine.run)."""
+    w = ROW_WIDTH
+    return 5 * n + 2 * n * n, 2 * n, n * n + w * n + 16 + 3 * w + 6 * n, 4 * n * n + 4 * n + 11
+
+
+@helper
+def new_scratch(n, floats, ints):
+    """A run's Schedule and Work for N balls, cut from `floats` and `ints` (scratch_sizes long)."""
+    sched_floats, sched_ints, _, _ = scratch_sizes(n)
+    return (new_schedule(n, floats[:sched_floats], ints[:sched_ints]),
+            new_work(n, floats[sched_floats:], ints[sched_ints:]))
+
+
+@helper
+def new_schedule(n, times, ids):
+    """Nothing predicted yet, no ball has met another: the nine fields cut from `times` and
+    `ids` (scratch_sizes' first two)."""
     times[:3 * n + n * n] = np.inf
-    times[3 * n + n * n:] = -np.inf
-    ids = np.full(2 * n, -1)
+    times[3 * n + n * n:5 * n + 2 * n * n] = -np.inf
+    ids[:2 * n] = -1
     t_tr, t_cu, t_po = times[:n], times[n:2 * n], times[2 * n:3 * n]
     pair = times[3 * n:3 * n + n * n].reshape((n, n))
     last = 3 * n + n * n
     met = times[last:last + n * n].reshape((n, n))
-    bb_t, cl_t = times[last + n * n:last + n * n + n], times[last + n * n + n:]
+    bb_t, cl_t = times[last + n * n:last + n * n + n], times[last + n * n + n:last + n * n + 2 * n]
     return Schedule(t_tr, t_cu, ids[:n], t_po, ids[n:], pair, met, bb_t, cl_t)
 
 
-@allocating_helper
-def new_work(n):
-    """Scratch space for N balls: one allocation per element type, cut into the fields."""
-    ints = np.empty(4 * n * n + 2 * n + 11, dtype=np.int64)
+@helper
+def new_work(n, floats, ints):
+    """Scratch space for N balls, cut from `floats` and `ints` (scratch_sizes' last two)."""
     w = ROW_WIDTH
-    floats = np.empty(n * n + w * n + 16 + w + 2 * w + 6 * n)
-    flags = np.zeros(2 * n, dtype=np.bool_)
     nn = n * n
+    flags = ints[4 * nn + 2 * n + 11:4 * nn + 4 * n + 11]
+    flags[:] = 0
     ca, cb, rec_a, rec_b = ints[:nn], ints[nn:2 * nn], ints[2 * nn:3 * nn], ints[3 * nn:4 * nn]
     queue, touched = ints[4 * nn:4 * nn + n], ints[4 * nn + n:4 * nn + 2 * n]
-    wall_ball, cids = ints[4 * nn + 2 * n:4 * nn + 2 * n + 8], ints[4 * nn + 2 * n + 8:]
+    wall_ball, cids = ints[4 * nn + 2 * n:4 * nn + 2 * n + 8], ints[4 * nn + 2 * n + 8:4 * nn + 2 * n + 11]
     impulse, G = floats[:nn], floats[nn:nn + w * n].reshape((n, w))
     walls = floats[nn + w * n:nn + w * n + 16].reshape((8, 2))
     row = floats[nn + w * n + 16:nn + w * n + 16 + w]
     pair_rows = floats[nn + w * n + 16 + w:nn + w * n + 16 + 3 * w].reshape((2, w))
-    paths = floats[nn + w * n + 16 + 3 * w:].reshape((n, 6))
+    paths = floats[nn + w * n + 16 + 3 * w:nn + w * n + 16 + 3 * w + 6 * n].reshape((n, 6))
     return Work(ca, cb, impulse, flags[:n], queue, G, walls, wall_ball, cids, touched, rec_a, rec_b, row, pair_rows,
                 flags[n:], paths)
 

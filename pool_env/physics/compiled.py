@@ -46,9 +46,11 @@ def arg_key(a):
     """A Python value's type as far as choosing among compiled versions goes (after numba's
     typeof for what the engine takes: arrays by dtype, dimensions, layout and writability;
     None, bools, ints, floats and numpy scalars by type). A tuple is keyed as a tuple, whatever
-    it holds: the one function Python passes tuples to (engine.simulate_scene, the engine's
-    entry) has one caller, simulate.py, which builds them with fixed types; checking each of
-    their ~30 items would cost more than a 2-ball shot's whole simulation."""
+    it holds: the functions Python passes tuples to (engine.simulate_scene, the engine's
+    entry, and batch_run's) are called from their own modules, which build them with fixed
+    types (the physics tuple's model ids None exactly when `full` is None: see engine.run, so
+    that argument tells the two apart); checking each of their ~30 items would cost more than
+    a 2-ball shot's whole simulation."""
     t = type(a)
     if t is np.ndarray:
         flags = a.flags

@@ -17,6 +17,10 @@ CUSHION_MODELS = ("seed", "restitution", "han2005", "mathavan2010")
 # sin(theta) = h / R - 1 (the contact point is on the ball's surface at height h).
 NOSE_HEIGHT_MODELS = ("han2005", "mathavan2010")
 
+# The collision models (ball-ball, cushion) of the standard and carom presets: the only ones
+# the event engine's core compiles; any other runs on its full engine (see engine.run).
+CORE_MODELS = ("frictional", "han2005")
+
 # The seed report's rolling-resistance angle (table 3.1): the rolling ball decelerates
 # at 5/7 g theta (report eq. 2.11), so the equivalent rolling coefficient is 5/7 theta.
 SEED_THETA = 0.01
@@ -99,6 +103,8 @@ class Physics:
         object.__setattr__(self, "_model_ids", ids)
         engine = (params, ids[0], ids[1], bool(self.spin), self.can_create_spin(), self.cushion in NOSE_HEIGHT_MODELS)
         object.__setattr__(self, "_engine_args", engine)
+        core = (params, None, None, *engine[3:]) if (self.ball_ball, self.cushion) == CORE_MODELS else None
+        object.__setattr__(self, "_core_engine_args", core)
 
     @classmethod
     def seed(cls) -> Physics:
@@ -151,6 +157,8 @@ class Physics:
             params[PARAM_INDEX[name]] = value
         state["_params"] = params
         state["_engine_args"] = (params, *self._engine_args[1:])
+        if self._core_engine_args is not None:
+            state["_core_engine_args"] = (params, *self._core_engine_args[1:])
         out = object.__new__(Physics)
         object.__setattr__(out, "__dict__", state)
         return out
@@ -162,6 +170,11 @@ class Physics:
     def model_ids(self) -> tuple[int, int]:
         """The ball-ball and cushion model ids the compiled engine dispatches on."""
         return self._model_ids
+
+    def core_engine_args(self) -> tuple | None:
+        """engine_args with the model ids None, which selects CORE_MODELS in the event engine's
+        core (see engine.run); None when the models are others."""
+        return self._core_engine_args
 
     def engine_args(self) -> tuple:
         """What engine.simulate_scene reads, built once: (the coefficients, the ball-ball and

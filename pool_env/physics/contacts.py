@@ -20,7 +20,7 @@ import numpy as np
 
 from . import ball_ball, cushion, settle
 from .geometry import cushion_gap, cushion_normal
-from .jit import allocating_helper, helper
+from .jit import allocating_helper, helper, inlined
 from .kinds import AIRBORNE, BALL_BALL_SETTLE, POCKETED, VX, VY, X, Y
 from .motion import P_E_B, copy_row, state_at, trajectory
 from .tolerances import GROUP_WINDOW, LOOP_WINDOW, MIN_APPROACH, TOUCH_GAP
@@ -279,7 +279,7 @@ def _keep(work, n_c, mode):
     return n_rec, n_touched
 
 
-@helper
+@inlined
 def resolve_ball_ball(scene, bounds, sched, work, now, bi, bj, kind):
     """Resolve the ball-ball event (bi, bj) at `now` with the contacts simultaneous with it.
     Returns (event kind, pairs recorded, balls touched) and whether the group's rows wait in

@@ -152,14 +152,16 @@ def resolve(model, b, nx, ny, radius, params, height):
         settle_cushion(b, nx, ny, radius)
         return
     rolled = state_of(b, radius) != SLIDING
-    if model == SEED:
+    # `model` None is han2005, and numba prunes the other branches before typing (the event
+    # engine's core: see engine.run).
+    if model is None or model == HAN2005:
+        han2005(b, nx, ny, radius, params, height)
+    elif model == SEED:
         seed(b, nx, ny, radius, params)
     elif model == RESTITUTION:
         restitution(b, nx, ny, radius, params)
-    elif model == MATHAVAN2010:
-        mathavan2010(b, nx, ny, radius, params, height)
     else:
-        han2005(b, nx, ny, radius, params, height)
+        mathavan2010(b, nx, ny, radius, params, height)
     if rolled:
         reroll(b, radius, params)
 

@@ -18,14 +18,13 @@ from .bundles import (
     EVENTS,
     ROWS,
     Scene,
-    new_schedule,
-    new_work,
+    new_scratch,
     nose_reach,
     pack_into,
     record_event,
     record_row,
 )
-from .jit import allocating, entry, helper
+from .jit import allocating, entry, helper, inlined
 from .kinds import (
     AIRBORNE,
     BALL_BALL,
@@ -56,16 +55,17 @@ ONE_EVENT, TWO_ROWS = np.int64(1), np.int64(2)
 
 
 @entry
-def simulate_scene(balls, physics, bounds, out, flight):
+def simulate_scene(balls, physics, bounds, out, full):
     """One call from Python for a whole `simulate`: check where the balls are, build the
     Scene, run. Everything comes in as plain tuples, which numba takes from Python in a
     fraction of the time namedtuples cost, and as few arrays as can be (see packed.py):
 
     balls: (xy, v, w, air, pocketed, R, M), the Balls' arrays; physics:
-    Physics.engine_args(); bounds: packed.bounds_packed(table); out: (floats, ints, size,
-    cap), packed.output_buffers(n, size) and the event cap, which get the final rows and
-    states, each ball's cushion reach and the Log (see packed.py); flight: None for a scene
-    no ball can leave the cloth in, else True (see `run`).
+    Physics.engine_args(), or Physics.core_engine_args() with full None; bounds:
+    packed.bounds_packed(table); out: (floats, ints, size, cap), packed.output_buffers(n,
+    size) and the event cap, which get the final rows and states, each ball's cushion reach
+    and the Log (see packed.py) and hold the run's scratch; full: None for a scene the core
+    engine runs, else True (see `run`).
     Returns (exit code, spin tracked): MISPLACED (nothing ran) if first_misplaced finds a
     ball that may not be where it is, else engine.run's code.
     """
@@ -73,7 +73,7 @@ def simulate_scene(balls, physics, bounds, out, flight):
     params, bb_model, cu_model, spin, makes_spin, nose_model = physics
     floats, ints, size, cap = out
     table = unpack_bounds(bounds[0], bounds[1])
-    S, st, Rc, log = cut_output(floats, ints, xy.shape[0], size, cap)
+    S, st, Rc, log, scratch = cut_output(floats, ints, xy.shape[0], size, cap)
     if nose_model:
         nose_reach(R, table.height, Rc)
     else:
@@ -85,30 +85,33 @@ def simulate_scene(balls, physics, bounds, out, flight):
     any_z_spin = pack_into(xy, v, w, air, pocketed, S, st)
     tracked = spin and (any_z_spin or makes_spin)
     scene = Scene(S, st, R, Rc, M, params, bb_model, cu_model, tracked)
-    return run(scene, table, log, flight), tracked
+    return run(scene, table, log, full, scratch), tracked
 
 
-@allocating
-def run(scene, bounds, log, flight):
+@inlined
+def run(scene, bounds, log, full, scratch):
     """Simulate from the rows scene.S (all at t = 0) until every ball rests or is pocketed.
 
-    scene.S and scene.st end as the final state; events and state segments go to the log.
+    scene.S and scene.st end as the final state; events and state segments go to the log;
+    the Schedule and Work are cut from `scratch` (floats, ints: bundles.scratch_sizes).
     Returns the exit code (DONE, EVENT_CAP or BUFFER_FULL; also in log.size[CODE]).
 
-    `flight` None says no ball is in the air at the start: then none ever is (only
-    airborne.py lifts a ball off the cloth, and it runs only for a ball already in the air),
-    so every `flight is not None` branch is pruned before typing (numba prunes a branch on
-    an argument typed None) and a level scene compiles and runs without airborne.py. True
-    (a ball in the air, or an elevated strike's bounce) compiles the 3D engine, a second
-    signature of the same functions.
+    `full` None runs the core engine: numba prunes a branch on an argument typed None before
+    typing, so what its branches reach is neither compiled nor run. It says no ball is in
+    the air at the start, so none ever is (only airborne.py lifts a ball off the cloth, and
+    it runs only for a ball already in the air): every `full is not None` branch is pruned
+    and airborne.py left out; and the collision models are config.CORE_MODELS, their ids None
+    in the scene (Physics.core_engine_args: see ball_ball.resolve, cushion.resolve), so the
+    others are left out. True (a ball in the air, an elevated strike's bounce, or another
+    collision model) compiles the full engine, a second signature of the same functions.
     """
     n = scene.S.shape[0]
-    sched, work = new_schedule(n), new_work(n)
+    sched, work = new_scratch(n, scratch[0], scratch[1])
     for i in range(n):
         work.touched[i] = i
     now = 0.0
     _commit(scene, log, work, n, now)
-    predict(scene, bounds, sched, work, n, now, log.counters, flight)
+    predict(scene, bounds, sched, work, n, now, log.counters, full)
     while True:
         t, kind, bi, bj = _earliest(sched)
         if kind == NO_EVENT:
@@ -116,13 +119,13 @@ def run(scene, bounds, log, flight):
         if not _room(log, (t, kind, bi, bj), ONE_EVENT, TWO_ROWS):
             return log.size[CODE]
         now = max(t, now)
-        kind, n_rec, n_touched = _resolve(scene, bounds, sched, work, log, now, (t, kind, bi, bj), flight)
+        kind, n_rec, n_touched = _resolve(scene, bounds, sched, work, log, now, (t, kind, bi, bj), full)
         if kind == NO_EVENT:  # no room in the log for what the event did
             return log.size[CODE]
         _commit(scene, log, work, n_touched, now)
         for m in range(n_rec):
             record_event(log, now, kind, work.rec_a[m], work.rec_b[m])
-        predict(scene, bounds, sched, work, n_touched, now, log.counters, flight)
+        predict(scene, bounds, sched, work, n_touched, now, log.counters, full)
 
 
 @helper
@@ -163,15 +166,15 @@ def _room(log, event, n_events, n_rows):
     return True
 
 
-@helper
-def _resolve(scene, bounds, sched, work, log, now, event, flight):
+@inlined
+def _resolve(scene, bounds, sched, work, log, now, event, full):
     """Bring the balls of the event to `now` and apply it. Returns (the event's kind, pairs
     recorded in work.rec_a/rec_b, balls touched in work.touched); kind NO_EVENT if the log
-    has no room for them. `flight` as in `run`."""
+    has no room for them. `full` as in `run`."""
     S, st, R = scene.S, scene.st, scene.R
     _, kind, bi, bj = event
     if kind == BALL_BALL:
-        if flight is not None and (st[bi] == AIRBORNE or st[bj] == AIRBORNE):
+        if full is not None and (st[bi] == AIRBORNE or st[bj] == AIRBORNE):
             kind, n_rec, n_touched, grouped = airborne.resolve_pair(scene, work, now, bi, bj)
         else:
             kind, n_rec, n_touched, grouped = contacts.resolve_ball_ball(scene, bounds, sched, work, now, bi, bj,
@@ -189,29 +192,29 @@ def _resolve(scene, bounds, sched, work, log, now, event, flight):
         contacts.remember_meetings(sched, work, n_rec, now)
         return kind, n_rec, n_touched
     if kind == BALL_CUSHION:
-        if flight is not None and st[bi] == AIRBORNE and airborne.perch(scene, bounds, work, now, bi, bj):
+        if full is not None and st[bi] == AIRBORNE and airborne.perch(scene, bounds, work, now, bi, bj):
             return BALL_OFF_TABLE, 1, 1
-        return _resolve_cushions(scene, bounds, sched, work, log, now, event, flight)
+        return _resolve_cushions(scene, bounds, sched, work, log, now, event, full)
     work.touched[0] = bi
     work.rec_a[0], work.rec_b[0] = bi, bj
     state_at(S[bi], st[bi], now, R[bi], scene.params, work.row)
     copy_row(S[bi], work.row)
     if kind == BALL_POCKET:
-        if flight is not None and st[bi] == AIRBORNE:  # landing over an opening, or leaving the table
+        if full is not None and st[bi] == AIRBORNE:  # landing over an opening, or leaving the table
             kind, j = airborne.drop(S[bi], bj, bounds)
             work.rec_b[0] = j
         else:
             pocket.capture(S[bi])
         st[bi] = POCKETED
-    elif flight is not None and st[bi] == AIRBORNE:
+    elif full is not None and st[bi] == AIRBORNE:
         kind = airborne.land(S[bi], R[bi], scene.params)
     else:
         kind = transition.resolve(S[bi], st[bi], R[bi])
     return kind, 1, 1
 
 
-@helper
-def _resolve_cushions(scene, bounds, sched, work, log, now, event, flight):
+@inlined
+def _resolve_cushions(scene, bounds, sched, work, log, now, event, full):
     """Every ball meeting cushions within GROUP_WINDOW of `now`, in this one step (the
     event's ball first, the rest by index). Each involves one ball, so they commute, but
     taken one per step a contact the first creates (its rebound into a ball beside it) would
@@ -227,7 +230,7 @@ def _resolve_cushions(scene, bounds, sched, work, log, now, event, flight):
         state_at(S[k], st[k], now, R[k], params, work.row)
         copy_row(S[k], work.row)
         c = bj if m == 0 else sched.cu_id[k]
-        if flight is not None and st[k] == AIRBORNE:
+        if full is not None and st[k] == AIRBORNE:
             if not _room(log, event, n_rec + 1, n_touched + 1):
                 return NO_EVENT, 0, 0
             n_k = 1

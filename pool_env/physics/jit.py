@@ -1,4 +1,4 @@
-"""How the simulator's compiled code is compiled: five decorators, one home for their options.
+"""How the simulator's compiled code is compiled: six decorators, one home for their options.
 
 Every compiled function is cached on disk (`cache=True`: only the first run on a machine pays
 the compile). Functions that allocate no arrays are compiled without numba's reference
@@ -31,7 +31,7 @@ kernel = _decorator(_nrt=False, no_cfunc_wrapper=True)
 # No allocation, called only from compiled code.
 helper = _decorator(_nrt=False, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 # Allocates arrays (np.empty and the like): reference counting on. Releases the GIL while it
-# runs when called from Python (engine.run, fixed.run), so threads simulate scenes in parallel.
+# runs when called from Python (fixed.run, batch_run's), so threads simulate scenes in parallel.
 allocating = _decorator(_nrt=True, nogil=True, no_cfunc_wrapper=True)
 # The one call from Python per simulation (engine.simulate_scene): allocates nothing itself, so
 # numba takes its array arguments without reference counting, which halves the dispatch of
@@ -40,3 +40,9 @@ allocating = _decorator(_nrt=True, nogil=True, no_cfunc_wrapper=True)
 entry = _decorator(_nrt=False, nogil=True, no_cfunc_wrapper=True)
 # Allocates, called only from compiled code.
 allocating_helper = _decorator(_nrt=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+# A `helper` with one caller, into which numba inlines it before typing: it gets no compiled
+# library of its own. A function's library holds its callees' code too, optimised and emitted
+# again, so each caller up a chain of big functions (engine.simulate_scene, the event loop
+# engine.run, its _resolve, contacts.resolve_ball_ball) would compile the rest of the engine
+# again; inlined, they are compiled once, in simulate_scene's library.
+inlined = _decorator(_nrt=False, no_cpython_wrapper=True, no_cfunc_wrapper=True, inline="always")

@@ -10,12 +10,13 @@ Output layout, for n balls and room for `size` events (E = size + 1: the event o
 is kept; H = n + 2 size + 2 history rows): floats hold the final rows S (n, ROW_WIDTH), the
 cushion reach Rc (n,), the event times (E,) and the history (H, ROW_WIDTH + 1); ints the
 final states st (n,), the event kinds, i and j (E,) each, the history's ball ids (H,), the
-counters and the Log's size row.
+counters and the Log's size row. After those, each holds the run's scratch space (its Schedule
+and Work, bundles.scratch_sizes), so the event loop allocates nothing.
 """
 
 import numpy as np
 
-from .bundles import CAP, CODE, EVENTS, ROWS, SIZE_FIELDS, Bounds, Log
+from .bundles import CAP, CODE, EVENTS, ROWS, SIZE_FIELDS, Bounds, Log, scratch_sizes
 from .jit import helper, kernel
 from .kinds import COUNTERS, DONE, ROW_WIDTH
 
@@ -72,15 +73,16 @@ def output_offsets(n, size):
 
 
 def output_buffers(n, size):
-    """Fresh (floats, ints) for a run of n balls with room for `size` events."""
+    """Fresh (floats, ints) for a run of n balls with room for `size` events, and its scratch."""
     f, i = _offsets(n, size)
-    return np.empty(f[-1]), np.empty(i[-1], dtype=np.int64)
+    sched_floats, sched_ints, work_floats, work_ints = scratch_sizes.py_func(n)
+    return np.empty(f[-1] + sched_floats + work_floats), np.empty(i[-1] + sched_ints + work_ints, dtype=np.int64)
 
 
 @helper
 def cut_output(floats, ints, n, size, cap):
     """The output arrays as (S, st, Rc, Log) views, the log empty (no events, no rows, the
-    counters at 0, the cap `cap`)."""
+    counters at 0, the cap `cap`), and the scratch space after them (floats, ints)."""
     (s_end, rc_end, t_end, hist_end), (st_end, kind_end, i_end, j_end, ball_end, counters_end,
                                        size_end) = output_offsets(n, size)
     log = Log(floats[rc_end:t_end], ints[st_end:kind_end], ints[kind_end:i_end], ints[i_end:j_end],
@@ -89,7 +91,8 @@ def cut_output(floats, ints, n, size, cap):
     for c in range(log.counters.shape[0]):
         log.counters[c] = 0
     log.size[EVENTS], log.size[ROWS], log.size[CAP], log.size[CODE] = 0, 0, cap, DONE
-    return floats[:s_end].reshape((n, ROW_WIDTH)), ints[:st_end], floats[s_end:rc_end], log
+    return floats[:s_end].reshape((n, ROW_WIDTH)), ints[:st_end], floats[s_end:rc_end], log, (floats[hist_end:],
+                                                                                              ints[size_end:])
 
 
 _OFFSETS = {}

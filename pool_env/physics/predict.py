@@ -16,6 +16,9 @@ from .kinds import AIRBORNE, C_BB, C_BB_REJ, C_CU, C_CU_REJ, C_PO, C_PO_REJ, C_R
 from .motion import max_travel, moving, trajectory, transition_time
 from .tolerances import CLEAR, FAR_MARGIN, PARALLEL_SINE, REACH_SLACK
 
+# _rails_time's owner of the nose rails (typed, not a literal -1: see jit.py).
+NOSES = np.int64(-1)
+
 
 @helper
 def out_of_reach(d, dv, da, horizon, reach):
@@ -107,7 +110,7 @@ def boundary_times(scene, bounds, sched, i, now, counters, path):
         horizon = max(sched.t_tr[i] - now, 0.0)
         x, y, vx, vy, ax, ay = path
         travel = max_travel(path, st[i], horizon)
-        t_cu, cu = _rails_time(scene, bounds, i, (now, horizon), path, -1, travel, counters)
+        t_cu, cu = _rails_time(scene, bounds, i, (now, horizon), path, NOSES, travel, counters)
         reach = bounds.reach
         # Beyond this of a reach circle's rim the ball cannot come within it (out_of_reach
         # then rejects the pocket: see outside_travel); worked out once for all pockets.
@@ -160,12 +163,12 @@ def _rails_time(scene, bounds, i, span, path, owner, travel, counters):
 
 
 @helper
-def predict(scene, bounds, sched, work, n_touched, now, counters, flight):
+def predict(scene, bounds, sched, work, n_touched, now, counters, full):
     """Predict the next events of the balls work.touched[:n_touched], each against every ball
     not predicted before it: at the start every ball (each pair once), after an event the
     balls it touched. Transitions first: a pair's horizon is the earlier of the two.
-    `flight` is None when no ball can leave the cloth (see engine.run): then the airborne
-    branches are pruned before typing, and airborne.py is not compiled."""
+    `full` is None in the core engine, where no ball can leave the cloth (see engine.run):
+    then the airborne branches are pruned before typing, and airborne.py is not compiled."""
     S, st, R, params = scene.S, scene.st, scene.R, scene.params
     touched, done, t_tr, pair = work.touched, work.done, sched.t_tr, sched.pair
     n = S.shape[0]
@@ -182,7 +185,7 @@ def predict(scene, bounds, sched, work, n_touched, now, counters, flight):
     for m in range(n_touched):
         i = touched[m]
         done[i] = True
-        if flight is not None and st[i] == AIRBORNE:
+        if full is not None and st[i] == AIRBORNE:
             airborne.boundary_times(scene, bounds, sched, i, now, counters)
         else:
             boundary_times(scene, bounds, sched, i, now, counters,
@@ -190,7 +193,7 @@ def predict(scene, bounds, sched, work, n_touched, now, counters, flight):
         for k in range(n):
             if done[k]:
                 continue
-            if flight is not None and (st[i] == AIRBORNE or st[k] == AIRBORNE):
+            if full is not None and (st[i] == AIRBORNE or st[k] == AIRBORNE):
                 pair[i, k] = pair[k, i] = airborne.pair_time(S, st, R, params, t_tr, i, k, now, counters)
             else:
                 pair[i, k] = pair[k, i] = pair_time(paths, st, R, t_tr, i, k, now, counters)

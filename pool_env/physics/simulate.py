@@ -109,9 +109,12 @@ def _run_events(balls, table, physics, max_events):
     if cap < 0:
         check_on_table(balls, table, physics)  # a misplaced ball is named first, as the other methods do
         raise ValueError(f"max_events must be >= 0, got {max_events!r}")
-    args = physics.engine_args()
-    # No ball in the air: the level engine, compiled without airborne.py (see engine.run).
-    flight = None if balls.on_cloth else True
+    # No ball in the air and the core collision models: the core engine, compiled without
+    # airborne.py and the other models (see engine.run).
+    args = physics.core_engine_args()
+    full = None if balls.on_cloth and args is not None else True
+    if full:
+        args = physics.engine_args()
     bounds = bounds_packed(table)
     # Output buffers start small (a break takes ~100 events) and grow on demand; a rerun from
     # the start (simulate_scene packs the rows afresh: the run works in place) is exact, the
@@ -120,7 +123,7 @@ def _run_events(balls, table, physics, max_events):
     while True:
         floats, ints = output_buffers(n, size)
         code, spin = engine.simulate_scene((balls.xy, balls.v, balls.w, balls.air, balls.pocketed, balls.radii,
-                                            balls.masses), args, bounds, (floats, ints, size, cap), flight)
+                                            balls.masses), args, bounds, (floats, ints, size, cap), full)
         if code != BUFFER_FULL:
             break
         size = min(cap, 4 * size)
@@ -180,7 +183,7 @@ def _first_run(balls, table, physics, max_events):
 
 def warm_up() -> float:
     """Compile the event engine (or load it from numba's cache) now, by simulating two short
-    shots (one level, one with a ball in the air: the level and the 3D engine, see
+    shots (one level, one with a ball in the air: the core and the full engine, see
     engine.run), rather than in the middle of whatever runs first; returns the seconds it
     took. train.py calls it before it starts its environments (and their worker processes)."""
     start = time.perf_counter()

@@ -25,6 +25,7 @@ from collections import namedtuple
 import numpy as np
 
 from .jit import allocating, allocating_helper, helper
+from .motion import copy_row
 from .pocket_shape import jaw_constants, jaw_frame
 from .tolerances import PLACEMENT_SLACK
 
@@ -218,7 +219,8 @@ def build(plan, entries, corner_mouth, side_mouth, wide, narrow):
         if code != FITS:
             return code, k, 0, 0
     code, which, count = _nose_rails(sides, cuts, counts, wide)
-    wide[count:count + 2 * n] = facings
+    for r in range(2 * n):  # row by row: a slice assignment compiles its error path (see motion.copy_row)
+        copy_row(wide[count + r], facings[r])
     return code, which, count, _candidates(points, np.empty((n, POINTS)), reach, narrow[5 * n:])
 
 
