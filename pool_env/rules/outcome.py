@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field, fields
 
+from ..physics.facts import DROPS, FIRST, GONE, HEAD, RAIL_AFTER
 from ..physics.kinds import BALL_BALL_KINDS, BALL_CUSHION, BALL_OFF_TABLE, BALL_POCKET, EVENT_KINDS
 
 CUE = 0  # the cue ball's number
@@ -105,7 +106,13 @@ def outcome_from_result(result) -> ShotOutcome:
     WPA 8.4, a ball touching a rail is driven to it only if it leaves it and comes back; an
     object without `event_arrays` has no such flag, and all its cushion events count); a drop
     is a "ball_pocket" event (j the pocket index); a ball leaving the table through the air
-    is a "ball_off_table" event. Motion transitions and bounces on the slate are ignored."""
+    is a "ball_off_table" event. Motion transitions and bounces on the slate are ignored.
+    A physics `Result` of the event engine reads all of it in one compiled call
+    (`Result.event_facts`, the same reading; `outcome_of_facts`)."""
+    facts = getattr(result, "event_facts", None)
+    row = None if facts is None else facts()
+    if row is not None:
+        return outcome_of_facts(row)
     arrays = getattr(result, "event_arrays", None)
     if arrays is not None:  # a physics Result: its arrays as lists, without an Event object per event
         _, kinds, i_s, j_s = arrays
@@ -122,6 +129,23 @@ def outcome_from_result(result) -> ShotOutcome:
         return ShotOutcome(*read)
     # The engine's events make a consistent outcome (a ball drops once, the cue ball never is
     # its own first contact...): built without the checks, which cost as much as the reading.
+    outcome = object.__new__(ShotOutcome)
+    outcome.__dict__.update(zip(OUTCOME_FIELDS, read))
+    return outcome
+
+
+def outcome_of_facts(row: list) -> ShotOutcome:
+    """The `ShotOutcome` of a run's event facts (`physics.facts`' row, as a list of ints).
+    The engine's events make a consistent outcome: built without the checks."""
+    n = (len(row) - HEAD) // 4
+    d, g = row[DROPS], row[GONE]
+    dropped, pockets = row[HEAD:HEAD + 2 * d:2], row[HEAD + 1:HEAD + 2 * d:2]
+    first, ranks = row[FIRST], row[HEAD + 3 * n:]
+    to_rail = set()  # filled in the order the balls reached a cushion, as `_read_events` fills it
+    for _, b in sorted((rank, b) for b, rank in enumerate(ranks) if rank):
+        to_rail.add(b)
+    read = (None if first < 0 else first, tuple(b for b in dropped if b != CUE), dict(zip(dropped, pockets)),
+            CUE in dropped, bool(row[RAIL_AFTER]), frozenset(to_rail), tuple(row[HEAD + 2 * n:HEAD + 2 * n + g]))
     outcome = object.__new__(ShotOutcome)
     outcome.__dict__.update(zip(OUTCOME_FIELDS, read))
     return outcome
