@@ -10,12 +10,11 @@ from .pressed import pressed_cushion_events
 
 CUE = 0
 # A run's facts, one int64 row: the first ball the cue ball touched (-1: none), a cushion
-# touched after that contact (0/1), the drops and the balls off the table counted, then N
-# (ball, pocket) pairs of drops in order, N balls off the table in order and N ranks of the
-# balls driven to a cushion: 0 for none, else the order in which each first was, 1 the first
-# (a frozen ball only pressed into its cushion is not driven to it:
-# `Result.pressed_cushion_events`).
-FIRST, RAIL_AFTER, DROPS, GONE, HEAD = 0, 1, 2, 3, 4
+# touched after that contact (0/1), the drops, the balls off the table and the object balls
+# driven to a cushion counted, then N (ball, pocket) pairs of drops in order, N balls off the
+# table in order and N object balls driven to a cushion in the order they first were (a frozen
+# ball only pressed into its cushion is not driven to it: `Result.pressed_cushion_events`).
+FIRST, RAIL_AFTER, DROPS, GONE, RAILS, HEAD = 0, 1, 2, 3, 4, 5
 
 
 def facts_width(n: int) -> int:
@@ -27,7 +26,7 @@ def facts_width(n: int) -> int:
 def read_facts(log, n_events, pressed, row):  # pragma: no cover - compiled
     """A finished run's events (the first `n_events` of the log) read into `row` (see FIRST)."""
     n = (row.shape[0] - HEAD) // 4
-    first, seen, rail_after, d, g, railed = -1, False, False, 0, 0, 0
+    first, seen, rail_after, d, g, r = -1, False, False, 0, 0, 0
     row[:] = 0
     for k in range(n_events):
         kind, i, j = log[1][k], log[2][k], log[3][k]
@@ -38,16 +37,20 @@ def read_facts(log, n_events, pressed, row):  # pragma: no cover - compiled
             if pressed[k]:  # a ball frozen to this cushion pressed into it: not driven to it
                 continue
             rail_after = rail_after or seen
-            if i != CUE and row[HEAD + 3 * n + i] == 0:
-                railed += 1
-                row[HEAD + 3 * n + i] = railed
+            if i != CUE:
+                known = False
+                for m in range(r):
+                    known = known or row[HEAD + 3 * n + m] == i
+                if not known:
+                    row[HEAD + 3 * n + r] = i
+                    r += 1
         elif kind == BALL_POCKET:
             row[HEAD + 2 * d], row[HEAD + 2 * d + 1] = i, j
             d += 1
         elif kind == BALL_OFF_TABLE:
             row[HEAD + 2 * n + g] = i
             g += 1
-    row[FIRST], row[RAIL_AFTER], row[DROPS], row[GONE] = first, rail_after, d, g
+    row[FIRST], row[RAIL_AFTER], row[DROPS], row[GONE], row[RAILS] = first, rail_after, d, g, r
 
 
 @allocating

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field, fields
 
-from ..physics.facts import DROPS, FIRST, GONE, HEAD, RAIL_AFTER
+from ..physics.facts import DROPS, FIRST, GONE, HEAD, RAIL_AFTER, RAILS
 from ..physics.kinds import BALL_BALL_KINDS, BALL_CUSHION, BALL_OFF_TABLE, BALL_POCKET, EVENT_KINDS
 
 CUE = 0  # the cue ball's number
@@ -140,12 +140,13 @@ def outcome_of_facts(row: list) -> ShotOutcome:
     n = (len(row) - HEAD) // 4
     d, g = row[DROPS], row[GONE]
     dropped, pockets = row[HEAD:HEAD + 2 * d:2], row[HEAD + 1:HEAD + 2 * d:2]
-    first, ranks = row[FIRST], row[HEAD + 3 * n:]
-    to_rail = set()  # filled in the order the balls reached a cushion, as `_read_events` fills it
-    for _, b in sorted((rank, b) for b, rank in enumerate(ranks) if rank):
-        to_rail.add(b)
-    read = (None if first < 0 else first, tuple(b for b in dropped if b != CUE), dict(zip(dropped, pockets)),
-            CUE in dropped, bool(row[RAIL_AFTER]), frozenset(to_rail), tuple(row[HEAD + 2 * n:HEAD + 2 * n + g]))
+    first, railed = row[FIRST], row[HEAD + 3 * n:HEAD + 3 * n + row[RAILS]]
+    # frozenset of a set filled in the order the balls reached a cushion, as `_read_events`
+    # makes it: the same table, so the same order of iteration (and repr)
+    scratch = CUE in dropped
+    read = (None if first < 0 else first, tuple(b for b in dropped if b != CUE) if scratch else tuple(dropped),
+            dict(zip(dropped, pockets)), scratch, bool(row[RAIL_AFTER]), frozenset(set(railed)),
+            tuple(row[HEAD + 2 * n:HEAD + 2 * n + g]))
     outcome = object.__new__(ShotOutcome)
     outcome.__dict__.update(zip(OUTCOME_FIELDS, read))
     return outcome
