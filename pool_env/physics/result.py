@@ -10,7 +10,7 @@ from .bundles import EVENTS, ROWS, Scene
 from .engine import sample
 from .facts import facts_width, output_facts
 from .kinds import COUNTERS, EVENT_KINDS, POCKETED, ROW_WIDTH, VZ, Z
-from .packed import event_views, final_views, output_views
+from .packed import event_views, final_arrays, output_views
 from .pressed import pressed_cushion_events
 
 
@@ -116,8 +116,14 @@ class Result:
     @property
     def final(self):
         """The balls when everything rests (Balls; `.pocketed` marks balls off the table)."""
-        if self._final is None:
-            S, st = final_views(*self._log[:3]) if self._scene is None else self._scene[:2]
+        if self._final is None and self._scene is None:  # the engine's output as it came: one compiled copy
+            floats, ints, n = self._log[:3]
+            xy, v, w, air, pocketed = np.empty((n, 2)), np.empty((n, 2)), np.empty((n, 3)), np.empty((n, 2)), \
+                np.empty(n, dtype=np.bool_)
+            lifted = final_arrays(floats, ints, xy, v, w, pocketed, air)
+            self._final = self._balls._trusted(xy, v, w, pocketed, self._balls, air if lifted else None)
+        elif self._final is None:
+            S, st = self._scene[:2]
             self._final = self._balls._trusted(S[:, 0:2].copy(), S[:, 2:4].copy(), S[:, 4:7].copy(), st == POCKETED,
                                                self._balls, _air(S))
         return self._final
