@@ -137,18 +137,19 @@ def outcome_from_result(result) -> ShotOutcome:
 def outcome_of_facts(row: list) -> ShotOutcome:
     """The `ShotOutcome` of a run's event facts (`physics.facts`' row, as a list of ints).
     The engine's events make a consistent outcome: built without the checks."""
-    n = (len(row) - HEAD) // 4
-    d, g = row[DROPS], row[GONE]
-    dropped, pockets = row[HEAD:HEAD + 2 * d:2], row[HEAD + 1:HEAD + 2 * d:2]
-    first, railed = row[FIRST], row[HEAD + 3 * n:HEAD + 3 * n + row[RAILS]]
+    n, first, d, g, r = (len(row) - HEAD) // 4, row[FIRST], row[DROPS], row[GONE], row[RAILS]
+    pocketed, pocket_of, scratch = (), {}, False
+    if d:  # most shots drop nothing
+        dropped, pockets = row[HEAD:HEAD + 2 * d:2], row[HEAD + 1:HEAD + 2 * d:2]
+        scratch, pocket_of = CUE in dropped, dict(zip(dropped, pockets))
+        pocketed = tuple(b for b in dropped if b != CUE) if scratch else tuple(dropped)
     # frozenset of a set filled in the order the balls reached a cushion, as `_read_events`
     # makes it: the same table, so the same order of iteration (and repr)
-    scratch = CUE in dropped
-    read = (None if first < 0 else first, tuple(b for b in dropped if b != CUE) if scratch else tuple(dropped),
-            dict(zip(dropped, pockets)), scratch, bool(row[RAIL_AFTER]), frozenset(set(railed)),
-            tuple(row[HEAD + 2 * n:HEAD + 2 * n + g]))
+    to_rail = frozenset(set(row[HEAD + 3 * n:HEAD + 3 * n + r])) if r else frozenset()
     outcome = object.__new__(ShotOutcome)
-    outcome.__dict__.update(zip(OUTCOME_FIELDS, read))
+    outcome.__dict__.update(first_contact=None if first < 0 else first, pocketed=pocketed, pocket_of=pocket_of,
+                            cue_pocketed=scratch, rail_after_contact=bool(row[RAIL_AFTER]),
+                            object_balls_to_rail=to_rail, off_table=tuple(row[HEAD + 2 * n:HEAD + 2 * n + g]))
     return outcome
 
 
