@@ -165,8 +165,7 @@ class EightBall:
         targets = self.legal_targets(state)
         group = state.groups[player]
         fouls = ordered(standard_fouls(outcome, targets, lambda b: _wrong_ball(b, player, group, targets), False))
-        names = tuple(n for n, _ in fouls)
-        messages = [m for _, m in fouls]
+        names, messages = (tuple(n for n, _ in fouls), [m for _, m in fouls]) if fouls else ((), [])
         on_table = state.on_table - set(outcome.pocketed) - set(outcome.off_table)
         winner = end = None
         if EIGHT in outcome.pocketed or EIGHT in outcome.off_table:
