@@ -7,13 +7,21 @@ import pytest
 
 from pool_env import rules
 from pool_env.game import Game, Shot
-from pool_env.game.evaluation import DrawnNormals, JudgedShot, outcome_of_facts
+from pool_env.game.evaluation import DrawnNormals, JudgedShot
 from pool_env.physics import BALL_RADIUS, Balls, Physics, Table, simulate, strike
 from pool_env.physics.batch_run import balls_at, simulate_level_batch
 from pool_env.physics.config import cushion_reach
 from pool_env.physics.kinds import DONE, MISPLACED
 
 TABLE = Table.eight_foot()
+
+
+class EventsOnly:
+    """A Result's events and pressed-cushion flags without its compiled facts: what the rules
+    read of it in Python (`rules.outcome_from_result`)."""
+
+    def __init__(self, result):
+        self.event_arrays, self.pressed_cushion_events = result.event_arrays, result.pressed_cushion_events
 
 
 def layout(n, places):
@@ -99,7 +107,7 @@ def test_level_batch_is_simulate_and_reads_the_events_as_the_rules_do():
         final, mine = result.final, balls_at(balls, S[k], st[k])
         for name in ("xy", "v", "w", "pocketed"):
             assert np.array_equal(getattr(final, name), getattr(mine, name))
-        assert outcome_of_facts(facts[k].tolist(), len(balls)) == rules.outcome_from_result(result)
+        assert rules.outcome_of_facts(facts[k].tolist()) == rules.outcome_from_result(EventsOnly(result))
 
 
 def test_level_batch_reads_a_frozen_ball_pressed_into_its_rail_as_not_driven_to_it():
@@ -112,8 +120,28 @@ def test_level_batch_reads_a_frozen_ball_pressed_into_its_rail_as_not_driven_to_
     assert result.pressed_cushion_events().any()
     _, _, codes, facts = simulate_level_batch(struck, [struck.xy], [struck.v], [struck.w], TABLE, physics)
     assert codes[0] == DONE
-    outcome = outcome_of_facts(facts[0].tolist(), 2)
-    assert outcome == rules.outcome_from_result(result) and outcome.object_balls_to_rail == frozenset()
+    outcome = rules.outcome_of_facts(facts[0].tolist())
+    assert outcome == rules.outcome_from_result(EventsOnly(result)) and outcome.object_balls_to_rail == frozenset()
+
+
+def test_a_results_compiled_facts_read_as_its_events_do():
+    # Result.event_facts (one compiled call) against the events read in Python, on a fan of
+    # 8-ball shots mid-game and on a frozen ball pressed into its rail: the same outcome, its
+    # balls to a rail in the same order (the frozenset built alike), the press not a rail.
+    game = mid_game("eight_ball", noise=None)
+    physics = Physics.standard()
+    frozen = np.array([0.6, TABLE.width - cushion_reach(BALL_RADIUS, TABLE.cushion_height, physics.cushion)])
+    results = [simulate(game.strike(shot).balls, game.table, game.physics) for shot in fan(24, 3.0)]
+    pressed = strike(Balls(np.array([frozen - (0.0, 0.3), frozen])), (0.0, 20.0), physics=physics)
+    results.append(simulate(pressed, TABLE, physics))
+    assert simulate(pressed, TABLE, physics).pressed_cushion_events().any()
+    for result in results:
+        assert result.event_facts() is not None
+        mine, python = rules.outcome_from_result(result), rules.outcome_from_result(EventsOnly(result))
+        assert mine == python and repr(mine) == repr(python)
+        assert list(mine.object_balls_to_rail) == list(python.object_balls_to_rail)
+    assert any(len(rules.outcome_from_result(r).object_balls_to_rail) >= 3 for r in results)
+    assert rules.outcome_from_result(results[-1]).object_balls_to_rail == frozenset()
 
 
 def test_level_batch_stops_a_misplaced_scene_and_runs_the_others():

@@ -8,7 +8,7 @@ import numpy as np
 
 from .. import rules
 from ..physics import Balls
-from ..physics.batch_run import DROPS, FIRST, GONE, HEAD, RAIL_AFTER, balls_at, simulate_level_batch
+from ..physics.batch_run import balls_at, simulate_level_batch
 from ..physics.kinds import DONE, POCKETED
 from .batch import simulate_struck
 from .shot import Shot
@@ -92,17 +92,6 @@ class JudgedShot:
                    Layout(balls.xy, balls.pocketed))
 
 
-def outcome_of_facts(row: list, n: int) -> rules.ShotOutcome:
-    """The `ShotOutcome` of a scene's event facts (`physics.batch_run`'s row, as a list; n balls)."""
-    d, g = row[DROPS], row[GONE]
-    dropped, pockets = row[HEAD:HEAD + 2 * d:2], row[HEAD + 1:HEAD + 2 * d:2]
-    return rules.ShotOutcome(first_contact=None if row[FIRST] < 0 else row[FIRST],
-                             pocketed=tuple(b for b in dropped if b != CUE), pocket_of=dict(zip(dropped, pockets)),
-                             cue_pocketed=CUE in dropped, rail_after_contact=bool(row[RAIL_AFTER]),
-                             object_balls_to_rail=frozenset(b for b in range(n) if row[HEAD + 3 * n + b]),
-                             off_table=tuple(row[HEAD + 2 * n:HEAD + 2 * n + g]))
-
-
 def lean(struck) -> list[int]:
     """The struck shots the compiled batch takes: struck (no error), every ball on the cloth,
     on the balls (pocketed flags, sizes) of the first such shot."""
@@ -133,7 +122,6 @@ def judge_batch(game, struck, threads: int | None = 1) -> list[JudgedShot]:
                                                    threads)
         S.setflags(write=False)  # the layouts are views of it, read-only as a Balls' arrays are
         known: dict = {}
-        n = S.shape[1]
         for m, k in enumerate(fast):
             if codes[m] != DONE:
                 continue
@@ -141,7 +129,7 @@ def judge_batch(game, struck, threads: int | None = 1) -> list[JudgedShot]:
             key = (facts[m].tobytes(), s.called_pocket, s.called_ball, s.push_out)
             judged = known.get(key)
             if judged is None:
-                outcome = outcome_of_facts(facts[m].tolist(), n)
+                outcome = rules.outcome_of_facts(facts[m].tolist())
                 after, ruling = rules.judge(state, outcome, s.called_pocket, s.called_ball, s.push_out)
                 if not game.decisions and getattr(after, "pending", None) is not None:
                     after = rules.decide(after, after.pending.default)  # no re-rack is a default

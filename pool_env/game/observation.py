@@ -208,4 +208,9 @@ def game_view(balls: Balls, state, viewer: int, shots: int, max_shots: int, tabl
         flags = decision_entries(state, viewer)
         pending = next((name for name, f in zip(rules.DECISIONS, flags) if f > 0), None)
         push_out = flags[-1] > 0
-    return GameView(xy, ~balls.pocketed, legal, in_hand, fouls, group, counter, pending, push_out)
+    # Built without the frozen dataclass's __init__ (a field at a time through object.__setattr__):
+    # the game envs make one for every shot of their built-in opponent.
+    view = object.__new__(GameView)
+    view.__dict__.update(xy=xy, on_table=~balls.pocketed, legal=legal, ball_in_hand=in_hand, fouls=fouls, group=group,
+                         counter=counter, pending=pending, push_out=push_out)
+    return view

@@ -11,59 +11,12 @@ from .batch import TASKS_PER_THREAD, thread_pool
 from .bundles import EVENTS, ROWS, default_event_cap, scratch_sizes
 from .config import Physics
 from .engine import simulate_scene
-from .jit import allocating, helper
-from .kinds import (
-    BALL_BALL,
-    BALL_BALL_SETTLE,
-    BALL_CUSHION,
-    BALL_OFF_TABLE,
-    BALL_POCKET,
-    DONE,
-    POCKETED,
-    ROW_WIDTH,
-)
+from .facts import facts_width, read_facts
+from .jit import allocating
+from .kinds import BALL_CUSHION, DONE, POCKETED, ROW_WIDTH
 from .packed import bounds_packed, output_offsets
 from .pressed import pressed_cushion_events
 from .table import Table
-
-CUE = 0
-# A scene's facts (`simulate_level_batch`), one int64 row: the first ball the cue ball
-# touched (-1: none), a cushion touched after that contact (0/1), the drops and the balls off
-# the table counted, then N (ball, pocket) pairs of drops in order, N balls off the table in
-# order and N flags of the balls driven to a cushion (a frozen ball only pressed into its
-# cushion is not: `Result.pressed_cushion_events`).
-FIRST, RAIL_AFTER, DROPS, GONE, HEAD = 0, 1, 2, 3, 4
-
-
-def facts_width(n: int) -> int:
-    """The width of a facts row of n balls."""
-    return HEAD + 4 * n
-
-
-@helper
-def _read_facts(log, n_events, pressed, row):  # pragma: no cover - compiled
-    """A finished run's events (the first `n_events` of the log) read into `row` (see FIRST)."""
-    n = (row.shape[0] - HEAD) // 4
-    first, seen, rail_after, d, g = -1, False, False, 0, 0
-    row[:] = 0
-    for k in range(n_events):
-        kind, i, j = log[1][k], log[2][k], log[3][k]
-        if kind == BALL_BALL or kind == BALL_BALL_SETTLE:
-            if not seen and (i == CUE or j == CUE):
-                first, seen = (j if i == CUE else i), True
-        elif kind == BALL_CUSHION:
-            if pressed[k]:  # a ball frozen to this cushion pressed into it: not driven to it
-                continue
-            rail_after = rail_after or seen
-            if i != CUE:
-                row[HEAD + 3 * n + i] = 1
-        elif kind == BALL_POCKET:
-            row[HEAD + 2 * d], row[HEAD + 2 * d + 1] = i, j
-            d += 1
-        elif kind == BALL_OFF_TABLE:
-            row[HEAD + 2 * n + g] = i
-            g += 1
-    row[FIRST], row[RAIL_AFTER], row[DROPS], row[GONE] = first, rail_after, d, g
 
 
 @allocating
@@ -101,7 +54,7 @@ def _run_scenes(balls, physics, bounds, moving, cap, out, full):  # pragma: no c
                 pressed = pressed_cushion_events((log[0][:e], log[1][:e], log[2][:e], log[3][:e]), hist[:h],
                                                  hist_ball[:h], R, floats[s_end:rc_end], physics[0], rails, jaws)
                 break
-        _read_facts(log, e, pressed, facts[k])
+        read_facts(log, e, pressed, facts[k])
 
 
 def simulate_level_batch(like: Balls, xys, vs, ws, table: Table, physics: Physics, threads: int | None = 1):

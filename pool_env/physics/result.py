@@ -8,8 +8,9 @@ import numpy as np
 
 from .bundles import EVENTS, ROWS, Scene
 from .engine import sample
+from .facts import facts_width, output_facts
 from .kinds import COUNTERS, EVENT_KINDS, POCKETED, ROW_WIDTH, VZ, Z
-from .packed import event_views, final_views, output_views
+from .packed import event_views, final_arrays, output_views
 from .pressed import pressed_cushion_events
 
 
@@ -44,7 +45,7 @@ class Result:
 
     # What is derived on first use: None until then (class attributes, so a Result of a shot
     # whose caller reads only the final state stores none of them).
-    _arrays = _final = _stats = _events = _pressed = None
+    _arrays = _final = _stats = _events = _pressed = _facts = None
 
     def __init__(self, balls, physics, table, scene, log, wall, counters):
         self._balls, self.physics, self.table = balls, physics, table
@@ -97,11 +98,32 @@ class Result:
                                                    scene.params, table.rails, table.jaws)
         return self._pressed
 
+    def event_facts(self) -> list | None:
+        """The event facts the rules read (a list of ints: `facts.FIRST` says what is where:
+        the first contact, a cushion after it, the drops and their pockets, the balls off the
+        table, the balls driven to a cushion, a frozen one pressed into it not counted as
+        `pressed_cushion_events` says), read in one compiled call from the event engine's
+        output; None for a Result that holds no such output (a fixed-step run's, or one whose
+        Log was already cut: its events are read as they are)."""
+        if self._facts is None and self._scene is None:
+            floats, ints, n, size, _ = self._log
+            row = np.empty(facts_width(n), dtype=np.int64)
+            output_facts((floats, ints, n, size), self._balls.radii, self.physics.engine_args()[0], self.table.rails,
+                         self.table.jaws, row)
+            self._facts = row.tolist()
+        return self._facts
+
     @property
     def final(self):
         """The balls when everything rests (Balls; `.pocketed` marks balls off the table)."""
-        if self._final is None:
-            S, st = final_views(*self._log[:3]) if self._scene is None else self._scene[:2]
+        if self._final is None and self._scene is None:  # the engine's output as it came: one compiled copy
+            floats, ints, n = self._log[:3]
+            xy, v, w, air, pocketed = np.empty((n, 2)), np.empty((n, 2)), np.empty((n, 3)), np.empty((n, 2)), \
+                np.empty(n, dtype=np.bool_)
+            lifted = final_arrays(floats, ints, xy, v, w, pocketed, air)
+            self._final = self._balls._trusted(xy, v, w, pocketed, self._balls, air if lifted else None)
+        elif self._final is None:
+            S, st = self._scene[:2]
             self._final = self._balls._trusted(S[:, 0:2].copy(), S[:, 2:4].copy(), S[:, 4:7].copy(), st == POCKETED,
                                                self._balls, _air(S))
         return self._final

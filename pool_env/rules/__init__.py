@@ -8,7 +8,7 @@ from . import codes
 from .carom_outcome import CaromOutcome, carom_outcome
 from .eight_ball import EightBall
 from .nine_ball import NineBall
-from .outcome import ShotOutcome, outcome_from_result
+from .outcome import ShotOutcome, outcome_from_result, outcome_of_facts
 from .racks import eight_ball_rack, foot_spot, head_spot, head_string_x, nine_ball_rack, spot_balls, ten_ball_rack
 from .snooker import Snooker, SnookerRuling, SnookerState
 from .snooker_free_ball import settle as settle_snooker
@@ -23,6 +23,7 @@ STATES = (GameState, ThreeCushionState, SnookerState)  # every rule set's state 
 
 __all__ = [
     "new_game", "judge", "legal_targets", "GameState", "Ruling", "ShotOutcome", "outcome_from_result",
+    "outcome_of_facts",
     "NineBall", "EightBall", "FOULS", "END_REASONS", "BALL_IN_HAND", "GROUPS", "KINDS",
     "nine_ball_rack", "eight_ball_rack", "spot_balls", "head_string_x", "foot_spot", "head_spot", "codes",
     "ThreeCushion", "ThreeCushionState", "CaromOutcome", "CaromRuling", "carom_outcome", "carom_spots",

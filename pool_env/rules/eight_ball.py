@@ -8,12 +8,12 @@ from .state import (
     DECISIONS,
     Decision,
     GameState,
-    Ruling,
     advance,
     break_requirement,
     check_option,
     check_shot,
     ordered,
+    quick_ruling,
     standard_fouls,
     turn_messages,
     with_messages,
@@ -128,7 +128,7 @@ class EightBall:
         elif illegal and self.illegal_break == "ball_in_hand":
             hand = "anywhere"
         turn_passed = bool(fouls) or not outcome.pocketed  # 3.3(c): a legal break that pockets continues
-        ruling = Ruling(names[0] if names else None, names, turn_passed, hand, spot, None, None, ())
+        ruling = quick_ruling(names[0] if names else None, names, turn_passed, hand, spot, None, None)
         pending = None
         if illegal:  # 3.3(d): the incoming player's choice
             default = "ball_in_hand" if self.illegal_break == "ball_in_hand" else "accept_table"
@@ -165,8 +165,7 @@ class EightBall:
         targets = self.legal_targets(state)
         group = state.groups[player]
         fouls = ordered(standard_fouls(outcome, targets, lambda b: _wrong_ball(b, player, group, targets), False))
-        names = tuple(n for n, _ in fouls)
-        messages = [m for _, m in fouls]
+        names, messages = (tuple(n for n, _ in fouls), [m for _, m in fouls]) if fouls else ((), [])
         on_table = state.on_table - set(outcome.pocketed) - set(outcome.off_table)
         winner = end = None
         if EIGHT in outcome.pocketed or EIGHT in outcome.off_table:
@@ -187,7 +186,7 @@ class EightBall:
             messages.append("no called ball in its called pocket: the balls that dropped stay down")
         turn_passed = winner is None and (bool(fouls) or not kept)
         hand = "anywhere" if fouls and winner is None else None
-        ruling = Ruling(names[0] if names else None, names, turn_passed, hand, (), winner, end, ())
+        ruling = quick_ruling(names[0] if names else None, names, turn_passed, hand, (), winner, end)
         new = advance(state, ruling, on_table, counts, groups)
         if winner is None:
             messages += turn_messages(new, turn_passed, False)

@@ -7,12 +7,12 @@ from dataclasses import dataclass
 from .state import (
     Decision,
     GameState,
-    Ruling,
     advance,
     break_requirement,
     check_option,
     check_shot,
     ordered,
+    quick_ruling,
     standard_fouls,
     turn_messages,
     with_messages,
@@ -97,7 +97,7 @@ class NineBall:
                 messages.append(f"player {player} wins: the 9 pocketed{' on the break' if state.is_break else ''}")
         turn_passed = winner is None and (foul is not None or push_out or not outcome.pocketed)
         hand = "anywhere" if foul and winner is None else None  # WPA 2.7, 1.5: in hand anywhere
-        ruling = Ruling(foul, tuple(n for n, _ in fouls), turn_passed, hand, spot, winner, end, ())
+        ruling = quick_ruling(foul, tuple(n for n, _ in fouls), turn_passed, hand, spot, winner, end)
         pending = PUSH_OUT_REPLY if push_out and not foul else None
         # WPA 2.4: the shot immediately after a legal break may be a push out (not after a foul on the break).
         may_push = state.is_break and not foul and winner is None

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field, fields
 
+from ..physics.facts import DROPS, FIRST, GONE, HEAD, RAIL_AFTER, RAILS
 from ..physics.kinds import BALL_BALL_KINDS, BALL_CUSHION, BALL_OFF_TABLE, BALL_POCKET, EVENT_KINDS
 
 CUE = 0  # the cue ball's number
@@ -105,7 +106,13 @@ def outcome_from_result(result) -> ShotOutcome:
     WPA 8.4, a ball touching a rail is driven to it only if it leaves it and comes back; an
     object without `event_arrays` has no such flag, and all its cushion events count); a drop
     is a "ball_pocket" event (j the pocket index); a ball leaving the table through the air
-    is a "ball_off_table" event. Motion transitions and bounces on the slate are ignored."""
+    is a "ball_off_table" event. Motion transitions and bounces on the slate are ignored.
+    A physics `Result` of the event engine reads all of it in one compiled call
+    (`Result.event_facts`, the same reading; `outcome_of_facts`)."""
+    facts = getattr(result, "event_facts", None)
+    row = None if facts is None else facts()
+    if row is not None:
+        return outcome_of_facts(row)
     arrays = getattr(result, "event_arrays", None)
     if arrays is not None:  # a physics Result: its arrays as lists, without an Event object per event
         _, kinds, i_s, j_s = arrays
@@ -124,6 +131,25 @@ def outcome_from_result(result) -> ShotOutcome:
     # its own first contact...): built without the checks, which cost as much as the reading.
     outcome = object.__new__(ShotOutcome)
     outcome.__dict__.update(zip(OUTCOME_FIELDS, read))
+    return outcome
+
+
+def outcome_of_facts(row: list) -> ShotOutcome:
+    """The `ShotOutcome` of a run's event facts (`physics.facts`' row, as a list of ints).
+    The engine's events make a consistent outcome: built without the checks."""
+    n, first, d, g, r = (len(row) - HEAD) // 4, row[FIRST], row[DROPS], row[GONE], row[RAILS]
+    pocketed, pocket_of, scratch = (), {}, False
+    if d:  # most shots drop nothing
+        dropped, pockets = row[HEAD:HEAD + 2 * d:2], row[HEAD + 1:HEAD + 2 * d:2]
+        scratch, pocket_of = CUE in dropped, dict(zip(dropped, pockets))
+        pocketed = tuple(b for b in dropped if b != CUE) if scratch else tuple(dropped)
+    # frozenset of a set filled in the order the balls reached a cushion, as `_read_events`
+    # makes it: the same table, so the same order of iteration (and repr)
+    to_rail = frozenset(set(row[HEAD + 3 * n:HEAD + 3 * n + r])) if r else frozenset()
+    outcome = object.__new__(ShotOutcome)
+    outcome.__dict__.update(first_contact=None if first < 0 else first, pocketed=pocketed, pocket_of=pocket_of,
+                            cue_pocketed=scratch, rail_after_contact=bool(row[RAIL_AFTER]),
+                            object_balls_to_rail=to_rail, off_table=tuple(row[HEAD + 2 * n:HEAD + 2 * n + g]))
     return outcome
 
 

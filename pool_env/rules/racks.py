@@ -12,6 +12,11 @@ JITTER = 2e-4  # m: how far a racked ball may sit from its ideal spot (as physic
 SPOT_GAP = 1e-6  # m: the clearance between a spotted ball and the ball it is placed against
 # Rows of the 9-ball diamond from the apex (the foot spot) to the back: 1, 2, 3, 2, 1 balls.
 DIAMOND_ROWS = (1, 2, 3, 2, 1)
+# The 8-ball triangle's spots (row from the apex, offset across in spacings): its centre (the
+# 8), its two back corners (a solid and a stripe), the other twelve, apex first.
+TRIANGLE_CENTRE, TRIANGLE_CORNERS = (2, 0.0), ((4, -2.0), (4, 2.0))
+TRIANGLE_OTHERS = tuple(p for p in ((row, k - row / 2.0) for row in range(5) for k in range(row + 1))
+                        if p not in (*TRIANGLE_CORNERS, TRIANGLE_CENTRE))
 
 
 def foot_spot(table: Table) -> tuple[float, float]:
@@ -45,13 +50,16 @@ def _place(table, layout, rng, n_balls):
     for (row, across), number in layout.items():
         rows[number] = (fx + row * s * math.sqrt(3.0) / 2.0, fy + across * s)
     xy = np.array(rows)
-    placed = np.array(sorted(layout.values()))
-    angle = rng.uniform(0.0, 2.0 * math.pi, len(placed))
-    dist = JITTER * np.sqrt(rng.uniform(0.0, 1.0, len(placed)))
-    xy[placed, 0] += dist * np.cos(angle)
-    xy[placed, 1] += dist * np.sin(angle)
+    placed = sorted(layout.values())
+    count = len(placed)
+    angle = rng.uniform(0.0, 2.0 * math.pi, count)
+    dist = JITTER * np.sqrt(rng.uniform(0.0, 1.0, count))
+    # The racks place balls 1 to count: a slice then, cheaper than an index array (the same sums).
+    at = slice(1, count + 1) if placed == list(range(1, count + 1)) else np.array(placed)
+    xy[at, 0] += dist * np.cos(angle)
+    xy[at, 1] += dist * np.sin(angle)
     pocketed = np.ones(n_balls, dtype=bool)
-    pocketed[0] = pocketed[placed] = False
+    pocketed[0] = pocketed[at] = False
     return Balls(xy, radius=BALL_RADIUS, mass=BALL_MASS, pocketed=pocketed)
 
 
@@ -94,13 +102,10 @@ def eight_ball_rack(table: Table, seed=None) -> Balls:
     `numpy.random.default_rng(seed)`; the cue ball on the head spot. 16 balls, ball k = number k."""
     _check_table(table)
     rng = np.random.default_rng(seed)
-    spots = [(row, k - row / 2.0) for row in range(5) for k in range(row + 1)]
-    corners, centre = [(4, -2.0), (4, 2.0)], (2, 0.0)
     solid, stripe = int(rng.integers(1, 8)), int(rng.integers(9, 16))
     back = [solid, stripe] if rng.random() < 0.5 else [stripe, solid]
     rest = rng.permutation([b for b in range(1, 16) if b not in (8, solid, stripe)]).tolist()
-    others = [p for p in spots if p not in (*corners, centre)]
-    layout = {centre: 8, **dict(zip(corners, back)), **dict(zip(others, rest))}
+    layout = {TRIANGLE_CENTRE: 8, **dict(zip(TRIANGLE_CORNERS, back)), **dict(zip(TRIANGLE_OTHERS, rest))}
     return _place(table, layout, rng, 16)
 
 

@@ -259,6 +259,16 @@ def turn_messages(new, turn_passed, warn_two_fouls) -> list:
     return lines
 
 
+def quick_ruling(foul, fouls, turn_passed, ball_in_hand, balls_to_spot, winner, end_reason) -> Ruling:
+    """`Ruling(foul, ..., end_reason)` (no messages yet: `with_messages`) without the frozen
+    dataclass's __init__, which sets each field through object.__setattr__ (every shot's
+    ruling is made this way)."""
+    out = object.__new__(Ruling)
+    out.__dict__.update(foul=foul, fouls=fouls, turn_passed=turn_passed, ball_in_hand=ball_in_hand,
+                        balls_to_spot=balls_to_spot, winner=winner, end_reason=end_reason, messages=())
+    return out
+
+
 def with_messages(ruling, messages):
     """`ruling` (a `Ruling`) with its messages: a copy of its fields, without the frozen
     dataclass's __init__, which costs more (every shot's ruling is made twice)."""

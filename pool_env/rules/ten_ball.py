@@ -7,12 +7,12 @@ from dataclasses import dataclass
 from .state import (
     Decision,
     GameState,
-    Ruling,
     advance,
     break_requirement,
     check_option,
     check_shot,
     ordered,
+    quick_ruling,
     standard_fouls,
     turn_messages,
     with_messages,
@@ -117,7 +117,7 @@ class TenBall:
         kept = state.is_break and bool(outcome.pocketed) if not foul else False
         turn_passed = winner is None and not (kept or made)
         hand = "anywhere" if foul and winner is None else None  # Ten Ball 10, 1.5
-        ruling = Ruling(foul, tuple(n for n, _ in fouls), turn_passed, hand, spot, winner, end, ())
+        ruling = quick_ruling(foul, tuple(n for n, _ in fouls), turn_passed, hand, spot, winner, end)
         may_push = state.is_break and not foul and winner is None  # Ten Ball 4
         new = advance(state, ruling, on_table, counts, pending=pending, push_out=may_push)
         if winner is None:
