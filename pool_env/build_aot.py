@@ -41,15 +41,22 @@ def warm_up_shots():
     physics = Physics.standard()
     for table in (Table.eight_foot(), Table.seed(), Table.snooker(), Table.carom()):
         balls = rack(table, seed=0) if table.pockets.shape[0] else Balls([[0.5, 0.5], [1.0, 0.6], [1.5, 0.4]])
-        result = simulate(strike(balls, force=(8 * 0.170097 / 0.005, 0.0)), table, physics)
-        result.at(0.05)
+        read(simulate(strike(balls, force=(8 * 0.170097 / 0.005, 0.0)), table, physics)).at(0.05)
     table = Table.eight_foot()
-    simulate(Balls([[0.5, 0.5], [1.0, 0.55]], v=[[2.0, 0.2], [0.0, 0.0]]), table, physics)
-    simulate(strike(rack(table), force=(30.0, 0.0), elevation=0.3, offset=(0.0, 0.01)), table, physics)
+    read(simulate(Balls([[0.5, 0.5], [1.0, 0.55]], v=[[2.0, 0.2], [0.0, 0.0]]), table, physics))
+    read(simulate(strike(rack(table), force=(30.0, 0.0), elevation=0.3, offset=(0.0, 0.01)), table, physics))
     simulate_batch([strike(rack(table, seed=s), force=(200.0, 1.0)) for s in range(2)], table, physics, threads=2)
     struck = strike(rack(table), force=(30.0, 0.0))
     simulate_level_batch(struck, struck.xy[None], struck.v[None], struck.w[None], table, physics)
     warm_up()
+
+
+def read(result):
+    """`result` after reading what the envs and the rules read of every shot, each a compiled
+    call of its own: the balls at rest and the event facts."""
+    _ = result.final  # a property: read for its compiled call
+    result.event_facts()
+    return result
 
 
 def record():
