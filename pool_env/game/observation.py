@@ -8,6 +8,7 @@ import numpy as np
 
 from .. import rules
 from ..physics import Balls, Table
+from ..physics.frozen import unchecked
 from ..physics.jit import helper, kernel
 from .snooker_observation import SNOOKER_OBS_SIZE, decode_snooker_observation, snooker_observation
 
@@ -209,8 +210,7 @@ def game_view(balls: Balls, state, viewer: int, shots: int, max_shots: int, tabl
         pending = next((name for name, f in zip(rules.DECISIONS, flags) if f > 0), None)
         push_out = flags[-1] > 0
     # Built without the frozen dataclass's __init__ (a field at a time through object.__setattr__):
-    # the game envs make one for every shot of their built-in opponent.
-    view = object.__new__(GameView)
-    view.__dict__.update(xy=xy, on_table=~balls.pocketed, legal=legal, ball_in_hand=in_hand, fouls=fouls, group=group,
-                         counter=counter, pending=pending, push_out=push_out)
-    return view
+    # the game envs make one for every shot of their built-in opponent, of fields made here.
+    return unchecked(GameView, {"xy": xy, "on_table": ~balls.pocketed, "legal": legal, "ball_in_hand": in_hand,
+                                "fouls": fouls, "group": group, "counter": counter, "pending": pending,
+                                "push_out": push_out})

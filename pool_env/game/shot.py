@@ -9,6 +9,7 @@ import numpy as np
 
 from ..physics import BALL_MASS, BALL_RADIUS
 from ..physics.cue import MAX_ELEVATION, MISCUE_LIMIT
+from ..physics.frozen import unchecked
 
 CONTACT_TIME = 0.005  # s, the seed report's cue contact time: a force F gives the cue ball F dt / m
 MAX_SPEED = 12.0  # m/s, the cue ball's speed at full power: a strong break
@@ -185,13 +186,5 @@ def valid_shot(force, tip, place, pocket, elevation, ball, push_out) -> Shot:
     """The `Shot` of fields a decoder made valid and normalised already (floats within range,
     tuples of floats, an int pocket >= 0 and ball >= 1 or None, a bool): built without
     `Shot.__post_init__`'s checks, which would change nothing (every env shot is decoded)."""
-    shot = object.__new__(Shot)
-    set_ = object.__setattr__
-    set_(shot, "force", force)
-    set_(shot, "tip", tip)
-    set_(shot, "place", place)
-    set_(shot, "pocket", pocket)
-    set_(shot, "elevation", elevation)
-    set_(shot, "ball", ball)
-    set_(shot, "push_out", push_out)
-    return shot
+    return unchecked(Shot, {"force": force, "tip": tip, "place": place, "pocket": pocket, "elevation": elevation,
+                            "ball": ball, "push_out": push_out})

@@ -7,6 +7,8 @@ import math
 
 import numpy as np
 
+from .frozen import unchecked
+
 # Model names accepted by the engine, in the order of their numeric ids (the id is
 # what the compiled engine dispatches on).
 BALL_BALL_MODELS = ("seed", "elastic", "frictional")
@@ -159,9 +161,7 @@ class Physics:
         state["_engine_args"] = (params, *self._engine_args[1:])
         if self._core_engine_args is not None:
             state["_core_engine_args"] = (params, *self._core_engine_args[1:])
-        out = object.__new__(Physics)
-        object.__setattr__(out, "__dict__", state)
-        return out
+        return unchecked(Physics, state)
 
     def can_create_spin(self) -> bool:
         """True when a collision model can give a ball z-spin it did not have."""

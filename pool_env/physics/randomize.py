@@ -9,6 +9,7 @@ import math
 import numpy as np
 
 from .config import Physics
+from .frozen import unchecked
 from .objects import BALL_MASS, BALL_RADIUS, CAROM_MASS, CAROM_RADIUS, Balls, Table
 from .snooker import SNOOKER_BALL_MASS, SNOOKER_BALL_RADIUS
 
@@ -128,10 +129,8 @@ class Sample:
     def of(cls, table, physics, radii, masses, drawn, randomization, scalars=None) -> Sample:
         """Sample(...), without the frozen dataclass's set-up (one per randomized reset); `scalars`:
         drawn's physics and table values as a list, if known (for `info`)."""
-        out = object.__new__(cls)
-        object.__setattr__(out, "__dict__", {"table": table, "physics": physics, "radii": radii, "masses": masses,
-                                             "drawn": drawn, "randomization": randomization, "_scalars": scalars})
-        return out
+        return unchecked(cls, {"table": table, "physics": physics, "radii": radii, "masses": masses, "drawn": drawn,
+                               "randomization": randomization, "_scalars": scalars})
 
     @functools.cached_property
     def values(self) -> dict:

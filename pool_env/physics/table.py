@@ -9,6 +9,7 @@ import numpy as np
 
 from . import snooker  # the snooker table's figures
 from .balls import BALL_RADIUS, read_only
+from .frozen import unchecked
 from .pocket_shape import PocketShape, as_rows
 from .table_build import geometry, plan_of
 
@@ -92,13 +93,11 @@ class Table:
             entries[plan.corner, 2] = entries[plan.corner, 2] if corner_mouth is None else corner
             entries[~plan.corner, 2] = entries[~plan.corner, 2] if side_mouth is None else side
             return Table(self.length, self.width, entries.tolist(), height, self.corner_pocket, self.side_pocket)
-        out = Table.__new__(Table)
-        state = out.__dict__
-        state.update(length=self.length, width=self.width, cushion_height=height, corner_pocket=self.corner_pocket,
-                     side_pocket=self.side_pocket)
+        state = {"length": self.length, "width": self.width, "cushion_height": height,
+                 "corner_pocket": self.corner_pocket, "side_pocket": self.side_pocket}
         state.update(geometry(plan, self.pocket_entries, corner, side, exact=False))
         state["_plan"] = plan
-        return out
+        return unchecked(Table, state)
 
     @property
     def corner_pockets(self) -> np.ndarray:

@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field, fields
 
 from ..physics.facts import DROPS, FIRST, GONE, HEAD, RAIL_AFTER, RAILS
+from ..physics.frozen import unchecked
 from ..physics.kinds import BALL_BALL_KINDS, BALL_CUSHION, BALL_OFF_TABLE, BALL_POCKET, EVENT_KINDS
 
 CUE = 0  # the cue ball's number
@@ -129,9 +130,7 @@ def outcome_from_result(result) -> ShotOutcome:
         return ShotOutcome(*read)
     # The engine's events make a consistent outcome (a ball drops once, the cue ball never is
     # its own first contact...): built without the checks, which cost as much as the reading.
-    outcome = object.__new__(ShotOutcome)
-    outcome.__dict__.update(zip(OUTCOME_FIELDS, read))
-    return outcome
+    return unchecked(ShotOutcome, dict(zip(OUTCOME_FIELDS, read)))
 
 
 def outcome_of_facts(row: list) -> ShotOutcome:
@@ -146,11 +145,10 @@ def outcome_of_facts(row: list) -> ShotOutcome:
     # frozenset of a set filled in the order the balls reached a cushion, as `_read_events`
     # makes it: the same table, so the same order of iteration (and repr)
     to_rail = frozenset(set(row[HEAD + 3 * n:HEAD + 3 * n + r])) if r else frozenset()
-    outcome = object.__new__(ShotOutcome)
-    outcome.__dict__.update(first_contact=None if first < 0 else first, pocketed=pocketed, pocket_of=pocket_of,
-                            cue_pocketed=scratch, rail_after_contact=bool(row[RAIL_AFTER]),
-                            object_balls_to_rail=to_rail, off_table=tuple(row[HEAD + 2 * n:HEAD + 2 * n + g]))
-    return outcome
+    return unchecked(ShotOutcome, {"first_contact": None if first < 0 else first, "pocketed": pocketed,
+                                   "pocket_of": pocket_of, "cue_pocketed": scratch,
+                                   "rail_after_contact": bool(row[RAIL_AFTER]), "object_balls_to_rail": to_rail,
+                                   "off_table": tuple(row[HEAD + 2 * n:HEAD + 2 * n + g])})
 
 
 def _read_events(kinds, i_s, j_s, pressed) -> tuple:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..physics.frozen import unchecked
 from .outcome import CUE, ShotOutcome
 
 # Standard fouls (the shot is a foul: the turn passes, the incoming player gets ball in hand),
@@ -84,11 +85,9 @@ class GameState:
         """The state after a shot, built by a rule set from a checked state (`advance`): the
         fields as given (a frozenset and tuples already), without `__post_init__`'s
         conversions and checks, which cost most of a ruling's time."""
-        state = object.__new__(cls)
-        state.__dict__.update(rules=rules, on_table=on_table, shooter=shooter, ball_in_hand=ball_in_hand,
-                              fouls=fouls, groups=groups, is_break=False, shot=shot, winner=winner,
-                              pending=pending, push_out=push_out)
-        return state
+        return unchecked(cls, {"rules": rules, "on_table": on_table, "shooter": shooter, "ball_in_hand": ball_in_hand,
+                               "fouls": fouls, "groups": groups, "is_break": False, "shot": shot, "winner": winner,
+                               "pending": pending, "push_out": push_out})
 
     @property
     def kind(self) -> str:
@@ -263,15 +262,12 @@ def quick_ruling(foul, fouls, turn_passed, ball_in_hand, balls_to_spot, winner, 
     """`Ruling(foul, ..., end_reason)` (no messages yet: `with_messages`) without the frozen
     dataclass's __init__, which sets each field through object.__setattr__ (every shot's
     ruling is made this way)."""
-    out = object.__new__(Ruling)
-    out.__dict__.update(foul=foul, fouls=fouls, turn_passed=turn_passed, ball_in_hand=ball_in_hand,
-                        balls_to_spot=balls_to_spot, winner=winner, end_reason=end_reason, messages=())
-    return out
+    return unchecked(Ruling, {"foul": foul, "fouls": fouls, "turn_passed": turn_passed, "ball_in_hand": ball_in_hand,
+                              "balls_to_spot": balls_to_spot, "winner": winner, "end_reason": end_reason,
+                              "messages": ()})
 
 
 def with_messages(ruling, messages):
     """`ruling` (a `Ruling`) with its messages: a copy of its fields, without the frozen
     dataclass's __init__, which costs more (every shot's ruling is made twice)."""
-    out = object.__new__(Ruling)
-    out.__dict__.update(ruling.__dict__, messages=tuple(messages))
-    return out
+    return unchecked(Ruling, {**ruling.__dict__, "messages": tuple(messages)})
