@@ -16,7 +16,7 @@ from pool_env.players import geometry as geo
 from pool_env.players.planner import D1, D2, DN, DX, DY, OK, SCORE, SCRATCH, SPEED
 
 from .learned_features import contact_frame, outcome_features, roll_at_contact
-from .learned_pots import POT_PREFIX, PotNet
+from .learned_pots import POT_COLUMNS, POT_PREFIX, PotNet
 from .search import SearchAgent
 from .search_candidates import ARRIVALS, Candidate
 from .search_position import decode, game_state, legal_mask, racked
@@ -199,7 +199,7 @@ def menu(search: SearchAgent, observation, game: str | None, layout: int = LAYOU
          pots: PotNet | None = None) -> tuple[Menu, object]:
     """The decision's `Menu` for a game observation, and its decoded view. Feature rows of
     `layout` 2: `candidate_features`, `learned_features.outcome_features`, the observation;
-    layout 3: and the pot net `pots`' columns (`PotNet.columns`); layout 1 (the first
+    layout 3: and the pot net `pots`' columns (`pot_columns`); layout 1 (the first
     shipped nets): without the outcome features."""
     if layout >= 3 and pots is None:
         raise ValueError("layout 3 feature rows need the pot net (pots=)")
@@ -213,8 +213,31 @@ def menu(search: SearchAgent, observation, game: str | None, layout: int = LAYOU
         parts.append(outcome_features(search, d, state, cands, rows, hits))
     parts.append(np.broadcast_to(np.asarray(observation, dtype=np.float32), (len(cands), len(observation))))
     if layout >= 3:
-        parts.append(pots.columns(parts[0], search.table))
+        parts.append(pot_columns(search, pots, d, state, parts[0]))
     return Menu(cands, np.concatenate(parts, axis=1)), d
+
+
+def pot_columns(search: SearchAgent, pots: PotNet, d, state, rows) -> np.ndarray:
+    """(K, POT_COLUMNS + 2) float32 of a menu's `candidate_features` rows: `PotNet.columns`, then
+    for a pot the next shot's ghost-ball quality from the pot net's cue-ball rest
+    (`next_qualities`) and that times the chance it keeps the table (zeros for other shots).
+    The pot's ball is the one on the table at the row's object-ball place."""
+    cols = pots.columns(rows, search.table)
+    out = np.zeros((len(rows), POT_COLUMNS + 2), dtype=np.float32)
+    out[:, :POT_COLUMNS] = cols
+    pot = np.flatnonzero((rows[:, 0] == 1.0) & (rows[:, 19] == 1.0))
+    if not len(pot):
+        return out
+    size = np.array([search.table.length, search.table.width])
+    placed = (d.xy * (2.0 / size) - 1.0).astype(np.float32)  # as `candidate_features` wrote them
+    gap = np.abs(placed[None, :, :] - rows[pot, None, 26:28]).sum(axis=2) + np.where(d.on_table[None], 0.0, np.inf)
+    gap[:, 0] = np.inf
+    balls = np.argmin(gap, axis=1)
+    rests = (cols[pot, 2:4].astype(np.float64) + 1.0) * size / 2.0
+    q = next_qualities(search, d.xy, d.on_table, state, balls, rests)
+    out[pot, POT_COLUMNS] = q
+    out[pot, POT_COLUMNS + 1] = q * cols[pot, 4]
+    return out
 
 
 class ValueNet:

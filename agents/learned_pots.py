@@ -23,6 +23,7 @@ POT_PREFIX = "pot_"  # a saved value net's arrays of its pot net
 BALL = 9  # the one object ball of a simulated pot (alone on the table: the rules' legal ball)
 RAIL_SHARE = 0.3  # share of the simulated positions with the object ball within RAIL_BAND of a cushion
 RAIL_BAND = 0.08  # m
+CHUNK = 200  # positions planned and drawn at a time (each chunk its own seeded generator)
 
 
 def frames(obj, pocket_xy, is_side, table: Table) -> np.ndarray:
@@ -153,15 +154,16 @@ class _View:
         self.fouls, self.push_out = (0, 0), False
 
 
-def make_pot_data(positions: int = 1000, seed: int = 0, log=print) -> dict:
-    """`positions` random positions (`random_positions`, seeded), every planned pot of each
-    simulated: arrays inputs (M, POT_INPUTS) and labels (M, 4) (`simulate_pots`; the rests
-    mirrored into the pot's frame, x, y in [-1, 1])."""
+def make_pot_data(positions: int = 1000, seed: int = 0, log=print, first_chunk: int = 0) -> dict:
+    """`positions` random positions (`random_positions`) in chunks of CHUNK, chunk c drawn from
+    a generator seeded (seed, c) (chunks `first_chunk` on), every planned pot of each simulated:
+    arrays inputs (M, POT_INPUTS) and labels (M, 4) (`simulate_pots`; the rests mirrored into
+    the pot's frame, x, y in [-1, 1])."""
     search = SearchAgent("nine_ball", noise=None, seed=seed)
-    rng = np.random.default_rng(seed)
     start, inputs, labels = time.perf_counter(), [], []
-    for first in range(0, positions, 200):
-        pos = random_positions(rng, min(200, positions - first), search.table, search.radius)
+    for first in range(0, positions, CHUNK):
+        rng = np.random.default_rng([seed, first_chunk + first // CHUNK])
+        pos = random_positions(rng, min(CHUNK, positions - first), search.table, search.radius)
         rows, cands = planned_pots(search, pos)
         if not len(rows):
             continue
@@ -180,20 +182,23 @@ def make_pot_data(positions: int = 1000, seed: int = 0, log=print) -> dict:
 
 
 def _pot_part(job) -> dict:
-    positions, seed = job
-    return make_pot_data(positions, seed, log=None)
+    positions, seed, first_chunk = job
+    return make_pot_data(positions, seed, log=None, first_chunk=first_chunk)
 
 
 def parallel_pot_data(positions: int, seed: int = 0, workers: int = 2) -> dict:
-    """`make_pot_data` split over `workers` processes (part k seeded seed + k), joined in order."""
-    share = -(-positions // workers)
-    jobs = [(min(share, positions - k * share), seed + k) for k in range(workers) if positions - k * share > 0]
+    """`make_pot_data` split over `workers` processes by whole chunks, joined in order: the same
+    data as one process makes, whatever the number of workers."""
+    chunks = -(-positions // CHUNK)
+    share = -(-chunks // workers) * CHUNK
+    jobs = [(min(share, positions - k * share), seed, k * share // CHUNK) for k in range(workers)
+            if positions - k * share > 0]
     with ProcessPoolExecutor(len(jobs), mp_context=get_context("spawn")) as pool:
         parts = list(pool.map(_pot_part, jobs))
     return {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
 
 
-def fit_pots(data: dict, hidden=(64, 64), epochs: int = 20, seed: int = 0, lr: float = 2e-3, log=print) -> PotNet:
+def fit_pots(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, lr: float = 2e-3, log=print) -> PotNet:
     """The pot net fitted with torch on one thread: cross-entropies of the pot and the scratch,
     and the squared error of the cue ball's rest where it did not drop; Adam, minibatches of 512."""
     import torch

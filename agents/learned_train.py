@@ -11,13 +11,14 @@ from pathlib import Path
 import numpy as np
 
 from pool_env.game import Game
-from pool_env.physics import Table
 from pool_env.players import GameGhostBallAgent
 
-from .learned import KINDS, LABEL_LAYOUT, LAYOUT, LearnedPlayer, ValueNet, menu
-from .learned_pots import PotNet, fit_pots, parallel_pot_data
+from .learned import CANDIDATE_FEATURES, KINDS, LABEL_LAYOUT, LAYOUT, LearnedPlayer, ValueNet, menu, pot_columns
+from .learned_features import OUTCOME_FEATURES
+from .learned_pots import POT_COLUMNS, PotNet, fit_pots, parallel_pot_data
 from .match import alternate, play_game, points
 from .search import SearchAgent, balls_of, game_state
+from .search_position import decode
 from .stats import wilson
 
 ROUND_SEEDS = 100_000  # round r's games are seeded seed + r * ROUND_SEEDS + k (train.py's games start at 1,000,000)
@@ -152,14 +153,22 @@ def fit(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, lr: floa
     return value_net(model, mean, std)
 
 
-def with_pots(data: dict, pots: PotNet | None, table: Table | None = None) -> dict:
-    """A dataset of LABEL_LAYOUT rows with the pot net's columns (`PotNet.columns`) added: the
-    rows of LAYOUT (unchanged without a pot net)."""
+def with_pots(data: dict, pots: PotNet | None, game: str = "nine_ball") -> dict:
+    """A dataset of LABEL_LAYOUT rows with the pot net's columns (`learned.pot_columns`) added,
+    each decision's position read back from its rows' observation: the rows `menu` makes of
+    LAYOUT (unchanged without a pot net)."""
     if pots is None:
         return data
-    table = Table.eight_foot() if table is None else table
+    search = SearchAgent(game, noise=None)
     features = np.asarray(data["features"])
-    return {**data, "features": np.concatenate([features, pots.columns(features, table)], axis=1)}
+    extra = np.zeros((len(features), POT_COLUMNS + 2), dtype=np.float32)
+    start = CANDIDATE_FEATURES + OUTCOME_FEATURES
+    decision = np.asarray(data["decision"])
+    edges = np.flatnonzero(np.r_[True, decision[1:] != decision[:-1], True])
+    for a, b in zip(edges[:-1], edges[1:]):
+        d = decode(features[a, start:], search.n_balls, search.table)
+        extra[a:b] = pot_columns(search, pots, d, game_state(d, game), features[a:b, :CANDIDATE_FEATURES])
+    return {**data, "features": np.concatenate([features, extra], axis=1)}
 
 
 def fit_player(data: dict, hidden=(256, 256), epochs: int = 30, seed: int = 0, log=print,

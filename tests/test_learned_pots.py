@@ -94,3 +94,39 @@ def test_the_shipped_pot_net_thinks_a_short_straight_in_stun_pot_drops_and_a_lon
     p_pot = pots.predict(x)[0]
     stun = (near[1][:, 4] == 0.0) & (near[1][:, 2] == 0)
     assert p_pot[stun][0] > 0.9
+
+
+def test_the_pot_data_is_the_same_on_one_process_or_two():
+    from agents.learned_pots import CHUNK, parallel_pot_data
+
+    one = make_pot_data(CHUNK + 5, seed=2, log=None)
+    two = parallel_pot_data(CHUNK + 5, seed=2, workers=2)
+    assert all(np.array_equal(one[k], two[k]) for k in one)
+
+
+def test_the_pot_columns_added_to_saved_rows_are_those_the_menu_makes():
+    from agents.learned import LABEL_LAYOUT, menu
+    from agents.learned_train import play_game, with_pots
+    from pool_env.game import Game
+    from pool_env.players import GameGhostBallAgent
+
+    data = make_pot_data(10, seed=1, log=None)
+    pots = fit_pots(data, hidden=(8,), epochs=1, log=None)
+    search = SearchAgent("nine_ball", noise=None)
+    rows, full, seen = [], [], []
+
+    def on_decision(obs, who):
+        if len(seen) < 8:
+            seen.append(1)
+            rows.append(menu(search, obs, "nine_ball", LABEL_LAYOUT)[0].features)
+            full.append(menu(search, obs, "nine_ball", 3, pots)[0].features)
+        return None
+
+    game = Game("nine_ball")
+    ghost = GameGhostBallAgent.from_env(game)
+    play_game(game, (ghost, ghost), 21, 0, on_decision)
+    decision = np.concatenate([np.full(len(r), k) for k, r in enumerate(rows)])
+    added = with_pots({"features": np.concatenate(rows), "values": np.zeros(len(decision)), "decision": decision},
+                      pots)
+    assert np.array_equal(added["features"], np.concatenate(full))
+    assert np.any(np.concatenate(full)[:, -2] > 0)  # some pot leaves a next shot by the pot net's rest
