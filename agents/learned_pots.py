@@ -203,12 +203,12 @@ def fit_pots(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, lr:
     and the squared error of the cue ball's rest where it did not drop; Adam, minibatches of 512."""
     import torch
 
-    from .learned_train import torch_mlp
+    from .learned_train import descend, mlp_arrays, torch_mlp
 
     torch.set_num_threads(1)
     torch.manual_seed(seed)
     x, mean, std, model = torch_mlp(data["inputs"], hidden)
-    model[-1] = torch.nn.Linear(model[-1].in_features, POT_OUTPUTS)
+    model[-1] = torch.nn.Linear(model[-1].in_features, POT_OUTPUTS)  # drawn after the one-output layer
     y = torch.from_numpy(np.asarray(data["labels"], dtype=np.float32))
     opt = torch.optim.Adam(model.parameters(), lr=lr)
     bce = torch.nn.functional.binary_cross_entropy_with_logits
@@ -220,17 +220,10 @@ def fit_pots(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, lr:
             out, t = model(x[idx]), y[idx]
             kept = 1.0 - t[:, 1]
             rest = (((out[:, 2:4] - t[:, 2:4]) ** 2).sum(axis=1) * kept).sum() / kept.sum().clamp(min=1.0)
-            loss = bce(out[:, 0], t[:, 0]) + bce(out[:, 1], t[:, 1]) + rest
-            opt.zero_grad()
-            loss.backward()
-            opt.step()
-            total += float(loss.detach()) * len(idx)
+            total += descend(opt, bce(out[:, 0], t[:, 0]) + bce(out[:, 1], t[:, 1]) + rest) * len(idx)
         if log is not None and (epoch + 1) % 5 == 0:
             log(f"pot fit: epoch {epoch + 1}/{epochs}, loss {total / len(x):.4f}")
-    arrays = {"mean": mean, "std": std}
-    for n, m in enumerate(m for m in model if isinstance(m, torch.nn.Linear)):
-        arrays[f"w{n}"], arrays[f"b{n}"] = m.weight.detach().numpy().T.copy(), m.bias.detach().numpy().copy()
-    return PotNet(arrays)
+    return PotNet(mlp_arrays(model, mean, std))
 
 
 class PotNet:

@@ -143,11 +143,7 @@ def fit(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, lr: floa
         for b in torch.randperm(len(batches), generator=gen).tolist():
             idx, m = batches[b]
             pred, target = model(xt[idx])[..., 0], yt[idx]
-            loss = torch.sum(((pred - target) ** 2) * m) / m.sum()
-            opt.zero_grad()
-            loss.backward()
-            opt.step()
-            total += float(loss.detach())
+            total += descend(opt, torch.sum(((pred - target) ** 2) * m) / m.sum())
         if log is not None and (epoch + 1) % 5 == 0:
             log(f"fit: epoch {epoch + 1}/{epochs}, loss {total / len(batches):.4f}")
     return value_net(model, mean, std)
@@ -172,14 +168,14 @@ def with_pots(data: dict, pots: PotNet | None, game: str = "nine_ball") -> dict:
 
 
 def fit_player(data: dict, hidden=(256, 256), epochs: int = 30, seed: int = 0, log=print,
-               pots: PotNet | None = None) -> ValueNet:
+               pots: PotNet | None = None, game: str = "nine_ball") -> ValueNet:
     """The learned player's nets: `fit` of the shot net on every decision but the break, and
     of a break net (`ValueNet.breaks`, one layer of BREAK_HIDDEN) on the breaks' candidates that
     reads only their own shot (BREAK_COLUMNS: kind, speed, tip, direction, spot): the rack is the
     same but for its jitter, so the break net learns each break's mean value. With `pots` the
-    shot net reads the rows of LAYOUT (the pot net's columns added, `with_pots`)."""
+    shot net reads the rows of LAYOUT (the pot net's columns added, `with_pots`; the rows of `game`)."""
     rows = np.asarray(data["features"][:, KINDS.index("break")] == 1.0)
-    shot = fit(with_pots(subset(data, ~rows), pots), hidden, epochs, seed, log=log)
+    shot = fit(with_pots(subset(data, ~rows), pots, game), hidden, epochs, seed, log=log)
     shot = ValueNet({**shot.arrays, "layout": np.float32(LAYOUT if pots is not None else LABEL_LAYOUT)}, pots=pots)
     if not rows.any():
         return shot
@@ -210,6 +206,14 @@ def subset(data: dict, rows) -> dict:
     return {k: np.asarray(v)[rows] for k, v in data.items()}
 
 
+def descend(opt, loss) -> float:
+    """One step of the optimiser `opt` down the torch `loss`; the loss as a float."""
+    opt.zero_grad()
+    loss.backward()
+    opt.step()
+    return float(loss.detach())
+
+
 def torch_mlp(features, hidden) -> tuple:
     """(the feature rows standardised as a torch tensor, their mean, their std, a torch MLP of
     tanh layers `hidden` with one linear output, freshly initialised from torch's generator)."""
@@ -226,13 +230,19 @@ def torch_mlp(features, hidden) -> tuple:
 
 def value_net(model, mean, std) -> ValueNet:
     """The NumPy `ValueNet` of a `torch_mlp` model and its inputs' standardisation."""
+
+    return ValueNet({**mlp_arrays(model, mean, std), "layout": np.float32(LABEL_LAYOUT)})
+
+
+def mlp_arrays(model, mean, std) -> dict:
+    """The NumPy arrays (mean, std, w0, b0, ...) of a `torch_mlp` model and its inputs' standardisation."""
     import torch
 
-    arrays = {"mean": mean, "std": std, "layout": np.float32(LABEL_LAYOUT)}
+    arrays = {"mean": mean, "std": std}
     for n, m in enumerate(m for m in model if isinstance(m, torch.nn.Linear)):
         arrays[f"w{n}"] = m.weight.detach().numpy().T.copy()
         arrays[f"b{n}"] = m.bias.detach().numpy().copy()
-    return ValueNet(arrays)
+    return arrays
 
 
 def regret(net: ValueNet, data: dict) -> dict:
@@ -288,7 +298,7 @@ def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int
         timing[f"data_round_{r}"] = time.perf_counter() - t
         log(f"round {r}: {int(data['decision'].max()) + 1} decisions labelled in {timing[f'data_round_{r}']:.0f} s")
         t = time.perf_counter()
-        net = fit_player(data, epochs=epochs, seed=seed, log=log, pots=pots)
+        net = fit_player(data, epochs=epochs, seed=seed, log=log, pots=pots, game=game)
         timing[f"fit_round_{r}"] = time.perf_counter() - t
     Path(out).mkdir(parents=True, exist_ok=True)
     net.save(Path(out) / "learned.npz")
