@@ -12,6 +12,7 @@ from pool_env.game import MAX_SPEED
 from pool_env.physics import Balls, Table
 from pool_env.players.planner import DN, DX, DY, OK, SPEED
 
+from .learned_mlp import descend, mlp_arrays, torch_mlp
 from .search import SearchAgent
 from .search_candidates import ARRIVALS, Candidate
 from .search_position import game_state
@@ -202,8 +203,6 @@ def fit_pots(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, lr:
     """The pot net fitted with torch on one thread: cross-entropies of the pot and the scratch,
     and the squared error of the cue ball's rest where it did not drop; Adam, minibatches of 512."""
     import torch
-
-    from .learned_train import descend, mlp_arrays, torch_mlp
 
     torch.set_num_threads(1)
     torch.manual_seed(seed)

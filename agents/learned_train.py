@@ -15,6 +15,7 @@ from pool_env.players import GameGhostBallAgent
 
 from .learned import CANDIDATE_FEATURES, KINDS, LABEL_LAYOUT, LAYOUT, LearnedPlayer, ValueNet, menu, pot_columns
 from .learned_features import OUTCOME_FEATURES
+from .learned_mlp import descend, mlp_arrays, torch_mlp
 from .learned_pots import POT_COLUMNS, PotNet, fit_pots, parallel_pot_data
 from .match import alternate, play_game, points
 from .search import SearchAgent, balls_of, game_state
@@ -206,43 +207,10 @@ def subset(data: dict, rows) -> dict:
     return {k: np.asarray(v)[rows] for k, v in data.items()}
 
 
-def descend(opt, loss) -> float:
-    """One step of the optimiser `opt` down the torch `loss`; the loss as a float."""
-    opt.zero_grad()
-    loss.backward()
-    opt.step()
-    return float(loss.detach())
-
-
-def torch_mlp(features, hidden) -> tuple:
-    """(the feature rows standardised as a torch tensor, their mean, their std, a torch MLP of
-    tanh layers `hidden` with one linear output, freshly initialised from torch's generator)."""
-    import torch
-
-    x = np.asarray(features, dtype=np.float32)
-    mean, std = x.mean(axis=0), x.std(axis=0) + 1e-3
-    sizes = (x.shape[1], *hidden, 1)
-    layers = []
-    for i in range(len(sizes) - 1):
-        layers += [torch.nn.Linear(sizes[i], sizes[i + 1]), torch.nn.Tanh()]
-    return torch.from_numpy((x - mean) / std), mean, std, torch.nn.Sequential(*layers[:-1])
-
-
 def value_net(model, mean, std) -> ValueNet:
     """The NumPy `ValueNet` of a `torch_mlp` model and its inputs' standardisation."""
 
     return ValueNet({**mlp_arrays(model, mean, std), "layout": np.float32(LABEL_LAYOUT)})
-
-
-def mlp_arrays(model, mean, std) -> dict:
-    """The NumPy arrays (mean, std, w0, b0, ...) of a `torch_mlp` model and its inputs' standardisation."""
-    import torch
-
-    arrays = {"mean": mean, "std": std}
-    for n, m in enumerate(m for m in model if isinstance(m, torch.nn.Linear)):
-        arrays[f"w{n}"] = m.weight.detach().numpy().T.copy()
-        arrays[f"b{n}"] = m.bias.detach().numpy().copy()
-    return arrays
 
 
 def regret(net: ValueNet, data: dict) -> dict:
