@@ -8,7 +8,7 @@ from multiprocessing import get_context
 
 import numpy as np
 
-from pool_env.game import MAX_SPEED
+from pool_env.game import MAX_SPEED, GameView
 from pool_env.physics import Balls, Table
 from pool_env.players.planner import DN, DX, DY, OK, SPEED
 
@@ -134,7 +134,7 @@ def simulate_pots(search: SearchAgent, positions, rows, cands) -> np.ndarray:
     for a, b in zip(starts, [*starts[1:], len(rows)]):
         xy = np.zeros((search.n_balls, 2))
         xy[0], xy[BALL] = positions[int(rows[a, 0])]
-        view = _View(xy, on)
+        view = GameView(xy, on, frozenset({BALL}))
         sim.reset(balls=Balls(xy, radius=search.radius, pocketed=~on), state=game_state(view, search.game))
         shots = [sim.decode(search.action(c, None)) for c in cands[a:b]]
         for k, r in enumerate(sim.evaluate(shots, draws=1, seed=0, records=False)):
@@ -145,14 +145,6 @@ def simulate_pots(search: SearchAgent, positions, rows, cands) -> np.ndarray:
             out[a + k, 1] = o.cue_pocketed
             out[a + k, 2:4] = r.balls_after.xy[0]
     return out
-
-
-class _View:
-    """The bits of a `GameView` that `game_state` reads, of a simulated pot's position."""
-
-    def __init__(self, xy, on):
-        self.xy, self.on_table, self.group, self.ball_in_hand = xy, on, None, None
-        self.fouls, self.push_out = (0, 0), False
 
 
 def make_pot_data(positions: int = 1000, seed: int = 0, log=print, first_chunk: int = 0) -> dict:
