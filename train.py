@@ -74,6 +74,8 @@ class Args:
     rounds: int = option(2, "--algo value: labelling rounds (the first on ghost-ball self-play, each later one on "
                          "the last net's games against the ghost-ball player)")
     fit_epochs: int = option(30, "--algo value: passes over the labelled data in each fit of the nets")
+    pot_positions: int = option(40000, "--algo value: random two-ball positions whose ghost-ball pots are simulated "
+                                "to fit the pot net the value nets read (0: no pot net)")
     # --- hyperparameters (PPO unless marked) ---
     learning_rate: float = option(1e-3, "optimizer step size (PPO and SAC)")
     lr_schedule: str = option("linear", "learning rate over training: constant, or linear decay to 0",
@@ -131,7 +133,8 @@ def parse_args(argv=None) -> tuple[Args, bool]:
 
 AT_LEAST = {"data_games": 1, "rounds": 1, "fit_epochs": 1, "timesteps": 1, "n_envs": 1, "seed": 0, "n_steps": 1,
             "batch_size": 2, "n_epochs": 1, "eval_episodes": 1, "eval_seed": 0, "curve_points": 0, "curve_episodes": 1,
-            "video_episodes": 0, "progress_every": 0, "min_timesteps": 0}  # least values (SB3: batch_size 2)
+            "video_episodes": 0, "progress_every": 0, "min_timesteps": 0,
+            "pot_positions": 0}  # least values (SB3: batch_size 2)
 
 
 def check_args(args: Args) -> None:
@@ -214,7 +217,7 @@ def learned_player(args: Args, run) -> Path:
     game = "nine_ball" if args.env_id == "PoolNineBall-v0" else "eight_ball"
     noise = None if args.noise == "none" else args.noise
     recipe(game, noise, args.data_games, args.rounds, run.eval_seeds, args.seed, args.n_envs, run.dir,
-           log=log.info, epochs=args.fit_epochs)
+           log=log.info, epochs=args.fit_epochs, pot_positions=args.pot_positions)
     log.info("run folder: %s", run.dir.resolve())
     return run.dir
 

@@ -16,6 +16,7 @@ from pool_env.players import geometry as geo
 from pool_env.players.planner import D1, D2, DN, DX, DY, OK, SCORE, SCRATCH, SPEED
 
 from .learned_features import contact_frame, outcome_features, roll_at_contact
+from .learned_pots import POT_COLUMNS, POT_PREFIX, PotNet
 from .search import SearchAgent
 from .search_candidates import ARRIVALS, Candidate
 from .search_position import decode, game_state, legal_mask, racked
@@ -23,7 +24,8 @@ from .search_position import decode, game_state, legal_mask, racked
 WEIGHTS = Path(__file__).with_name("weights")  # the shipped networks, one file per game
 KINDS = ("pot", "safety", "kick", "break")
 CANDIDATE_FEATURES = 36  # see `candidate_features`
-LAYOUT = 2  # the feature rows new nets are fitted on (`menu`)
+LAYOUT = 3  # the feature rows new nets are fitted on (`menu`)
+LABEL_LAYOUT = 2  # the rows labelled data keeps: layout 3 adds only the pot net's columns, at fit time
 BREAK_PREFIX = "break_"  # a saved net's arrays of its break net (`ValueNet.breaks`)
 
 
@@ -193,10 +195,14 @@ def contacts_of(cands, d, table: Table, radius: float) -> np.ndarray:
     return hits
 
 
-def menu(search: SearchAgent, observation, game: str | None, layout: int = LAYOUT) -> tuple[Menu, object]:
+def menu(search: SearchAgent, observation, game: str | None, layout: int = LAYOUT,
+         pots: PotNet | None = None) -> tuple[Menu, object]:
     """The decision's `Menu` for a game observation, and its decoded view. Feature rows of
     `layout` 2: `candidate_features`, `learned_features.outcome_features`, the observation;
-    layout 1 (the first shipped nets): without the outcome features."""
+    layout 3: and the pot net `pots`' columns (`pot_columns`); layout 1 (the first
+    shipped nets): without the outcome features."""
+    if layout >= 3 and pots is None:
+        raise ValueError("layout 3 feature rows need the pot net (pots=)")
     d = decode(observation, search.n_balls, search.table, game=game is not None)
     state = game_state(d, game, search.rule_options) if game is not None else None
     cands, rows = shot_menu(search, d, state)
@@ -206,18 +212,46 @@ def menu(search: SearchAgent, observation, game: str | None, layout: int = LAYOU
     if layout >= 2:
         parts.append(outcome_features(search, d, state, cands, rows, hits))
     parts.append(np.broadcast_to(np.asarray(observation, dtype=np.float32), (len(cands), len(observation))))
+    if layout >= 3:
+        parts.append(pot_columns(search, pots, d, state, parts[0]))
     return Menu(cands, np.concatenate(parts, axis=1)), d
+
+
+def pot_columns(search: SearchAgent, pots: PotNet, d, state, rows) -> np.ndarray:
+    """(K, POT_COLUMNS + 2) float32 of a menu's `candidate_features` rows: `PotNet.columns`, then
+    for a pot the next shot's ghost-ball quality from the pot net's cue-ball rest
+    (`next_qualities`) and that times the chance it keeps the table (zeros for other shots).
+    The pot's ball is the one on the table at the row's object-ball place."""
+    cols = pots.columns(rows, search.table)
+    out = np.zeros((len(rows), POT_COLUMNS + 2), dtype=np.float32)
+    out[:, :POT_COLUMNS] = cols
+    pot = np.flatnonzero((rows[:, 0] == 1.0) & (rows[:, 19] == 1.0))
+    if not len(pot):
+        return out
+    size = np.array([search.table.length, search.table.width])
+    placed = (d.xy * (2.0 / size) - 1.0).astype(np.float32)  # as `candidate_features` wrote them
+    gap = np.abs(placed[None, :, :] - rows[pot, None, 26:28]).sum(axis=2) + np.where(d.on_table[None], 0.0, np.inf)
+    gap[:, 0] = np.inf
+    balls = np.argmin(gap, axis=1)
+    rests = (cols[pot, 2:4].astype(np.float64) + 1.0) * size / 2.0
+    q = next_qualities(search, d.xy, d.on_table, state, balls, rests)
+    out[pot, POT_COLUMNS] = q
+    out[pot, POT_COLUMNS + 1] = q * cols[pot, 4]
+    return out
 
 
 class ValueNet:
     """A small MLP in NumPy (tanh hidden layers, linear output) with the input standardised:
     the arrays of `save`/`load` (an .npz file). `breaks` (the arrays named "break_..."), if
     any, is a second net that scores the break's menus (`score`). "columns", if saved, is how
-    many leading feature columns the net reads."""
+    many leading feature columns the net reads. `pots` (the arrays named "pot_...") is the
+    pot net whose columns a layout-3 net's rows end with (`menu`)."""
 
-    def __init__(self, arrays: dict, breaks: ValueNet | None = None):
-        own = {k: v for k, v in arrays.items() if not k.startswith(BREAK_PREFIX)}
+    def __init__(self, arrays: dict, breaks: ValueNet | None = None, pots: PotNet | None = None):
+        own = {k: v for k, v in arrays.items() if not k.startswith((BREAK_PREFIX, POT_PREFIX))}
         inner = {k[len(BREAK_PREFIX):]: v for k, v in arrays.items() if k.startswith(BREAK_PREFIX)}
+        pot = {k[len(POT_PREFIX):]: v for k, v in arrays.items() if k.startswith(POT_PREFIX)}
+        self.pots = pots if pots is not None else PotNet(pot) if pot else None
         self.arrays = {k: np.asarray(v, dtype=np.float32) for k, v in own.items()}
         self.layers = sorted({int(k[1:]) for k in self.arrays if k.startswith("w")})
         self.layout = int(self.arrays["layout"]) if "layout" in self.arrays else 1
@@ -239,9 +273,13 @@ class ValueNet:
                 h = np.tanh(h)
         return h[:, 0]
 
-    def save(self, path) -> None:
+    def all_arrays(self) -> dict:
+        """Its arrays with those of its break net and pot net (prefixed): what `save` writes."""
         inner = {} if self.breaks is None else {BREAK_PREFIX + k: v for k, v in self.breaks.arrays.items()}
-        np.savez_compressed(path, **self.arrays, **inner)
+        return {**self.arrays, **inner, **({} if self.pots is None else self.pots.save_arrays())}
+
+    def save(self, path) -> None:
+        np.savez_compressed(path, **self.all_arrays())
 
     @classmethod
     def load(cls, path) -> ValueNet:
@@ -286,7 +324,7 @@ class LearnedPlayer(Agent):
         return cls(game.mode, table=game.base_table, physics=game.base_physics, **options)
 
     def act(self, observation) -> np.ndarray:
-        m, d = menu(self.search, observation, self.game, self.net.layout)
+        m, d = menu(self.search, observation, self.game, self.net.layout, self.net.pots)
         values = self.net.score(m.features)
         best = int(np.argmax(values))
         self.last_stats = {"candidates": len(m.candidates), "value": float(values[best]),

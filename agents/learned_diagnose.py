@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from .learned import KINDS, ValueNet, weights_path
-from .learned_train import labels, make_dataset, match, padded
+from .learned_train import labels, make_dataset, match, padded, with_pots
 from .search import SearchAgent
 
 HELD_OUT_SEED = 700_000  # the held-out games: apart from the recipe's (0-199,999) and the matches' (1,000,000 on)
@@ -67,7 +67,8 @@ if __name__ == "__main__":
     parser.add_argument("--oracle-games", type=int, default=0, help="games of MenuOracle against ghost_ball")
     args = parser.parse_args()
     held = make_dataset("nine_ball", None, args.games, seed=HELD_OUT_SEED, log=None)
-    for name, r in ranking(ValueNet.load(args.net), held).items():
+    net = ValueNet.load(args.net)
+    for name, r in ranking(net, with_pots(held, net.pots)).items():
         print(f"{name:24s} {r['decisions']:5d} decisions  top-1 {r['top1']:.3f}  regret {r['regret']:.3f}  "
               f"best {r['best']:.3f}  picked {r['picked']:.3f}")
     if args.oracle_games:

@@ -13,9 +13,13 @@ import numpy as np
 from pool_env.game import Game
 from pool_env.players import GameGhostBallAgent
 
-from .learned import KINDS, LAYOUT, LearnedPlayer, ValueNet, menu
+from .learned import CANDIDATE_FEATURES, KINDS, LABEL_LAYOUT, LAYOUT, LearnedPlayer, ValueNet, menu, pot_columns
+from .learned_features import OUTCOME_FEATURES
+from .learned_mlp import descend, mlp_arrays, torch_mlp
+from .learned_pots import POT_COLUMNS, PotNet, fit_pots, parallel_pot_data
 from .match import alternate, play_game, points
 from .search import SearchAgent, balls_of, game_state
+from .search_position import decode
 from .stats import wilson
 
 ROUND_SEEDS = 100_000  # round r's games are seeded seed + r * ROUND_SEEDS + k (train.py's games start at 1,000,000)
@@ -26,8 +30,9 @@ EXPLORE = 0.25  # share of the data games' shots played by a random menu candida
 
 def labels(search: SearchAgent, observation, game: str) -> tuple:
     """(the decision's `Menu`, its decoded view, values (K,)): the search's value of every menu
-    candidate (its judged outcome with the depth-1 lookahead, the mean over its noise draws)."""
-    m, d = menu(search, observation, game)
+    candidate (its judged outcome with the depth-1 lookahead, the mean over its noise draws).
+    The rows are of LABEL_LAYOUT: a pot net's columns are added at fit time (`with_pots`)."""
+    m, d = menu(search, observation, game, LABEL_LAYOUT)
     state = game_state(d, game, search.rule_options)
     s = search.noise_samples
     search.sim.reset(balls=balls_of(d, search.radius), state=state)
@@ -78,7 +83,7 @@ def parallel_dataset(game: str, noise, games: int, seed: int, workers: int = 2, 
     """`make_dataset` split over `workers` processes (part k: the games seeded from seed + k *
     ceil(games / workers)), joined in order: the same data whatever process finishes first."""
     share = -(-games // workers)
-    jobs = [(game, noise, min(share, games - k * share), seed + k * share, None if net is None else net.arrays)
+    jobs = [(game, noise, min(share, games - k * share), seed + k * share, None if net is None else net.all_arrays())
             for k in range(workers) if games - k * share > 0]
     with ProcessPoolExecutor(len(jobs), mp_context=get_context("spawn")) as pool:
         parts = list(pool.map(_dataset_part, jobs))
@@ -139,29 +144,46 @@ def fit(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, lr: floa
         for b in torch.randperm(len(batches), generator=gen).tolist():
             idx, m = batches[b]
             pred, target = model(xt[idx])[..., 0], yt[idx]
-            loss = torch.sum(((pred - target) ** 2) * m) / m.sum()
-            opt.zero_grad()
-            loss.backward()
-            opt.step()
-            total += float(loss.detach())
+            total += descend(opt, torch.sum(((pred - target) ** 2) * m) / m.sum())
         if log is not None and (epoch + 1) % 5 == 0:
             log(f"fit: epoch {epoch + 1}/{epochs}, loss {total / len(batches):.4f}")
     return value_net(model, mean, std)
 
 
-def fit_player(data: dict, hidden=(256, 256), epochs: int = 30, seed: int = 0, log=print) -> ValueNet:
+def with_pots(data: dict, pots: PotNet | None, game: str = "nine_ball") -> dict:
+    """A dataset of LABEL_LAYOUT rows with the pot net's columns (`learned.pot_columns`) added,
+    each decision's position read back from its rows' observation: the rows `menu` makes of
+    LAYOUT (unchanged without a pot net)."""
+    if pots is None:
+        return data
+    search = SearchAgent(game, noise=None)
+    features = np.asarray(data["features"])
+    extra = np.zeros((len(features), POT_COLUMNS + 2), dtype=np.float32)
+    start = CANDIDATE_FEATURES + OUTCOME_FEATURES
+    decision = np.asarray(data["decision"])
+    edges = np.flatnonzero(np.r_[True, decision[1:] != decision[:-1], True])
+    for a, b in zip(edges[:-1], edges[1:]):
+        d = decode(features[a, start:], search.n_balls, search.table)
+        extra[a:b] = pot_columns(search, pots, d, game_state(d, game), features[a:b, :CANDIDATE_FEATURES])
+    return {**data, "features": np.concatenate([features, extra], axis=1)}
+
+
+def fit_player(data: dict, hidden=(256, 256), epochs: int = 30, seed: int = 0, log=print,
+               pots: PotNet | None = None, game: str = "nine_ball") -> ValueNet:
     """The learned player's nets: `fit` of the shot net on every decision but the break, and
     of a break net (`ValueNet.breaks`, one layer of BREAK_HIDDEN) on the breaks' candidates that
     reads only their own shot (BREAK_COLUMNS: kind, speed, tip, direction, spot): the rack is the
-    same but for its jitter, so the break net learns each break's mean value."""
+    same but for its jitter, so the break net learns each break's mean value. With `pots` the
+    shot net reads the rows of LAYOUT (the pot net's columns added, `with_pots`; the rows of `game`)."""
     rows = np.asarray(data["features"][:, KINDS.index("break")] == 1.0)
-    shot = fit(subset(data, ~rows), hidden, epochs, seed, log=log)
+    shot = fit(with_pots(subset(data, ~rows), pots, game), hidden, epochs, seed, log=log)
+    shot = ValueNet({**shot.arrays, "layout": np.float32(LAYOUT if pots is not None else LABEL_LAYOUT)}, pots=pots)
     if not rows.any():
         return shot
     breaks = rack_means(subset(data, rows))
     breaks["features"] = breaks["features"][:, :BREAK_COLUMNS]
     net = fit(breaks, BREAK_HIDDEN, BREAK_EPOCHS, seed, log=None)
-    return ValueNet(shot.arrays, breaks=ValueNet({**net.arrays, "columns": np.float32(BREAK_COLUMNS)}))
+    return ValueNet(shot.arrays, breaks=ValueNet({**net.arrays, "columns": np.float32(BREAK_COLUMNS)}), pots=pots)
 
 
 def rack_means(breaks: dict) -> dict:
@@ -185,29 +207,10 @@ def subset(data: dict, rows) -> dict:
     return {k: np.asarray(v)[rows] for k, v in data.items()}
 
 
-def torch_mlp(features, hidden) -> tuple:
-    """(the feature rows standardised as a torch tensor, their mean, their std, a torch MLP of
-    tanh layers `hidden` with one linear output, freshly initialised from torch's generator)."""
-    import torch
-
-    x = np.asarray(features, dtype=np.float32)
-    mean, std = x.mean(axis=0), x.std(axis=0) + 1e-3
-    sizes = (x.shape[1], *hidden, 1)
-    layers = []
-    for i in range(len(sizes) - 1):
-        layers += [torch.nn.Linear(sizes[i], sizes[i + 1]), torch.nn.Tanh()]
-    return torch.from_numpy((x - mean) / std), mean, std, torch.nn.Sequential(*layers[:-1])
-
-
 def value_net(model, mean, std) -> ValueNet:
     """The NumPy `ValueNet` of a `torch_mlp` model and its inputs' standardisation."""
-    import torch
 
-    arrays = {"mean": mean, "std": std, "layout": np.float32(LAYOUT)}
-    for n, m in enumerate(m for m in model if isinstance(m, torch.nn.Linear)):
-        arrays[f"w{n}"] = m.weight.detach().numpy().T.copy()
-        arrays[f"b{n}"] = m.bias.detach().numpy().copy()
-    return ValueNet(arrays)
+    return ValueNet({**mlp_arrays(model, mean, std), "layout": np.float32(LABEL_LAYOUT)})
 
 
 def regret(net: ValueNet, data: dict) -> dict:
@@ -237,15 +240,25 @@ def match(player, game: str = "nine_ball", noise=None, games: int = 400, seed: i
 
 
 def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int, workers: int, out, log=print,
-           epochs: int = 30) -> dict:
+           epochs: int = 30, pot_positions: int = 0) -> dict:
     """The learned player, start to finish: `data_games` ghost-ball self-play games labelled
     (`parallel_dataset`), a value net fitted; then `rounds - 1` times as many games again of
     that net against the ghost-ball player, labelled and added, the net fitted anew; the last
     net against the ghost-ball player on `eval_seeds`, without noise and with olympiad noise
     (`EVAL_NOISES`; the top-level figures are those at `noise`). Writes the net (`learned.npz`),
     the labelled data (`learned-data.npz`) and the result (`learned.json`) into `out`; returns
-    the result."""
-    started, net, parts, timing = time.perf_counter(), None, [], {}
+    the result. With `pot_positions`, first a pot net (`learned_pots`) fitted to the pots
+    planned from that many random positions (simulated on `workers` processes, seeded `seed`),
+    whose columns the value nets then read (layout 3; its data saved as `pots-data.npz`)."""
+    started, net, parts, timing, pots = time.perf_counter(), None, [], {}, None
+    if pot_positions:
+        t = time.perf_counter()
+        pot_data = parallel_pot_data(pot_positions, seed, workers)
+        pots = fit_pots(pot_data, seed=seed, log=log)
+        Path(out).mkdir(parents=True, exist_ok=True)
+        np.savez_compressed(Path(out) / "pots-data.npz", **pot_data)
+        timing["pots"] = time.perf_counter() - t
+        log(f"pot net: {len(pot_data['labels'])} simulated pots, fitted in {timing['pots']:.0f} s")
     for r in range(rounds):
         t = time.perf_counter()
         parts.append(parallel_dataset(game, noise, data_games, seed + ROUND_SEEDS * r, workers, net))
@@ -253,7 +266,7 @@ def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int
         timing[f"data_round_{r}"] = time.perf_counter() - t
         log(f"round {r}: {int(data['decision'].max()) + 1} decisions labelled in {timing[f'data_round_{r}']:.0f} s")
         t = time.perf_counter()
-        net = fit_player(data, epochs=epochs, seed=seed, log=log)
+        net = fit_player(data, epochs=epochs, seed=seed, log=log, pots=pots, game=game)
         timing[f"fit_round_{r}"] = time.perf_counter() - t
     Path(out).mkdir(parents=True, exist_ok=True)
     net.save(Path(out) / "learned.npz")
@@ -263,7 +276,8 @@ def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int
                 for n in dict.fromkeys((noise, *EVAL_NOISES))}
     timing["evaluation"], timing["total"] = time.perf_counter() - t, time.perf_counter() - started
     result = {**by_noise[str(noise or "none")], "game": game, "noise": noise, "data_games": data_games,
-              "rounds": rounds, "epochs": epochs, "decisions": int(data["decision"].max()) + 1,
+              "rounds": rounds, "epochs": epochs, "pot_positions": pot_positions,
+              "decisions": int(data["decision"].max()) + 1,
               "rows": len(data["values"]), "by_noise": by_noise, "seconds": timing}
     (Path(out) / "learned.json").write_text(json.dumps(result, indent=2))
     for name, r in by_noise.items():

@@ -14,7 +14,8 @@ import numpy as np
 from pool_env.game import Game
 
 from .learned import ValueNet
-from .learned_train import torch_mlp, value_net
+from .learned_mlp import torch_mlp
+from .learned_train import value_net
 from .match import alternate, play_game, player_seed, points
 from .search import SearchAgent
 from .stats import wilson
