@@ -8,14 +8,13 @@ import numpy as np
 
 from .balls import Balls
 from .batch import TASKS_PER_THREAD, thread_pool
-from .bundles import EVENTS, ROWS, default_event_cap, scratch_sizes
+from .bundles import default_event_cap, scratch_sizes
 from .config import Physics
 from .engine import simulate_scene
-from .facts import facts_width, read_facts
+from .facts import facts_width, output_facts
 from .jit import allocating
-from .kinds import BALL_CUSHION, DONE, POCKETED, ROW_WIDTH
+from .kinds import DONE, POCKETED, ROW_WIDTH
 from .packed import bounds_packed, output_offsets
-from .pressed import pressed_cushion_events
 from .table import Table
 
 
@@ -32,13 +31,10 @@ def _run_scenes(balls, physics, bounds, moving, cap, out, full):  # pragma: no c
     S, st, codes, facts = out
     packed, rails, jaws = bounds
     n = xys.shape[1]
-    (s_end, rc_end, t_end, hist_end), (st_end, kind_end, i_end, j_end, ball_end, _, size_end) = \
-        output_offsets(n, cap)
+    (s_end, _, _, hist_end), (st_end, _, _, _, _, _, size_end) = output_offsets(n, cap)
     sched_floats, sched_ints, work_floats, work_ints = scratch_sizes(n)  # each run's scratch, after its output
     floats = np.empty(hist_end + sched_floats + work_floats)
     ints = np.empty(size_end + sched_ints + work_ints, dtype=np.int64)
-    log = (floats[rc_end:t_end], ints[st_end:kind_end], ints[kind_end:i_end], ints[i_end:j_end])
-    hist, hist_ball = floats[t_end:hist_end].reshape((n + 2 * cap + 2, ROW_WIDTH + 1)), ints[j_end:ball_end]
     for k in range(xys.shape[0]):
         code, _ = simulate_scene((xys[k], vs[k], ws[k], air, pocketed, R, M), physics, packed,
                                  (floats, ints, cap, cap), full)
@@ -47,14 +43,7 @@ def _run_scenes(balls, physics, bounds, moving, cap, out, full):  # pragma: no c
             continue
         S[k] = floats[:s_end].reshape((n, ROW_WIDTH))
         st[k] = ints[:st_end]
-        e, h = ints[size_end - 4 + EVENTS], ints[size_end - 4 + ROWS]
-        pressed = np.zeros(e, dtype=np.bool_)
-        for m in range(e):
-            if log[1][m] == BALL_CUSHION:
-                pressed = pressed_cushion_events((log[0][:e], log[1][:e], log[2][:e], log[3][:e]), hist[:h],
-                                                 hist_ball[:h], R, floats[s_end:rc_end], physics[0], rails, jaws)
-                break
-        read_facts(log, e, pressed, facts[k])
+        output_facts((floats, ints, n, cap), R, physics[0], rails, jaws, facts[k])
 
 
 def simulate_level_batch(like: Balls, xys, vs, ws, table: Table, physics: Physics, threads: int | None = 1):
