@@ -13,7 +13,6 @@ from ..physics.kinds import DONE, POCKETED
 from .batch import simulate_struck
 from .shot import Shot
 
-CUE = 0  # the cue ball's number
 NORMALS_PER_DRAW = 4  # `shot.noisy_shot`'s: aim, speed, side, top (and the elevation of an elevated cue)
 
 

@@ -4,11 +4,10 @@ import numpy as np
 
 from .bundles import EVENTS, ROWS
 from .jit import allocating, helper
-from .kinds import BALL_BALL, BALL_BALL_SETTLE, BALL_CUSHION, BALL_OFF_TABLE, BALL_POCKET, ROW_WIDTH
+from .kinds import BALL_BALL, BALL_BALL_SETTLE, BALL_CUSHION, BALL_OFF_TABLE, BALL_POCKET, CUE, ROW_WIDTH
 from .packed import output_offsets
 from .pressed import pressed_cushion_events
 
-CUE = 0
 # A run's facts, one int64 row: the first ball the cue ball touched (-1: none), a cushion
 # touched after that contact (0/1), the drops, the balls off the table and the object balls
 # driven to a cushion counted, then N (ball, pocket) pairs of drops in order, N balls off the

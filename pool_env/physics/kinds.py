@@ -13,6 +13,7 @@ STATE_NAMES = ("stationary", "spinning", "sliding", "rolling", "pocketed", "airb
 # row): z is the centre's height above where it rests on the cloth (0 on the cloth), vz its
 # vertical velocity; both are exact zeros for a ball on the cloth.
 X, Y, VX, VY, WX, WY, WZ, T0, Z, VZ = range(10)
+CUE = 0  # the cue ball's number: its row in every array of a layout
 # The row's width: every row, history row (ROW_WIDTH + 1 with the state code) and scratch row.
 ROW_WIDTH = 10
 

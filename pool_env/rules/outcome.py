@@ -6,9 +6,7 @@ from dataclasses import dataclass, field, fields
 
 from ..physics.facts import DROPS, FIRST, GONE, HEAD, RAIL_AFTER, RAILS
 from ..physics.frozen import unchecked
-from ..physics.kinds import BALL_BALL_KINDS, BALL_CUSHION, BALL_OFF_TABLE, BALL_POCKET, EVENT_KINDS
-
-CUE = 0  # the cue ball's number
+from ..physics.kinds import BALL_BALL_KINDS, BALL_CUSHION, BALL_OFF_TABLE, BALL_POCKET, CUE, EVENT_KINDS
 
 
 @dataclass(frozen=True)
