@@ -7,9 +7,8 @@ import copy
 import numpy as np
 
 from .. import rules
-from ..physics import BALL_RADIUS, Balls, Physics, Table, strike
+from ..physics import Balls, Physics, Table, strike
 from ..physics.randomize import Randomization, Sample
-from ..physics.simulate import check_on_table
 from .actions import (
     LAYOUTS,
     ActionLayout,
@@ -20,16 +19,16 @@ from .actions import (
     encode_decision,
     encoded_entries,
 )
-from .batch import SHOT_ERRORS, simulate_struck, simulate_struck_batch
-from .evaluation import DrawnNormals, JudgedShot, judge_batch, normals_per_draw
+from .batch import simulate_struck, simulate_struck_batch
+from .evaluation import DrawnNormals, JudgedShot, evaluation_rng, judge_batch, normals_per_draw
+from .judging import shot_record
 from .modes import Mode, mode_of
-from .placement import area_centre, place_cue_ball, placement_area
+from .placement import cue_ball_placed, placement_area
 from .shot import CONTACT_TIME, Shot, noise_of, noisy_shot
 from .shot_record import GameSnapshot, ShotRecord, StruckShot
+from .starting import check_calling, check_layout, check_state, objects_on, random_cue_start
 
-CUE_AREA = ((0.05, 0.25), (0.1, 0.9))  # randomize_cue: the cue ball's start, as fractions of L and W
 CALLING_RULES = ("eight_ball", "ten_ball")  # the games whose shots call a pocket (and a ball)
-CUE_TRIES = 1000  # draws of a random cue spot before falling back to the head spot
 
 
 def table_key(table: Table) -> tuple:
@@ -95,7 +94,7 @@ class Game:
         self.layout: ActionLayout = LAYOUTS[layout]
         if self.layout.placement != self._mode.placement:
             raise ValueError(f"layout {layout!r} does not fit the {mode} mode")
-        self._check_calling(layout, rule_options)
+        check_calling(self._mode, self.layout, rule_options)
         if randomize_cue and self._mode.rules is not None:
             raise ValueError("randomize_cue is for the break and run modes (the rules place the cue ball)")
         if rule_options and self._mode.rules is None:
@@ -113,17 +112,6 @@ class Game:
         self.rng = np.random.default_rng(seed)
         self._balls, self._state, self._shots, self._over = None, None, 0, False
         self.reset()
-
-    def _check_calling(self, layout: str, rule_options: dict):
-        """8-ball: the layout has a called-ball entry exactly when every shot calls a ball (the
-        rules' `calling`); else actions could never call one (or would call one the rules ignore)."""
-        if self._mode.rules != "eight_ball":
-            return
-        calling = rule_options.get("calling", rules.EightBall.calling)
-        if self.layout.called_ball != (calling == "ball_and_pocket"):
-            fit = "an eight_ball_call" if calling == "ball_and_pocket" else "an eight_ball layout without the ball"
-            raise ValueError(f"layout {layout!r} does not fit 8-ball with calling={calling!r}: it takes {fit} "
-                             "layout (pool_env.game.env_layout names it)")
 
     # --- read-only state ----------------------------------------------------------------------
     @property
@@ -166,7 +154,7 @@ class Game:
     def legal_targets(self) -> frozenset:
         """The object balls the shooter may hit first (without rules: any on the table)."""
         if self._state is None:
-            return self._objects_on(self._balls)
+            return objects_on(self._balls)
         return frozenset() if self._state.winner is not None else rules.legal_targets(self._state)
 
     @property
@@ -285,17 +273,18 @@ class Game:
         if self.randomization is not None:  # the equipment first: the rack stands on it
             self.sample = self.randomization.sample(self.rng)
             self.table, self.physics = self.sample.table, self.sample.physics
-        cue_xy = self._cue_start() if self.randomize_cue else None
+        cue_xy = random_cue_start(self.table, self.rng) if self.randomize_cue else None
         rack_seed = int(self.rng.integers(2**63 - 1))
         if balls is None:
             self._balls = self._rack(rack_seed, cue_xy)
             state = rules.new_game(self._mode.rules, breaker=breaker, **self.rule_options) if self.has_rules else None
         else:
-            self._balls = self._check_layout(balls, position=state is not None)
+            self._balls = check_layout(self._mode, balls, self.table, self.physics, position=state is not None)
             if state is not None:
-                self._check_state(state, balls)
+                check_state(self._mode, state, balls)
             elif self.has_rules:
-                state = self._open_table(balls, breaker, ball_in_hand)
+                state = rules.open_table(self._mode.rules, objects_on(balls), breaker, ball_in_hand,
+                                         **self.rule_options)
         self._state, self._shots, self._over = state, 0, False
         return self
 
@@ -306,53 +295,6 @@ class Game:
         if self.sample is None:
             return self._mode.rack(self.table, seed, cue_xy)
         return self.sample.sized(self._mode.rack(self.base_table, seed, cue_xy))
-
-    def _check_layout(self, balls, position=False):
-        """A starting layout checked; a planner's `position` (with its state) may have the cue
-        ball in hand off the table, and its balls are checked as `simulate` checks them, when a
-        shot is played from it."""
-        n = self.n_balls
-        if not isinstance(balls, Balls) or len(balls) != n:
-            raise ValueError(f"balls must be pool_env.physics.Balls with {n} balls (ball k is number k), got {balls!r}")
-        if np.any(balls.v) or np.any(balls.w):
-            raise ValueError("balls must be at rest (zero velocities and spins)")
-        if position:
-            return balls
-        if balls.pocketed[0]:
-            raise ValueError("balls: the cue ball (ball 0) must be on the table")
-        last = {"nine_ball": 9, "eight_ball": 8, "snooker": 21, "ten_ball": 10}.get(self._mode.rules)
-        if last is not None and balls.pocketed[last]:
-            raise ValueError(f"balls: the {last} must be on the table (the game would be over)")
-        check_on_table(balls, self.table, self.physics)
-        return balls
-
-    @staticmethod
-    def _objects_on(balls) -> frozenset:
-        """The object balls (by number) on the table."""
-        return frozenset(int(k) for k in np.flatnonzero(~balls.pocketed[1:]) + 1)
-
-    def _check_state(self, state, balls):
-        if not self.has_rules:
-            raise ValueError(f"the {self.mode} mode has no rules' state")
-        if not isinstance(state, rules.STATES) or state.kind != self._mode.rules:
-            raise ValueError(f"state must be a {self._mode.rules} rules.GameState, got {state!r}")
-        on_table = self._objects_on(balls)
-        if state.on_table != on_table:
-            raise ValueError(f"state.on_table {sorted(state.on_table)} is not the layout's {sorted(on_table)}")
-
-    def _open_table(self, balls, shooter, ball_in_hand):
-        return rules.open_table(self._mode.rules, self._objects_on(balls), shooter, ball_in_hand, **self.rule_options)
-
-    def _cue_start(self):
-        (x0, x1), (y0, y1) = CUE_AREA
-        L, W, r = self.table.length, self.table.width, BALL_RADIUS
-        pockets = self.table.pockets
-        for _ in range(CUE_TRIES):
-            x = self.rng.uniform(max(x0 * L, r), x1 * L)
-            y = self.rng.uniform(max(y0 * W, r), min(y1 * W, W - r))
-            if not pockets.shape[0] or np.all(np.hypot(pockets[:, 0] - x, pockets[:, 1] - y) > pockets[:, 2] + r):
-                return (x, y)
-        return (0.25 * L, 0.5 * W)
 
     # --- playing ------------------------------------------------------------------------------
     def play(self, shot) -> ShotRecord:
@@ -401,16 +343,7 @@ class Game:
         share their spots)."""
         placed, hand = self._balls, self.ball_in_hand
         if hand is not None:
-            wanted = shot.place
-            if wanted is None:
-                wanted = placed.xy[0] if not placed.pocketed[0] else area_centre(self.placement_area())
-            key = (float(wanted[0]), float(wanted[1]))
-            found = None if placements is None else placements.get(key)
-            if found is None:
-                found = place_cue_ball(placed, self.table, self.physics, hand, wanted)
-                if placements is not None:
-                    placements[key] = found
-            placed = found
+            placed = cue_ball_placed(placed, self.table, self.physics, hand, shot.place, placements)
         called = shot.pocket if self._mode.rules in CALLING_RULES else None
         if called is not None and called >= self.table.pockets.shape[0]:
             raise ValueError(f"Shot.pocket {called} names no pocket (the table has {self.table.pockets.shape[0]})")
@@ -444,32 +377,7 @@ class Game:
     def judge(self, struck: StruckShot, result, rulings: dict | None = None) -> ShotRecord:
         """The record of `struck`'s simulation from this state, without changing the game
         (`rulings`: a cache of the rules' judgements from this state, by outcome and called pocket)."""
-        head = (struck.shooter, struck.shot, struck.action, struck.ball_in_hand, struck.called_pocket, struck.force,
-                struck.tip, struck.placed, self._state)
-        if isinstance(result, Exception):
-            if not isinstance(result, SHOT_ERRORS):
-                raise result
-            error = f"{type(result).__name__}: {result}"
-            return ShotRecord(*head, struck.placed, None, None, self._state, False, error, elevation=struck.elevation,
-                              called_ball=struck.called_ball)
-        final = result.final
-        if not self.has_rules:
-            cleared = self.table.pockets.shape[0] > 0 and bool(final.pocketed[1:].all())
-            over = self._mode.one_shot or bool(final.pocketed[0]) or cleared
-            return ShotRecord(*head, final, result, None, None, over, elevation=struck.elevation)
-        outcome = rules.read_outcome(self._state, result)
-        key = (outcome, struck.called_pocket, struck.called_ball, struck.push_out)
-        judged = None if rulings is None else rulings.get(key)
-        if judged is None:
-            judged = rules.judge(self._state, outcome, struck.called_pocket, struck.called_ball, struck.push_out)
-            if rulings is not None:
-                rulings[key] = judged
-        state, ruling = judged
-        balls, state = rules.settle(state, ruling, final, self.table)
-        if not self.decisions and getattr(state, "pending", None) is not None:  # no re-rack is a default
-            state = rules.decide(state, state.pending.default)
-        return ShotRecord(*head, balls, result, ruling, state, state.over, judged=outcome,
-                          elevation=struck.elevation, called_ball=struck.called_ball)
+        return shot_record(struck, result, self._state, self.table, self._mode, self.decisions, rulings)
 
     # --- branching ------------------------------------------------------------------------------
     @property
@@ -535,7 +443,7 @@ class Game:
                 decoded.append(self._shot_and_action(shot))
             except ValueError as exc:
                 raise ValueError(f"shot {k}: {exc}") from None
-        rng = self._evaluation_rng(seed)
+        rng = evaluation_rng(seed, self.rng)
         placements: dict = {}  # candidate shots often place the cue ball on the same spot
         normals, struck = DrawnNormals(rng), []  # each shot's noise in one generator call
         for shot, action in decoded:
@@ -555,12 +463,3 @@ class Game:
         except ValueError as exc:
             zero = (0.0, 0.0)
             return StruckShot(shot, self.shooter, self.ball_in_hand, None, self._balls, zero, zero, exc)
-
-    def _evaluation_rng(self, seed):
-        if isinstance(seed, np.random.Generator):
-            return seed
-        if seed is not None:
-            return np.random.default_rng(seed)
-        twin = np.random.Generator(type(self.rng.bit_generator)())
-        twin.bit_generator.state = copy.deepcopy(self.rng.bit_generator.state)
-        return twin

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass
 
 import numpy as np
@@ -43,6 +44,18 @@ class DrawnNormals:
         z = self.values[self.at]
         self.at += 1
         return loc + scale * z
+
+
+def evaluation_rng(seed, game_rng: np.random.Generator) -> np.random.Generator:
+    """The generator `Game.evaluate` draws its noise from: `seed` itself if it is a Generator, a
+    new one seeded with it, or (None) a copy of the game's own `game_rng`, which stays as it is."""
+    if isinstance(seed, np.random.Generator):
+        return seed
+    if seed is not None:
+        return np.random.default_rng(seed)
+    twin = np.random.Generator(type(game_rng.bit_generator)())
+    twin.bit_generator.state = copy.deepcopy(game_rng.bit_generator.state)
+    return twin
 
 
 def normals_per_draw(shot: Shot, noise) -> int:

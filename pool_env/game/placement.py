@@ -112,6 +112,23 @@ def place_cue_ball(balls: Balls, table: Table, physics: Physics, where: str, wan
     raise ValueError("no free spot for the cue ball")
 
 
+def cue_ball_placed(balls: Balls, table: Table, physics: Physics, where: str, wanted,
+                    placements: dict | None = None) -> Balls:
+    """`place_cue_ball` for a shot with ball in hand `where`: at `wanted` (None: where the cue
+    ball lies, or the area's centre if it is pocketed). `placements` keeps the placements from
+    these balls by the spot asked for (a planner's candidate shots share their spots)."""
+    if wanted is None:
+        wanted = balls.xy[0] if not balls.pocketed[0] else area_centre(placement_area(table, where,
+                                                                                      float(balls.radii[0])))
+    key = (float(wanted[0]), float(wanted[1]))
+    found = None if placements is None else placements.get(key)
+    if found is None:
+        found = place_cue_ball(balls, table, physics, where, wanted)
+        if placements is not None:
+            placements[key] = found
+    return found
+
+
 def _placed(balls, spot, table, physics):
     """The balls with the cue ball at `spot`, or None if the spot is off the table's cloth."""
     placed = balls.with_ball_at(0, spot)

@@ -1,0 +1,43 @@
+"""A struck shot's record: its simulation's outcome judged by the rules from the state it was played in."""
+
+from __future__ import annotations
+
+from .. import rules
+from ..physics import Table
+from .batch import SHOT_ERRORS
+from .modes import Mode
+from .shot_record import ShotRecord, StruckShot
+
+
+def shot_record(struck: StruckShot, result, state, table: Table, mode: Mode, decisions: bool,
+                rulings: dict | None = None) -> ShotRecord:
+    """The record of `struck`'s simulation `result` (its `Result`, or the error simulating it
+    raised) from the rules' `state` (None without rules) of a `mode` game on `table`. A choice
+    the rules leave waits when `decisions`, else its default is taken. `rulings` caches the
+    rules' judgements from `state`, by outcome, called pocket, called ball and push out."""
+    head = (struck.shooter, struck.shot, struck.action, struck.ball_in_hand, struck.called_pocket, struck.force,
+            struck.tip, struck.placed, state)
+    if isinstance(result, Exception):
+        if not isinstance(result, SHOT_ERRORS):
+            raise result
+        error = f"{type(result).__name__}: {result}"
+        return ShotRecord(*head, struck.placed, None, None, state, False, error, elevation=struck.elevation,
+                          called_ball=struck.called_ball)
+    final = result.final
+    if mode.rules is None:
+        cleared = table.pockets.shape[0] > 0 and bool(final.pocketed[1:].all())
+        over = mode.one_shot or bool(final.pocketed[0]) or cleared
+        return ShotRecord(*head, final, result, None, None, over, elevation=struck.elevation)
+    outcome = rules.read_outcome(state, result)
+    key = (outcome, struck.called_pocket, struck.called_ball, struck.push_out)
+    judged = None if rulings is None else rulings.get(key)
+    if judged is None:
+        judged = rules.judge(state, outcome, struck.called_pocket, struck.called_ball, struck.push_out)
+        if rulings is not None:
+            rulings[key] = judged
+    after, ruling = judged
+    balls, after = rules.settle(after, ruling, final, table)
+    if not decisions and getattr(after, "pending", None) is not None:  # no re-rack is a default
+        after = rules.decide(after, after.pending.default)
+    return ShotRecord(*head, balls, result, ruling, after, after.over, judged=outcome,
+                      elevation=struck.elevation, called_ball=struck.called_ball)
