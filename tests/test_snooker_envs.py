@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import pool_env  # noqa: F401 (registers the ids)
-from pool_env.envs.game_env import score_text
+from pool_env.envs.captions import score_text
 from pool_env.render.table import SNOOKER_COLOURS, SNOOKER_RED_RGB, TableRenderer, ball_style
 from pool_env.rules.snooker_spots import colour_spots
 

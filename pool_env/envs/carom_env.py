@@ -11,9 +11,10 @@ from ..render.overlay import overlay
 from ..render.playback import ShotPlayback, step_shot_frames
 from ..render.window import HumanWindow
 from .break_env import can_render
-from .game_env import captioned, resolve_opponent, shot_caption
+from .captions import captioned, shot_caption
 from .infos import sampled_info
 from .obs_types import Observer
+from .opponents import resolve_opponent
 
 AGENT, OPPONENT = 0, 1
 WINNERS = {None: -1, AGENT: 0, OPPONENT: 1}  # info["winner"]: -1 none (or a draw: info["draw"])

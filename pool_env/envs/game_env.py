@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import gymnasium as gym
 import numpy as np
 from gymnasium import logger, spaces
@@ -11,79 +9,20 @@ from gymnasium import logger, spaces
 from .. import rules
 from ..game import GAME_BALLS, Game, Shot, env_layout, game_observation, game_observation_size, game_view
 from ..physics import Balls
-from ..players import make_player
 from ..render.overlay import overlay
 from ..render.playback import ShotPlayback, step_shot_frames
 from ..render.table import game_palette
 from ..render.window import HumanWindow
 from ..rules import codes
 from .break_env import StepsShots, can_render, check_env_options, check_reset_options, run_step
+from .captions import captioned, score_text, shot_caption
 from .infos import check_info_mode, no_shot_info, record_info, rich_info, sampled_info, score_info, winner_code
 from .obs_types import Observer
+from .opponents import OpponentDecision, resolve_opponent
 
 SHAPING_BALL, SHAPING_FOUL = 0.1, 0.1  # shaping: + per ball the agent pockets legally, - per foul
 RESET_OPTIONS = ("balls", "ball_in_hand", "agent_breaks")
 OPPONENT = 1  # the opponent is player 1 of the game, the agent player 0
-
-
-def shot_caption(game, record, who: str) -> str:
-    """The overlay's first line for a shot of `who`: the game, the shot's number, ball in hand,
-    the 8's called pocket, the score after it (snooker)."""
-    hand = record.ball_in_hand
-    hand = f", ball in hand ({hand.replace('_', ' ')})" if hand else ""
-    shoots_eight = game.mode == "eight_ball" and 8 in rules.legal_targets(record.state_before)
-    called = record.called_pocket
-    called = f", 8 called in pocket {called}" if called is not None and shoots_eight else ""
-    return f"{game.label}  shot {record.state_after.shot}: {who} shoots{hand}{called}{score_text(record.state_after)}"
-
-
-def score_text(state) -> str:
-    """", score a-b" (player 0's first) for a game that keeps a score (snooker), else ""."""
-    scores = getattr(state, "scores", None)
-    return "" if scores is None else f", score {scores[0]}-{scores[1]}"
-
-
-def captioned(shots, captions, on: bool = True) -> list:
-    """The frames of several shots (a list of frame lists) with their (caption, messages):
-    the caption on every frame, the rules' messages added on each shot's last."""
-    frames = []
-    for shot, (caption, messages) in zip(shots, captions):
-        if not on:
-            frames += shot
-            continue
-        frames += [overlay(frame, [caption]) for frame in shot[:-1]]
-        frames.append(overlay(shot[-1], [caption, *messages]))
-    return frames
-
-
-@dataclass(frozen=True)
-class OpponentDecision:
-    """What `step_shots` yields (with `batch_opponent` on) when a built-in player that decides
-    from the game's state (`decide_batch` of `pool_env.game.GameView`s) is to shoot: its driver
-    sends back `player.decide(view)`, the `Shot`, which it may compute for many sub-envs in one
-    `decide_batch` call."""
-
-    player: object
-    view: object
-
-
-def resolve_opponent(opponent, env):
-    """(the opponent as a callable observation -> action, the player to reseed at each reset
-    (a built-in name's), its name); (None, None, None) for practice."""
-    if opponent is None:
-        return None, None, None
-    if isinstance(opponent, str):
-        try:
-            player = make_player(opponent, env)
-        except ValueError as exc:
-            raise ValueError(str(exc).replace("unknown player", "unknown opponent", 1)) from None
-        return player.act, player, opponent
-    name = getattr(opponent, "name", type(opponent).__name__)
-    if hasattr(opponent, "act") and callable(opponent.act):
-        return opponent.act, None, name
-    if callable(opponent):
-        return opponent, None, getattr(opponent, "__name__", name)
-    raise ValueError(f"opponent must be a name, None, an agent with act(observation) or a callable, got {opponent!r}")
 
 
 class PoolGameEnv(StepsShots, HumanWindow, gym.Env):

@@ -14,7 +14,8 @@ from gymnasium.vector.utils import batch_space
 
 from ..game import break_observations, simulate_struck_batch
 from .break_env import PoolBreakEnv
-from .game_env import OpponentDecision, PoolGameEnv
+from .game_env import PoolGameEnv
+from .opponents import OpponentDecision
 
 
 def decide_all(asked: dict) -> dict:
