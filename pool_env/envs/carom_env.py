@@ -10,8 +10,8 @@ from ..game import CAROM_OBSERVATION_SIZE, ELEVATED, Game, carom_observation, si
 from ..render.overlay import overlay
 from ..render.playback import ShotPlayback, step_shot_frames
 from ..render.window import HumanWindow
-from .break_env import can_render
 from .captions import captioned, shot_caption
+from .common import can_render
 from .infos import sampled_info
 from .obs_types import Observer
 from .opponents import resolve_opponent

@@ -14,8 +14,8 @@ from ..render.playback import ShotPlayback, step_shot_frames
 from ..render.table import game_palette
 from ..render.window import HumanWindow
 from ..rules import codes
-from .break_env import StepsShots, can_render, check_env_options, check_reset_options, run_step
 from .captions import captioned, score_text, shot_caption
+from .common import StepsShots, can_render, check_env_options, check_reset_options, run_step
 from .infos import check_info_mode, no_shot_info, record_info, rich_info, sampled_info, score_info, winner_code
 from .obs_types import Observer
 from .opponents import OpponentDecision, resolve_opponent

@@ -7,7 +7,7 @@ import numpy as np
 from gymnasium.utils import seeding
 from pettingzoo import AECEnv
 
-from ..envs.break_env import can_render, check_env_options
+from ..envs.common import can_render, check_env_options
 from ..envs.game_env import captioned, shot_caption
 from ..envs.obs_types import Observer
 from ..game import CAROM_OBSERVATION_SIZE, Game, carom_observation

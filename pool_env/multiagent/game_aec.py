@@ -8,7 +8,7 @@ from gymnasium.utils import seeding
 from pettingzoo import AECEnv
 from pettingzoo.utils import wrappers
 
-from ..envs.break_env import can_render, check_env_options, check_reset_options
+from ..envs.common import can_render, check_env_options, check_reset_options
 from ..envs.game_env import SHAPING_BALL, SHAPING_FOUL, PoolGameEnv, captioned, shot_caption
 from ..envs.infos import check_info_mode, no_shot_info, record_info, rich_info, sampled_info, score_info, winner_code
 from ..envs.obs_types import Observer
