@@ -162,6 +162,13 @@ def _rate(rows):
 
 
 def summarise(shots, ours, theirs, meta):
+    """(one row per shot comparing the two engines, the report's text in markdown)."""
+    rows = compared_rows(shots, ours, theirs)
+    return rows, "\n".join(agreement_lines(rows) + disagreement_lines(rows))
+
+
+def compared_rows(shots, ours, theirs) -> list:
+    """One dict a shot: its grid point, each engine's pocket, contacts and final balls, and why they disagree."""
     rows = []
     for s, a, b in zip(shots, ours, theirs):
         target = POCKET_OF[s["kind"]]
@@ -172,6 +179,11 @@ def summarise(shots, ours, theirs, meta):
                      "same_pocket": a["pocket"] == b["pocket"], "ours_contacts": a["contacts"],
                      "pooltool_contacts": b["contacts"], "ours_final": a["final"], "pooltool_final": b["final"],
                      "cause": None if pot_a == pot_b else classify(a, b)})
+    return rows
+
+
+def agreement_lines(rows) -> list:
+    """The agreement overall and by pocket kind, speed, spin, distance and cut angle."""
     lines = []
     n = len(rows)
     agree = sum(r["agree"] for r in rows)
@@ -201,6 +213,12 @@ def summarise(shots, ours, theirs, meta):
             sub = [r for r in rows if r["kind"] == kind and r["angle"] == ang]
             lines.append(f"| {kind} | {ang:g} | {len(sub)} | {100 * _rate(sub):.1f} % |")
     lines.append("")
+    return lines
+
+
+def disagreement_lines(rows) -> list:
+    """The disagreements grouped by cause, then each one."""
+    lines = []
     bad = [r for r in rows if not r["agree"]]
     groups = collections.defaultdict(list)
     for r in bad:
@@ -226,7 +244,7 @@ def summarise(shots, ours, theirs, meta):
                          f"{'-'.join(c[0] for c in _approach(r['ours_contacts'])) or '.'} | "
                          f"{'-'.join(c[0] for c in _approach(r['pooltool_contacts'])) or '.'}")
     lines.append("```")
-    return rows, "\n".join(lines)
+    return lines
 
 
 def main(argv=None):
