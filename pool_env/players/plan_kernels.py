@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from ..physics.ball_ball import ALCIATORE_A, ALCIATORE_B, ALCIATORE_C
-from ..physics.jit import helper, kernel
+from ..physics.jit import helper, inlined, kernel
 
 MAX_CUT_DEGREES = 75.0  # the thinnest cut the ghost-ball player plays
 AIM_SAMPLES = 21  # points along a pocket's mouth chord (pocket_aim's samples)
@@ -124,13 +124,66 @@ def path_clear(xy, on, q, ball, ax, ay, bx, by, clearance):
 
 
 # --- pocket windows -------------------------------------------------------------------------------
+MAX_BALLS = 63  # the balls of a position the windows take (the cue ball's included): a bit each in an int64
+BOX_HAIR = 1e-9  # m: the corridor's box grown past each line's own box, whatever the mouth points' roundings
+
+
 @helper
-def window_open(xy, on, q, ball, ax, ay, bx, by, rails, reach):
-    """The line from the ball (ax, ay) to the mouth point (bx, by) clears the rails and the other balls."""
-    for r in range(rails.shape[0]):
-        if segments_within(ax, ay, bx, by, rails[r, 0], rails[r, 1], rails[r, 2], rails[r, 3], reach[0]):
-            return False
-    return path_clear(xy, on, q, ball, ax, ay, bx, by, reach[1])
+def corridor_balls(xy, on, q, ball, ax, ay, jaw, clearance):
+    """A bit mask of the object balls other than `ball` whose centres lie in the box of every
+    line from (ax, ay) to the mouth jaw[0:2]-jaw[2:4], grown by `clearance` (and BOX_HAIR): a
+    ball outside it is outside each line's own box, where `ball_blocks` passes it by."""
+    lo_x = min(ax, min(jaw[0], jaw[2])) - clearance - BOX_HAIR
+    hi_x = max(ax, max(jaw[0], jaw[2])) + clearance + BOX_HAIR
+    lo_y = min(ay, min(jaw[1], jaw[3])) - clearance - BOX_HAIR
+    hi_y = max(ay, max(jaw[1], jaw[3])) + clearance + BOX_HAIR
+    mask = 0
+    for j in range(1, xy.shape[1]):
+        if on[q, j] and j != ball and lo_x <= xy[q, j, 0] <= hi_x and lo_y <= xy[q, j, 1] <= hi_y:
+            mask |= 1 << j
+    return mask
+
+
+@helper
+def ball_blocks(xy, q, j, ax, ay, bx, by, clearance):
+    """Ball j of position q comes within `clearance` of the line (ax, ay)-(bx, by), as `path_clear` tests each ball."""
+    px, py = xy[q, j, 0], xy[q, j, 1]
+    if px < min(ax, bx) - clearance or px > max(ax, bx) + clearance or py < min(ay, by) - clearance \
+            or py > max(ay, by) + clearance:
+        return False
+    return point_segment_within(px, py, ax, ay, bx, by, clearance)
+
+
+@helper
+def rail_blocks(line, near, r, reach):
+    """Rail r of near comes within `reach` of the line (ax, ay, bx, by) (`segments_within`)."""
+    return segments_within(line[0], line[1], line[2], line[3], near[r, 0], near[r, 1], near[r, 2], near[r, 3], reach)
+
+
+@inlined
+def line_blocked(xy, q, line, near, k, balls, reach, last):
+    """Whether a rail of near[:k] (`segments_within`, reach[0]) or an object ball of the mask
+    `balls` (`corridor_balls`; `ball_blocks`, reach[1]) is in the way of the line (ax, ay, bx,
+    by) from a ball to a mouth point (geometry.pocket_aim's test of one point). `last` (the
+    last rail and ball found in the way, or -1) are tried first: what blocks one point's line
+    usually blocks the next one's (the points an obstacle blocks are one run of the mouth),
+    and the verdict does not depend on the order. Returns (blocked, last rail, last ball),
+    with the one found in the way now in its place."""
+    ax, ay, bx, by = line
+    last_rail, last_ball = last
+    if last_rail >= 0 and rail_blocks(line, near, last_rail, reach[0]):
+        return True, last_rail, last_ball
+    if last_ball >= 0 and ball_blocks(xy, q, last_ball, ax, ay, bx, by, reach[1]):
+        return True, last_rail, last_ball
+    for r in range(k):
+        if r != last_rail and rail_blocks(line, near, r, reach[0]):
+            return True, r, last_ball
+    j, rest = 0, balls
+    while rest:  # the mask's balls, by number
+        if rest & 1 and j != last_ball and ball_blocks(xy, q, j, ax, ay, bx, by, reach[1]):
+            return True, last_rail, j
+        j, rest = j + 1, rest >> 1
+    return False, last_rail, last_ball
 
 
 @helper
@@ -152,17 +205,25 @@ def near_rails(rails, ax, ay, jaw, reach, out):
 @kernel
 def aim_kernel(xy, on, index, jaws, rails, lams, reach, near, out):
     """Per candidate (position, ball, pocket): the middle of the widest open run of mouth
-    points and the share of the mouth open, as out[i] = (x, y, share); share 0: closed."""
+    points (the line from the ball to the point clears the rails by reach[0] and the other
+    balls' centres by reach[1]: `line_blocked`) and the share of the mouth open, as out[i] =
+    (x, y, share); share 0: closed. The scan stops where no run could any more be longer
+    than the longest found (a run as long does not replace it)."""
     samples = lams.shape[0]
     for i in range(index.shape[0]):
         q, ball, p = index[i, 0], index[i, 1], index[i, 2]
         ax, ay, jaw = xy[q, ball, 0], xy[q, ball, 1], jaws[p]
         k = near_rails(rails, ax, ay, jaw, reach[0], near)
-        best, best_start, run = 0, 0, 0
+        balls = corridor_balls(xy, on, q, ball, ax, ay, jaw, reach[1])
+        best, best_start, run, last = 0, 0, 0, (-1, -1)
         for s in range(samples):
+            if run + samples - s <= best:
+                break
             bx = jaw[0] + lams[s] * (jaw[2] - jaw[0])
             by = jaw[1] + lams[s] * (jaw[3] - jaw[1])
-            run = run + 1 if window_open(xy, on, q, ball, ax, ay, bx, by, near[:k], reach) else 0
+            blocked, last_rail, last_ball = line_blocked(xy, q, (ax, ay, bx, by), near, k, balls, reach, last)
+            last = (last_rail, last_ball)
+            run = 0 if blocked else run + 1
             if run > best:  # the first of the longest runs, as argmax picks
                 best, best_start = run, s - run + 1
         out[i, 2] = best / samples

@@ -29,6 +29,7 @@ from .plan_kernels import (
     DN,
     DX,
     DY,
+    MAX_BALLS,
     MAX_CUT_DEGREES,
     OK,
     PATH_STEP,
@@ -88,6 +89,8 @@ class ShotPlanner:
         index = np.ascontiguousarray(index, dtype=np.int64)
         if xy.ndim != 3 or xy.shape[2] != 2 or on.shape != xy.shape[:2]:
             raise ValueError(f"xy must be (Q, n, 2) and on (Q, n), got {xy.shape} and {on.shape}")
+        if xy.shape[1] > MAX_BALLS:
+            raise ValueError(f"a position holds at most {MAX_BALLS} balls, got {xy.shape[1]}")
         if index.ndim != 2 or index.shape[1] != columns:
             raise ValueError(f"index must be (N, {columns}) (position, ball, pocket), got {index.shape}")
         fault = batch_fault(xy, on, index, len(self.pockets))
@@ -127,6 +130,8 @@ class ShotPlanner:
         legal = np.ascontiguousarray(legal, dtype=bool)
         if xy.shape[2:] != (2,) or on.shape != xy.shape[:2] or legal.shape != xy.shape[1:2]:
             raise ValueError(f"xy must be (n, 2), on and legal (n,), got {xy.shape[1:]}, {on.shape[1:]}, {legal.shape}")
+        if xy.shape[1] > MAX_BALLS:
+            raise ValueError(f"a position holds at most {MAX_BALLS} balls, got {xy.shape[1]}")
         return xy, on, legal, xy.shape[1] * len(self.pockets)
 
     def plan_lie(self, xy, on, legal, arrival: float):
