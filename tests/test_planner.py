@@ -248,8 +248,8 @@ def crowded_positions(count=12, seed=5):
 
 def test_the_windows_are_the_plain_loops_bit_for_bit():
     """aims (every candidate, `plan_kernels.aim_kernel`: the obstacle that closed the last
-    point tried first, the scan stopped once no longer run can come) gives what testing every
-    point against every rail and ball gives, to the bit."""
+    point tried first, the scan stopped once no longer run can come or once an obstacle closes
+    every point left) gives what testing every point against every rail and ball gives, to the bit."""
     batch = pl.ShotPlanner(TABLE, PHYSICS, BALL_RADIUS)
     layouts = [(np.array(p["xy"]), np.array(p["on_table"])) for p in POSITIONS] + crowded_positions()
     shares = []

@@ -126,6 +126,7 @@ def path_clear(xy, on, q, ball, ax, ay, bx, by, clearance):
 # --- pocket windows -------------------------------------------------------------------------------
 MAX_BALLS = 63  # the balls of a position the windows take (the cue ball's included): a bit each in an int64
 BOX_HAIR = 1e-9  # m: the corridor's box grown past each line's own box, whatever the mouth points' roundings
+REACH_MARGIN = 1e-9  # relative: `blocks_to_end`'s two tests are made with the reach shrunk by this share
 
 
 @helper
@@ -161,29 +162,49 @@ def rail_blocks(line, near, r, reach):
 
 
 @inlined
-def line_blocked(xy, q, line, near, k, balls, reach, last):
-    """Whether a rail of near[:k] (`segments_within`, reach[0]) or an object ball of the mask
-    `balls` (`corridor_balls`; `ball_blocks`, reach[1]) is in the way of the line (ax, ay, bx,
-    by) from a ball to a mouth point (geometry.pocket_aim's test of one point). `last` (the
-    last rail and ball found in the way, or -1) are tried first: what blocks one point's line
-    usually blocks the next one's (the points an obstacle blocks are one run of the mouth),
-    and the verdict does not depend on the order. Returns (blocked, last rail, last ball),
-    with the one found in the way now in its place."""
+def line_blocker(xy, q, line, near, k, balls, reach, last):
+    """What is in the way of the line (ax, ay, bx, by) from a ball to a mouth point
+    (geometry.pocket_aim's test of one point): rail r of near[:k] (`segments_within`,
+    reach[0]) as r, or object ball j of the mask `balls` (`corridor_balls`; `ball_blocks`,
+    reach[1]) as k + j; -1 if nothing is. `last` (the last rail and ball found in the way, or
+    -1) are tried first: what blocks one point's line usually blocks the next one's (the
+    points an obstacle blocks are one run of the mouth), and the verdict does not depend on
+    the order."""
     ax, ay, bx, by = line
     last_rail, last_ball = last
     if last_rail >= 0 and rail_blocks(line, near, last_rail, reach[0]):
-        return True, last_rail, last_ball
+        return last_rail
     if last_ball >= 0 and ball_blocks(xy, q, last_ball, ax, ay, bx, by, reach[1]):
-        return True, last_rail, last_ball
+        return k + last_ball
     for r in range(k):
         if r != last_rail and rail_blocks(line, near, r, reach[0]):
-            return True, r, last_ball
+            return r
     j, rest = 0, balls
     while rest:  # the mask's balls, by number
         if rest & 1 and j != last_ball and ball_blocks(xy, q, j, ax, ay, bx, by, reach[1]):
-            return True, last_rail, j
+            return k + j
         j, rest = j + 1, rest >> 1
-    return False, last_rail, last_ball
+    return -1
+
+
+@helper
+def blocks_to_end(xy, q, a, jaw, span, near, k, o, reach):
+    """Obstacle o (as `line_blocker` numbers them) is in the way of the lines from the ball at
+    a = (ax, ay) to both mouth points of span = (lam_from, lam_to), with its reach shrunk by
+    REACH_MARGIN; then it is in the way of every point's line between, as the plain test
+    computes it. (The points whose lines come within a distance of a convex obstacle, a
+    rail's segment or a ball's centre, are one run of the mouth: the lines from a point
+    through a convex set form a convex cone. The margin is far beyond the tests' roundings,
+    about 1e-16 m, and beyond the mouth points' own off the chord.)"""
+    shrunk = 1.0 - REACH_MARGIN
+    for lam in span:
+        bx, by = jaw[0] + lam * (jaw[2] - jaw[0]), jaw[1] + lam * (jaw[3] - jaw[1])
+        if o < k:
+            if not rail_blocks((a[0], a[1], bx, by), near, o, reach[0] * shrunk):
+                return False
+        elif not ball_blocks(xy, q, o - k, a[0], a[1], bx, by, reach[1] * shrunk):
+            return False
+    return True
 
 
 @helper
@@ -206,24 +227,35 @@ def near_rails(rails, ax, ay, jaw, reach, out):
 def aim_kernel(xy, on, index, jaws, rails, lams, reach, near, out):
     """Per candidate (position, ball, pocket): the middle of the widest open run of mouth
     points (the line from the ball to the point clears the rails by reach[0] and the other
-    balls' centres by reach[1]: `line_blocked`) and the share of the mouth open, as out[i] =
+    balls' centres by reach[1]: `line_blocker`) and the share of the mouth open, as out[i] =
     (x, y, share); share 0: closed. The scan stops where no run could any more be longer
-    than the longest found (a run as long does not replace it)."""
+    than the longest found (a run as long does not replace it), or where an obstacle met anew
+    is in the way of every point to the end (`blocks_to_end`)."""
     samples = lams.shape[0]
     for i in range(index.shape[0]):
         q, ball, p = index[i, 0], index[i, 1], index[i, 2]
         ax, ay, jaw = xy[q, ball, 0], xy[q, ball, 1], jaws[p]
         k = near_rails(rails, ax, ay, jaw, reach[0], near)
         balls = corridor_balls(xy, on, q, ball, ax, ay, jaw, reach[1])
-        best, best_start, run, last = 0, 0, 0, (-1, -1)
+        best, best_start, run, last_rail, last_ball, previous = 0, 0, 0, -1, -1, -1
         for s in range(samples):
             if run + samples - s <= best:
                 break
             bx = jaw[0] + lams[s] * (jaw[2] - jaw[0])
             by = jaw[1] + lams[s] * (jaw[3] - jaw[1])
-            blocked, last_rail, last_ball = line_blocked(xy, q, (ax, ay, bx, by), near, k, balls, reach, last)
-            last = (last_rail, last_ball)
-            run = 0 if blocked else run + 1
+            o = line_blocker(xy, q, (ax, ay, bx, by), near, k, balls, reach, (last_rail, last_ball))
+            if o >= 0:
+                run = 0
+                if o < k:
+                    last_rail = o
+                else:
+                    last_ball = o - k
+                if o != previous and blocks_to_end(xy, q, (ax, ay), jaw, (lams[samples - 1], lams[s]), near, k, o,
+                                                   reach):
+                    break  # every point left is closed: no run to come
+            else:
+                run += 1
+            previous = o
             if run > best:  # the first of the longest runs, as argmax picks
                 best, best_start = run, s - run + 1
         out[i, 2] = best / samples
