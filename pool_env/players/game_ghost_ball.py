@@ -54,7 +54,7 @@ class GameGhostBallAgent(Agent):
         self.physics = Physics.standard() if physics is None else physics
         self.radius = radius
         self.planner = GhostBallAgent(self.table, self.physics, radius=radius)
-        self.grids: dict = {}  # the placement grid of each area (ball in hand), made once
+        self.grids: dict = {}  # each ball-in-hand area's `hand_tables`, made once
 
     @classmethod
     def from_env(cls, env, **kwargs) -> GameGhostBallAgent:
@@ -108,16 +108,17 @@ class GameGhostBallAgent(Agent):
 
     def in_hand(self, view) -> Shot:
         """`decide` of a view with ball in hand (not the break): the spots of `cue_spots`
-        planned from in one compiled call (`planner.ShotPlanner.best_from`)."""
+        planned from, in one compiled call with the windows and the spots
+        (`planner.ShotPlanner.plan_in_hand`)."""
         xy, objects, legal = self.arrays([view])
         batch, arrival = self.planner.batch, self.planner.arrival_speed
-        index, aims = batch.windows(xy[0], objects[0], legal[0])
-        _, spots, cue = self.cue_spots(view, xy[0], objects[0], index, aims)
+        area = placement_area(self.table, view.ball_in_hand, self.radius)
+        index, aims, spots, s, k, row = batch.plan_in_hand(xy[0], objects[0], legal[0], arrival,
+                                                           self.hand_tables(area), PLACEMENT_TRIES)
+        cue = np.array([0.5 * (area[0] + area[1]), 0.5 * (area[2] + area[3])])  # the area's middle
         pot = None
-        if spots:
-            row, s, k = batch.best_from(xy, objects, index, aims, np.array(spots), arrival)
-            if s >= 0:
-                cue, pot = spots[s], pot_of(index[k], row)
+        if s >= 0:
+            cue, pot = spots[s], pot_of(index[k], row)
         place = (float(cue[0]), float(cue[1]))
         if not view.on_table[0]:  # pots are planned for a cue ball on the table: a pocketed one plays safe
             pot = None
@@ -237,24 +238,31 @@ class GameGhostBallAgent(Agent):
         each legal ball for each open pocket, the best-ranked `PLACEMENT_TRIES` (by open mouth
         and distances), or a coarse grid over the area when none is free (spots inside the
         area, clear of every object ball: `plan_kernels.straight_in_spots`, `free_spots`)."""
-        limits = np.array([*area, 2.2 * self.radius, self.radius])
+        backs, limits, grid = self.hand_tables(area)
         xy, objects = np.ascontiguousarray(xy, dtype=np.float64), np.ascontiguousarray(objects, dtype=bool)
         index, aims = np.ascontiguousarray(index, dtype=np.int64), np.ascontiguousarray(aims, dtype=np.float64)
-        backs = np.array(STRAIGHT_IN_BACKS)
         spot, rank = np.empty((len(index) * len(backs), 2)), np.empty(len(index) * len(backs))
         kept = straight_in_spots(xy, objects, index, aims, backs, limits, spot, rank)
         spot, rank = spot[:kept], rank[:kept]
         order = np.lexsort((spot[:, 1], spot[:, 0], rank))[::-1][:PLACEMENT_TRIES]  # sorted(reverse=True)
         if len(order):
             return list(spot[order])
-        grid = self.grids.get(area)
-        if grid is None:
-            x_lo, x_hi, y_lo, y_hi = area
-            grid = self.grids[area] = np.array([(x, y) for x in np.linspace(x_lo, x_hi, PLACEMENT_GRID[0])
-                                                for y in np.linspace(y_lo, y_hi, PLACEMENT_GRID[1])])
         keep = np.empty(len(grid), dtype=bool)
         free_spots(xy, objects, grid, limits, keep)
         return list(grid[keep])
+
+    def hand_tables(self, area) -> tuple:
+        """(backs, limits, grid) of a ball-in-hand area, as `position_kernels.straight_in_spots`
+        and `free_spots` read them: the straight-in spots' distances behind the ball, the area
+        and the clearances, the coarse grid over the area; made once per area."""
+        found = self.grids.get(area)
+        if found is None:
+            x_lo, x_hi, y_lo, y_hi = area
+            grid = np.array([(x, y) for x in np.linspace(x_lo, x_hi, PLACEMENT_GRID[0])
+                             for y in np.linspace(y_lo, y_hi, PLACEMENT_GRID[1])])
+            found = self.grids[area] = (np.array(STRAIGHT_IN_BACKS), np.array([*area, 2.2 * self.radius, self.radius]),
+                                        grid)
+        return found
 
     def best(self, xy, on_table, legal):
         """The best-scoring pot (`Pot`) of a legal first contact, or None."""

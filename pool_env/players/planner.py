@@ -44,7 +44,7 @@ from .plan_kernels import (
     plan_fault,
     plan_kernel,
 )
-from .position_kernels import all_finite, best_from, plan_from, plan_lie, position_windows
+from .position_kernels import all_finite, best_from, plan_from, plan_in_hand, plan_lie, position_windows
 
 __all__ = ["D1", "D2", "DN", "DX", "DY", "OK", "PLAN_COLUMNS", "SCORE", "SCRATCH", "SPEED", "ShotPlanner",
            "first_best"]
@@ -159,6 +159,34 @@ class ShotPlanner:
         if count < 0:
             raise ValueError("xy must be finite for the cue ball and the object balls on the table")
         return index[:count], aims[:count]
+
+    def plan_in_hand(self, xy, on, legal, arrival: float, hand, tries: int):
+        """One position's ball-in-hand pots in one compiled call (`position_kernels.plan_in_hand`):
+        xy (n, 2), on (n,) and legal (n,) as `windows` takes them; hand = (backs (B,), limits
+        (6,), grid (G, 2)) as `position_kernels.straight_in_spots` and `free_spots` read them;
+        the best-ranked `tries` straight-in spots are tried (the grid's free spots if none is).
+        Returns (index, aims: `windows`; the spots tried (S, 2); the spot of the best pot or -1,
+        its candidate or -1, its row (PLAN_COLUMNS,) or None: `best_from` of those spots).
+        ValueError for a position that is not finite."""
+        xy, on, legal, m = self.one_position(xy, on, legal)
+        backs, limits, grid = hand
+        index, aims, tried = np.empty((m, 3), dtype=np.int64), np.empty((m, 3)), np.empty((max(tries, len(grid)), 2))
+        spots, ranks, order, keep = self.hand_scratch(m * len(backs), tries, len(grid))
+        count, t, spot, i = plan_in_hand(xy, on, legal, self.tables, float(arrival), hand,
+                                         (index, aims, spots, ranks, order, tried, keep, self.single))
+        if count < 0:
+            raise ValueError("xy must be finite for the cue ball and the object balls on the table")
+        return index[:count], aims[:count], tried[:t], spot, i, (None if spot < 0 else self.single[4].copy())
+
+    def hand_scratch(self, spots: int, tries: int, grid: int) -> tuple:
+        """`plan_in_hand`'s scratch arrays (spots (K, 2), ranks (K,), order (T,), keep (G,)),
+        made once per size and reused (nothing returned points into them)."""
+        key = ("hand", spots, tries, grid)
+        found = self.work.get(key)
+        if found is None:
+            found = self.work[key] = (np.empty((spots, 2)), np.empty(spots), np.empty(tries, dtype=np.int64),
+                                      np.empty(grid, dtype=np.bool_))
+        return found
 
     def from_arrays(self, xy, on, index, aims, spots) -> tuple:
         """(xy, on, index, aims, spots) as `plan_from` and `best_from` read them; ValueError

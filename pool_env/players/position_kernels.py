@@ -133,6 +133,64 @@ def plan_from(xy, on, index, aims, spots, tables, arrival, buffers):
 
 
 @helper
+def ahead(spots, ranks, a, b):
+    """Spot a of spots (K, 2) ranks before spot b: (rank, x, y) greater, as sorting them in reverse orders them."""
+    if ranks[a] != ranks[b]:
+        return ranks[a] > ranks[b]
+    if spots[a, 0] != spots[b, 0]:
+        return spots[a, 0] > spots[b, 0]
+    return spots[a, 1] > spots[b, 1]
+
+
+@helper
+def top_spots(spots, ranks, kept, order):
+    """The best-ranked of spots[:kept] (`ahead`; equal ones, the same spot, the later first),
+    at most order.shape[0] of them, by index into order, best first; returns how many."""
+    t = 0
+    for m in range(kept):
+        j = t
+        while j > 0 and not ahead(spots, ranks, order[j - 1], m):
+            j -= 1
+        if j >= order.shape[0]:
+            continue
+        for u in range(min(t, order.shape[0] - 1), j, -1):
+            order[u] = order[u - 1]
+        order[j] = m
+        t = min(t + 1, order.shape[0])
+    return t
+
+
+@kernel
+def plan_in_hand(xy, on, legal, tables, arrival, hand, buffers):
+    """One position's ball-in-hand pots in one call: its windows (`position_windows`), the
+    straight-in spots behind its open windows (`straight_in_spots`), the best-ranked of them
+    (`top_spots`, as many as `order` holds) or, if none is free, the free spots of the grid
+    (`free_spots`), and the best pot from those (`best_from`). hand = (backs, limits, grid
+    (G, 2)) as `straight_in_spots` and `free_spots` read them; buffers = (index (M, 3), aims
+    (M, 3), spots (2 M, 2), ranks (2 M,), order (T,) int, tries (max(T, G), 2), keep (G,),
+    best_from's buffers). The spots tried go into tries. Returns (candidates, spots tried,
+    the spot of the best pot or -1, its candidate or -1); (-1, 0, -1, -1) if a position is
+    not finite."""
+    index, aims, spots, ranks, order, tries, keep, single = buffers
+    backs, limits, grid = hand
+    k = position_windows(xy, on, legal, tables, index, aims)
+    if k < 0:
+        return -1, 0, -1, -1
+    kept = straight_in_spots(xy[0], on[0], index[:k], aims[:k], backs, limits, spots, ranks)
+    t = top_spots(spots, ranks, kept, order)
+    for u in range(t):
+        tries[u, 0], tries[u, 1] = spots[order[u], 0], spots[order[u], 1]
+    if t == 0:  # no straight-in spot is free: the grid's free spots
+        free_spots(xy[0], on[0], grid, limits, keep)
+        for g in range(grid.shape[0]):
+            if keep[g]:
+                tries[t, 0], tries[t, 1] = grid[g, 0], grid[g, 1]
+                t += 1
+    spot, i = best_from(xy, on, index[:k], aims[:k], tries[:t], tables, arrival, single)
+    return k, t, spot, i
+
+
+@helper
 def finite_2d(x):
     """Every entry of the 2-D array x is finite."""
     for i in range(x.shape[0]):
