@@ -55,6 +55,7 @@ class GameGhostBallAgent(Agent):
         self.radius = radius
         self.planner = GhostBallAgent(self.table, self.physics, radius=radius)
         self.grids: dict = {}  # each ball-in-hand area's `hand_tables`, made once
+        self.scratch: dict = {}  # `safety_scratch`'s arrays by the number of balls
 
     @classmethod
     def from_env(cls, env, **kwargs) -> GameGhostBallAgent:
@@ -286,10 +287,23 @@ class GameGhostBallAgent(Agent):
         """Full at the nearest legal ball with a clear path (the nearest if none is clear;
         `plan_kernels.safety_ball`)."""
         n = len(on_table)
-        by_number = np.zeros(n, dtype=bool)
+        by_number, order, gaps = self.safety_scratch(n)
         by_number[1:] = legal
-        ball = safety_ball(np.ascontiguousarray(xy, dtype=np.float64)[None], np.asarray(on_table, dtype=bool)[None],
-                           by_number, 2.0 * self.radius * PATH_CLEARANCE, np.empty(n, dtype=np.int64), np.empty(n))
+        xy = np.ascontiguousarray(xy, dtype=np.float64)
+        clearance = 2.0 * self.radius * PATH_CLEARANCE
+        ball = safety_ball(xy[None], np.asarray(on_table, dtype=bool)[None], by_number, clearance, order, gaps)
         if ball < 0:
             return Shot.aimed((1.0, 0.0), SAFETY_SPEED, place=place)
-        return Shot.aimed(geo.unit(xy[ball] - xy[0]), SAFETY_SPEED, place=place)
+        # geo.unit of the line to the ball in Python floats (the same roundings: numpy's hypot,
+        # IEEE division), which Shot.aimed takes as they are
+        dx, dy = float(xy[ball, 0] - xy[0, 0]), float(xy[ball, 1] - xy[0, 1])
+        length = float(np.hypot(dx, dy))
+        return Shot.aimed((dx / length, dy / length) if length > 0 else (1.0, 0.0), SAFETY_SPEED, place=place)
+
+    def safety_scratch(self, n: int) -> tuple:
+        """`safety`'s arrays for n balls (the legal balls by number, the order and gaps
+        `safety_ball` works in), made once per n and reused (the call holds the GIL)."""
+        found = self.scratch.get(n)
+        if found is None:
+            found = self.scratch[n] = (np.zeros(n, dtype=bool), np.empty(n, dtype=np.int64), np.empty(n))
+        return found
