@@ -148,8 +148,8 @@ def test_the_safety_goes_at_the_nearest_legal_ball_with_a_clear_line():
 
 
 def test_one_position_planned_in_one_call_is_the_batch_plan():
-    """ShotPlanner.plan_lie and plan_from give candidates, aims, plan and first_best's rows; best_from
-    plan_from's choice."""
+    """ShotPlanner.plan_lie and plan_from give candidates, aims, plan and first_best's rows; best_lie
+    plan_lie's choice, best_from plan_from's."""
     agent = GameGhostBallAgent("eight_ball")
     batch = agent.planner.batch
     for balls, state, _, table in positions("PoolEightBall-v0", seed=3, steps=30):
@@ -167,6 +167,10 @@ def test_one_position_planned_in_one_call_is_the_batch_plan():
         best = pool_env.players.planner.first_best(rows, np.zeros(len(index)), 1)[0]
         got_index, got_rows, got_best = batch.plan_lie(xy[0], on[0], legal[0], 0.3)
         assert got_index.tolist() == index.tolist() and got_rows.tobytes() == rows.tobytes() and got_best == best
+        # best_lie plans only the candidates its bound leaves in: plan_lie's choice and row
+        lie_index, found, k = batch.best_lie(xy[0], on[0], legal[0], 0.3)
+        assert lie_index.tolist() == index.tolist() and k == best
+        assert (found is None) == (best < 0) and (found is None or found.tobytes() == rows[best].tobytes())
         spots = np.array([xy[0, 0], xy[0, 0] + 0.05, placement_area(table, "anywhere", BALL_RADIUS)[::2]])
         many, spot, row = batch.plan_from(xy, on, index, aims, spots, 0.3)
         assert many[:len(index)].tobytes() == rows.tobytes()

@@ -98,9 +98,9 @@ class GameGhostBallAgent(Agent):
         planned in one or two compiled calls."""
         if view.ball_in_hand is None and view.on_table[0]:  # the cue ball plays from where it lies
             xy, objects, legal = self.arrays([view])
-            index, rows, k = self.planner.batch.plan_lie(xy[0], objects[0], legal[0], self.planner.arrival_speed)
-            if k >= 0 and rows[k, SCORE] > -math.inf:
-                row = rows[k].tolist()  # Python floats: a Shot takes them as they are
+            index, found, k = self.planner.batch.best_lie(xy[0], objects[0], legal[0], self.planner.arrival_speed)
+            if k >= 0 and found[SCORE] > -math.inf:
+                row = found.tolist()  # Python floats: a Shot takes them as they are
                 return Shot.aimed((row[DX], row[DY]), row[SPEED], pocket=int(index[k, 2]), ball=int(index[k, 1]))
             return self.safety(xy[0], view.on_table, legal[0, 1:], None)
         if view.ball_in_hand is None or (view.on_table.all() and view.ball_in_hand == "behind_head_string"):

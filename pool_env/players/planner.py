@@ -44,7 +44,7 @@ from .plan_kernels import (
     plan_fault,
     plan_kernel,
 )
-from .position_kernels import all_finite, best_from, plan_from, plan_in_hand, plan_lie, position_windows
+from .position_kernels import all_finite, best_from, best_lie, plan_from, plan_in_hand, plan_lie, position_windows
 
 __all__ = ["D1", "D2", "DN", "DX", "DY", "OK", "PLAN_COLUMNS", "SCORE", "SCRATCH", "SPEED", "ShotPlanner",
            "first_best"]
@@ -71,6 +71,7 @@ class ShotPlanner:
         self.work: dict = {}  # the one-position kernels' scratch arrays, by candidates (`scratch`)
         self.single = (np.empty((1, 2)), np.empty(1), np.empty(6), np.empty((1, PLAN_COLUMNS)),
                        np.empty(PLAN_COLUMNS))  # best_from's scratch and its best row
+        self.lie = np.empty((1, 2))  # best_lie's spot: where the cue ball lies
 
     def scratch(self, m: int) -> tuple:
         """Scratch arrays for m candidates of the one-position kernels, (m, 3), (m, 2), (m,)
@@ -148,6 +149,19 @@ class ShotPlanner:
         if count < 0:
             raise ValueError("xy must be finite for the cue ball and the object balls on the table")
         return index[:count], rows[:count], best
+
+    def best_lie(self, xy, on, legal, arrival: float):
+        """`plan_lie`'s choice in one compiled call without planning every candidate
+        (`position_kernels.best_lie`: `best_from` from where the cue ball lies). Returns
+        (index (N, 3), the best pot's row (PLAN_COLUMNS,) or None, its candidate or -1): the
+        same candidate and row as `plan_lie`'s. ValueError for a position that is not finite."""
+        xy, on, legal, m = self.one_position(xy, on, legal)
+        index = np.empty((m, 3), dtype=np.int64)
+        aims = self.scratch(m)[0]
+        count, i = best_lie(xy, on, legal, self.tables, float(arrival), (index, aims, self.lie, self.single))
+        if count < 0:
+            raise ValueError("xy must be finite for the cue ball and the object balls on the table")
+        return index[:count], (None if i < 0 else self.single[4].copy()), i
 
     def windows(self, xy, on, legal):
         """One position's (index, aims): `candidates` and `aims` of xy (n, 2), on (n,) the object

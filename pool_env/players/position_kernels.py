@@ -60,6 +60,22 @@ def plan_lie(xy, on, legal, tables, arrival, buffers):
     return k, best
 
 
+@kernel
+def best_lie(xy, on, legal, tables, arrival, buffers):
+    """`plan_lie`'s choice without its rows, in one call: `position_windows`, then `best_from`
+    from where the cue ball lies (the candidates whose score bound falls below the best so far
+    are not planned). buffers = (index (M, 3), aims (M, 3), spot (1, 2), best_from's buffers;
+    the best pot's row goes into their best). Returns (candidates, the best pot's candidate,
+    the first of equal ones, or -1); (-1, -1) if a position is not finite."""
+    index, aims, spot, single = buffers
+    k = position_windows(xy, on, legal, tables, index, aims)
+    if k < 0:
+        return -1, -1
+    spot[0, 0], spot[0, 1] = xy[0, 0, 0], xy[0, 0, 1]
+    _, i = best_from(xy, on, index[:k], aims[:k], spot, tables, arrival, single)
+    return k, i
+
+
 @helper
 def spot_free(xy, on, x, y, limits):
     """A cue-ball spot (x, y) inside the area limits[0:4] (x_lo, x_hi, y_lo, y_hi) and at least
