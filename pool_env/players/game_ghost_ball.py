@@ -116,18 +116,16 @@ class GameGhostBallAgent(Agent):
         area = placement_area(self.table, view.ball_in_hand, self.radius)
         index, aims, spots, s, k, row = batch.plan_in_hand(xy[0], objects[0], legal[0], arrival,
                                                            self.hand_tables(area), PLACEMENT_TRIES)
-        cue = np.array([0.5 * (area[0] + area[1]), 0.5 * (area[2] + area[3])])  # the area's middle
-        pot = None
-        if s >= 0:
-            cue, pot = spots[s], pot_of(index[k], row)
+        cue = spots[s] if s >= 0 else np.array([0.5 * (area[0] + area[1]), 0.5 * (area[2] + area[3])])  # or the middle
         place = (float(cue[0]), float(cue[1]))
         if not view.on_table[0]:  # pots are planned for a cue ball on the table: a pocketed one plays safe
-            pot = None
-        elif pot is None:  # no spot has a pot: from the area's middle (the windows do not depend on the cue ball)
-            row, s, k = batch.best_from(xy, objects, index, aims, cue[None], arrival)
-            pot = None if s < 0 else pot_of(index[k], row)
-        if pot is not None:
-            return Shot.aimed(pot.direction, pot.speed, place=place, pocket=pot.pocket, ball=pot.ball)
+            k = -1
+        elif s < 0:  # no spot has a pot: from the area's middle (the windows do not depend on the cue ball)
+            row, _, k = batch.best_from(xy, objects, index, aims, cue[None], arrival)
+        if k >= 0:  # the pot's row as Python floats (what `pot_of` reads of it)
+            found = row.tolist()
+            return Shot.aimed((found[DX], found[DY]), found[SPEED], place=place, pocket=int(index[k, 2]),
+                              ball=int(index[k, 1]))
         trial = xy[0].copy()
         trial[0] = cue
         return self.safety(trial, view.on_table, legal[0, 1:], place)
