@@ -14,6 +14,7 @@ from pool_env.players import GameGhostBallAgent, GhostBallAgent
 from pool_env.players import geometry as geo
 from pool_env.players import plan_kernels as pk
 from pool_env.players import planner as pl
+from pool_env.players import window_kernels as wk
 
 POSITIONS = json.loads((Path(__file__).parent / "data" / "planner_positions.json").read_text())["positions"]
 TABLE, PHYSICS = Table.eight_foot(), Physics.standard()
@@ -247,7 +248,7 @@ def crowded_positions(count=12, seed=5):
 
 
 def test_the_windows_are_the_plain_loops_bit_for_bit():
-    """aims (every candidate, `plan_kernels.aim_kernel`: the obstacle that closed the last
+    """aims (every candidate, `window_kernels.aim_kernel`: the obstacle that closed the last
     point tried first, the scan stopped once no longer run can come or once an obstacle closes
     every point left) gives what testing every point against every rail and ball gives, to the bit."""
     batch = pl.ShotPlanner(TABLE, PHYSICS, BALL_RADIUS)
@@ -268,7 +269,7 @@ def test_the_windows_are_the_plain_loops_bit_for_bit():
 
 def test_a_position_of_more_balls_than_the_windows_take_is_refused():
     batch = pl.ShotPlanner(TABLE, PHYSICS, BALL_RADIUS)
-    xy = np.random.default_rng(0).uniform(0.2, 1.0, (pk.MAX_BALLS + 1, 2))
+    xy = np.random.default_rng(0).uniform(0.2, 1.0, (wk.MAX_BALLS + 1, 2))
     on = np.ones(len(xy), dtype=bool)
     with pytest.raises(ValueError, match="at most 63 balls"):
         batch.aims(xy[None], on[None], batch.candidates(on[None]))

@@ -29,7 +29,6 @@ from .plan_kernels import (
     DN,
     DX,
     DY,
-    MAX_BALLS,
     MAX_CUT_DEGREES,
     OK,
     PATH_STEP,
@@ -38,13 +37,13 @@ from .plan_kernels import (
     SCORE,
     SCRATCH,
     SPEED,
-    aim_kernel,
     batch_fault,
     group_best,
     plan_fault,
     plan_kernel,
 )
 from .position_kernels import all_finite, best_from, best_lie, plan_from, plan_in_hand, plan_lie, position_windows
+from .window_kernels import MAX_BALLS, aim_kernel
 
 __all__ = ["D1", "D2", "DN", "DX", "DY", "OK", "PLAN_COLUMNS", "SCORE", "SCRATCH", "SPEED", "ShotPlanner",
            "first_best"]

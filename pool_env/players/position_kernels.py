@@ -1,7 +1,7 @@
 """The ghost-ball planner's compiled calls for one position: its windows, and its pots from its cue-ball spots.
 
 A decision of `GameGhostBallAgent.decide` is one of these calls (or two, with ball in hand):
-each runs `plan_kernels`' loops over the position's candidates (every legal ball into every
+each runs `window_kernels`' and `plan_kernels`' loops over the position's candidates (every legal ball into every
 pocket, in `planner.ShotPlanner.candidates` order) without the batch arrays' setup, and
 picks the best pot as `plan_kernels.group_best` does; the safety's ball and the ball-in-hand
 spots are chosen here too.
@@ -14,7 +14,8 @@ import math
 import numpy as np
 
 from ..physics.jit import helper, kernel
-from .plan_kernels import OK, PLAN_COLUMNS, R_, SCORE, aim_kernel, batch_fault, path_clear, plan_kernel
+from .plan_kernels import OK, PLAN_COLUMNS, R_, SCORE, batch_fault, path_clear, plan_kernel
+from .window_kernels import aim_kernel
 
 
 @kernel
