@@ -148,8 +148,8 @@ def test_the_safety_goes_at_the_nearest_legal_ball_with_a_clear_line():
 
 
 def test_one_position_planned_in_one_call_is_the_batch_plan():
-    """ShotPlanner.plan_lie and plan_from give candidates, aims, plan and first_best's rows; best_from
-    plan_from's choice."""
+    """ShotPlanner.plan_lie and plan_from give candidates, aims, plan and first_best's rows; best_lie
+    plan_lie's choice, best_from plan_from's."""
     agent = GameGhostBallAgent("eight_ball")
     batch = agent.planner.batch
     for balls, state, _, table in positions("PoolEightBall-v0", seed=3, steps=30):
@@ -167,6 +167,10 @@ def test_one_position_planned_in_one_call_is_the_batch_plan():
         best = pool_env.players.planner.first_best(rows, np.zeros(len(index)), 1)[0]
         got_index, got_rows, got_best = batch.plan_lie(xy[0], on[0], legal[0], 0.3)
         assert got_index.tolist() == index.tolist() and got_rows.tobytes() == rows.tobytes() and got_best == best
+        # best_lie plans only the candidates its bound leaves in: plan_lie's choice and row
+        lie_index, found, k = batch.best_lie(xy[0], on[0], legal[0], 0.3)
+        assert lie_index.tolist() == index.tolist() and k == best
+        assert (found is None) == (best < 0) and (found is None or found.tobytes() == rows[best].tobytes())
         spots = np.array([xy[0, 0], xy[0, 0] + 0.05, placement_area(table, "anywhere", BALL_RADIUS)[::2]])
         many, spot, row = batch.plan_from(xy, on, index, aims, spots, 0.3)
         assert many[:len(index)].tobytes() == rows.tobytes()
@@ -254,3 +258,33 @@ def test_plan_from_and_best_from_refuse_windows_or_spots_that_are_not_finite():
         for plan in (batch.plan_from, batch.best_from):
             with pytest.raises(ValueError, match="aims and spots must be finite"):
                 plan(xy, on, index, bad_aims, bad_spots, 0.3)
+
+
+def test_the_ball_in_hand_call_is_the_windows_the_spots_and_best_from_one_by_one():
+    """ShotPlanner.plan_in_hand (one compiled call) against its steps made one by one: the
+    windows, the player's spots (`spots`: numpy's lexsort of the straight-in spots, or the
+    grid's free ones) and best_from of them; crowded layouts (the grid's turn) and open ones."""
+    agent = GameGhostBallAgent("eight_ball")
+    batch, table = agent.planner.batch, agent.table
+    rng = np.random.default_rng(4)
+    kinds = set()
+    for trial in range(80):
+        where = "anywhere" if trial % 2 else "behind_head_string"
+        area = placement_area(table, where, BALL_RADIUS)
+        xy = np.column_stack([rng.uniform(0.1, table.length - 0.1, 16), rng.uniform(0.1, table.width - 0.1, 16)])
+        if trial % 5 == 0:  # the kitchen crowded: few or no straight-in spots are free
+            xy[1:9] = np.column_stack([rng.uniform(area[0], area[1], 8), rng.uniform(area[2], area[3], 8)])
+        on = rng.random(16) < 0.8
+        on[0] = False
+        legal = on & (rng.random(16) < 0.5)
+        index, aims = batch.windows(xy, on, legal)
+        spots = np.array(agent.spots(xy, on, index, aims, area)).reshape(-1, 2)
+        found, spot, k = batch.best_from(xy[None], on[None], index, aims, spots, 0.3)
+        got_index, got_aims, tried, got_spot, got_k, got_row = batch.plan_in_hand(xy, on, legal, 0.3,
+                                                                                  agent.hand_tables(area), 6)
+        assert got_index.tolist() == index.tolist() and got_aims.tobytes() == aims.tobytes()
+        assert tried.tobytes() == spots.tobytes() and (got_spot, got_k) == (spot, k)
+        assert (got_row is None) == (found is None) and (found is None or got_row.tobytes() == found.tobytes())
+        on_grid = len(spots) and all((agent.hand_tables(area)[2] == s).all(axis=1).any() for s in spots)
+        kinds.add(("grid" if on_grid else "straight-in" if len(spots) else "none", spot >= 0))
+    assert {("straight-in", True), ("grid", True)} <= kinds

@@ -14,6 +14,7 @@ from pool_env.players import GameGhostBallAgent, GhostBallAgent
 from pool_env.players import geometry as geo
 from pool_env.players import plan_kernels as pk
 from pool_env.players import planner as pl
+from pool_env.players import window_kernels as wk
 
 POSITIONS = json.loads((Path(__file__).parent / "data" / "planner_positions.json").read_text())["positions"]
 TABLE, PHYSICS = Table.eight_foot(), Physics.standard()
@@ -179,3 +180,98 @@ def test_bad_batches_are_named(change, match):
     with pytest.raises(ValueError, match=match):
         batch.aims(bad["xy"], on, bad["index"])
         batch.plan(bad["cue"], bad["xy"], on, bad["index"], bad["aims"], bad["arrival"])
+
+
+# --- the windows against a plain loop -----------------------------------------------------------
+def plain_within(px, py, ax, ay, bx, by, r):
+    """plan_kernels.point_segment_within in plain Python."""
+    abx, aby = bx - ax, by - ay
+    length2 = abx * abx + aby * aby
+    s = min(max(((px - ax) * abx + (py - ay) * aby) / (length2 if length2 > 0 else 1.0), 0.0), 1.0)
+    dx, dy = px - (ax + s * abx), py - (ay + s * aby)
+    d2, r2 = dx * dx + dy * dy, r * r
+    return d2 < r2 * (1.0 - 1e-12) or (d2 <= r2 * (1.0 + 1e-12) and math.hypot(dx, dy) < r)
+
+
+def plain_rail_within(a, b, rail, reach):
+    """plan_kernels.segments_within of the line a-b and a rail, in plain Python."""
+    (ax, ay), (bx, by), (cx, cy, dx, dy) = a, b, rail
+
+    def cross(ox, oy, px, py, qx, qy):
+        return (px - ox) * (qy - oy) - (py - oy) * (qx - ox)
+
+    if (max(cx, dx) < min(ax, bx) - reach or min(cx, dx) > max(ax, bx) + reach
+            or max(cy, dy) < min(ay, by) - reach or min(cy, dy) > max(ay, by) + reach):
+        return False
+    if (cross(cx, cy, dx, dy, ax, ay) * cross(cx, cy, dx, dy, bx, by) < 0
+            and cross(ax, ay, bx, by, cx, cy) * cross(ax, ay, bx, by, dx, dy) < 0):
+        return True
+    return (plain_within(ax, ay, cx, cy, dx, dy, reach) or plain_within(bx, by, cx, cy, dx, dy, reach)
+            or plain_within(cx, cy, ax, ay, bx, by, reach) or plain_within(dx, dy, ax, ay, bx, by, reach))
+
+
+def plain_window(batch, xy, on, ball, pocket):
+    """A candidate's window row (x, y, share) the plain way: every mouth point's line tested
+    against every rail and every other object ball on the table, then the first longest run."""
+    (ax, ay), jaw = xy[ball], batch.jaws[pocket]
+    rail_reach, ball_reach = batch.reach
+    open_points = []
+    for lam in batch.lams:
+        bx, by = jaw[0] + lam * (jaw[2] - jaw[0]), jaw[1] + lam * (jaw[3] - jaw[1])
+        rails = any(plain_rail_within((ax, ay), (bx, by), rail, rail_reach) for rail in batch.rails)
+        balls = any(plain_within(xy[j, 0], xy[j, 1], ax, ay, bx, by, ball_reach)
+                    for j in range(1, len(xy)) if on[j] and j != ball)
+        open_points.append(not (rails or balls))
+    best = best_start = run = 0
+    for s, is_open in enumerate(open_points):
+        run = run + 1 if is_open else 0
+        if run > best:
+            best, best_start = run, s - run + 1
+    if best == 0:
+        return [0.0, 0.0, 0.0]
+    middle = 0.5 * (batch.lams[best_start] + batch.lams[best_start + best - 1])
+    return [jaw[0] + middle * (jaw[2] - jaw[0]), jaw[1] + middle * (jaw[3] - jaw[1]), best / len(batch.lams)]
+
+
+def crowded_positions(count=12, seed=5):
+    """Positions of 15 object balls strewn over the table, a third of them near a pocket's
+    mouth, so that rails and balls close some mouth points and leave others open."""
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(count):
+        xy = rng.uniform([0.1, 0.1], [TABLE.length - 0.1, TABLE.width - 0.1], (16, 2))
+        for j in rng.choice(np.arange(1, 16), 5, replace=False):
+            xy[j] = TABLE.pockets[rng.integers(len(TABLE.pockets)), :2] + rng.normal(0.0, 0.12, 2)
+            xy[j] = np.clip(xy[j], BALL_RADIUS, (TABLE.length - BALL_RADIUS, TABLE.width - BALL_RADIUS))
+        out.append((xy, rng.uniform(size=16) < 0.9))
+    return out
+
+
+def test_the_windows_are_the_plain_loops_bit_for_bit():
+    """aims (every candidate, `window_kernels.aim_kernel`: the obstacle that closed the last
+    point tried first, the scan stopped once no longer run can come or once an obstacle closes
+    every point left) gives what testing every point against every rail and ball gives, to the bit."""
+    batch = pl.ShotPlanner(TABLE, PHYSICS, BALL_RADIUS)
+    layouts = [(np.array(p["xy"]), np.array(p["on_table"])) for p in POSITIONS] + crowded_positions()
+    shares = []
+    for xy, on_table in layouts:
+        objects = on_table.copy()
+        objects[0] = False
+        index = batch.candidates(objects[None])
+        got = batch.aims(xy[None], objects[None], index)
+        want = np.array([plain_window(batch, xy, objects, ball, pocket) for _, ball, pocket in index]).reshape(-1, 3)
+        assert np.array_equal(got, want)
+        shares.extend(want[:, 2])
+    shares = np.array(shares)
+    assert (shares == 0).mean() > 0.2 and ((shares > 0) & (shares < 0.3)).sum() > 100  # closed, part open ...
+    assert (shares > 0.5).sum() > 100  # ... and mostly open mouths
+
+
+def test_a_position_of_more_balls_than_the_windows_take_is_refused():
+    batch = pl.ShotPlanner(TABLE, PHYSICS, BALL_RADIUS)
+    xy = np.random.default_rng(0).uniform(0.2, 1.0, (wk.MAX_BALLS + 1, 2))
+    on = np.ones(len(xy), dtype=bool)
+    with pytest.raises(ValueError, match="at most 63 balls"):
+        batch.aims(xy[None], on[None], batch.candidates(on[None]))
+    with pytest.raises(ValueError, match="at most 63 balls"):
+        batch.windows(xy, on, on)

@@ -54,7 +54,8 @@ class GameGhostBallAgent(Agent):
         self.physics = Physics.standard() if physics is None else physics
         self.radius = radius
         self.planner = GhostBallAgent(self.table, self.physics, radius=radius)
-        self.grids: dict = {}  # the placement grid of each area (ball in hand), made once
+        self.grids: dict = {}  # each ball-in-hand area's `hand_tables`, made once
+        self.scratch: dict = {}  # `safety_scratch`'s arrays by the number of balls
 
     @classmethod
     def from_env(cls, env, **kwargs) -> GameGhostBallAgent:
@@ -97,9 +98,9 @@ class GameGhostBallAgent(Agent):
         planned in one or two compiled calls."""
         if view.ball_in_hand is None and view.on_table[0]:  # the cue ball plays from where it lies
             xy, objects, legal = self.arrays([view])
-            index, rows, k = self.planner.batch.plan_lie(xy[0], objects[0], legal[0], self.planner.arrival_speed)
-            if k >= 0 and rows[k, SCORE] > -math.inf:
-                row = rows[k].tolist()  # Python floats: a Shot takes them as they are
+            index, found, k = self.planner.batch.best_lie(xy[0], objects[0], legal[0], self.planner.arrival_speed)
+            if k >= 0 and found[SCORE] > -math.inf:
+                row = found.tolist()  # Python floats: a Shot takes them as they are
                 return Shot.aimed((row[DX], row[DY]), row[SPEED], pocket=int(index[k, 2]), ball=int(index[k, 1]))
             return self.safety(xy[0], view.on_table, legal[0, 1:], None)
         if view.ball_in_hand is None or (view.on_table.all() and view.ball_in_hand == "behind_head_string"):
@@ -108,24 +109,23 @@ class GameGhostBallAgent(Agent):
 
     def in_hand(self, view) -> Shot:
         """`decide` of a view with ball in hand (not the break): the spots of `cue_spots`
-        planned from in one compiled call (`planner.ShotPlanner.best_from`)."""
+        planned from, in one compiled call with the windows and the spots
+        (`planner.ShotPlanner.plan_in_hand`)."""
         xy, objects, legal = self.arrays([view])
         batch, arrival = self.planner.batch, self.planner.arrival_speed
-        index, aims = batch.windows(xy[0], objects[0], legal[0])
-        _, spots, cue = self.cue_spots(view, xy[0], objects[0], index, aims)
-        pot = None
-        if spots:
-            row, s, k = batch.best_from(xy, objects, index, aims, np.array(spots), arrival)
-            if s >= 0:
-                cue, pot = spots[s], pot_of(index[k], row)
+        area = placement_area(self.table, view.ball_in_hand, self.radius)
+        index, aims, spots, s, k, row = batch.plan_in_hand(xy[0], objects[0], legal[0], arrival,
+                                                           self.hand_tables(area), PLACEMENT_TRIES)
+        cue = spots[s] if s >= 0 else np.array([0.5 * (area[0] + area[1]), 0.5 * (area[2] + area[3])])  # or the middle
         place = (float(cue[0]), float(cue[1]))
         if not view.on_table[0]:  # pots are planned for a cue ball on the table: a pocketed one plays safe
-            pot = None
-        elif pot is None:  # no spot has a pot: from the area's middle (the windows do not depend on the cue ball)
-            row, s, k = batch.best_from(xy, objects, index, aims, cue[None], arrival)
-            pot = None if s < 0 else pot_of(index[k], row)
-        if pot is not None:
-            return Shot.aimed(pot.direction, pot.speed, place=place, pocket=pot.pocket, ball=pot.ball)
+            k = -1
+        elif s < 0:  # no spot has a pot: from the area's middle (the windows do not depend on the cue ball)
+            row, _, k = batch.best_from(xy, objects, index, aims, cue[None], arrival)
+        if k >= 0:  # the pot's row as Python floats (what `pot_of` reads of it)
+            found = row.tolist()
+            return Shot.aimed((found[DX], found[DY]), found[SPEED], place=place, pocket=int(index[k, 2]),
+                              ball=int(index[k, 1]))
         trial = xy[0].copy()
         trial[0] = cue
         return self.safety(trial, view.on_table, legal[0, 1:], place)
@@ -237,24 +237,31 @@ class GameGhostBallAgent(Agent):
         each legal ball for each open pocket, the best-ranked `PLACEMENT_TRIES` (by open mouth
         and distances), or a coarse grid over the area when none is free (spots inside the
         area, clear of every object ball: `plan_kernels.straight_in_spots`, `free_spots`)."""
-        limits = np.array([*area, 2.2 * self.radius, self.radius])
+        backs, limits, grid = self.hand_tables(area)
         xy, objects = np.ascontiguousarray(xy, dtype=np.float64), np.ascontiguousarray(objects, dtype=bool)
         index, aims = np.ascontiguousarray(index, dtype=np.int64), np.ascontiguousarray(aims, dtype=np.float64)
-        backs = np.array(STRAIGHT_IN_BACKS)
         spot, rank = np.empty((len(index) * len(backs), 2)), np.empty(len(index) * len(backs))
         kept = straight_in_spots(xy, objects, index, aims, backs, limits, spot, rank)
         spot, rank = spot[:kept], rank[:kept]
         order = np.lexsort((spot[:, 1], spot[:, 0], rank))[::-1][:PLACEMENT_TRIES]  # sorted(reverse=True)
         if len(order):
             return list(spot[order])
-        grid = self.grids.get(area)
-        if grid is None:
-            x_lo, x_hi, y_lo, y_hi = area
-            grid = self.grids[area] = np.array([(x, y) for x in np.linspace(x_lo, x_hi, PLACEMENT_GRID[0])
-                                                for y in np.linspace(y_lo, y_hi, PLACEMENT_GRID[1])])
         keep = np.empty(len(grid), dtype=bool)
         free_spots(xy, objects, grid, limits, keep)
         return list(grid[keep])
+
+    def hand_tables(self, area) -> tuple:
+        """(backs, limits, grid) of a ball-in-hand area, as `position_kernels.straight_in_spots`
+        and `free_spots` read them: the straight-in spots' distances behind the ball, the area
+        and the clearances, the coarse grid over the area; made once per area."""
+        found = self.grids.get(area)
+        if found is None:
+            x_lo, x_hi, y_lo, y_hi = area
+            grid = np.array([(x, y) for x in np.linspace(x_lo, x_hi, PLACEMENT_GRID[0])
+                             for y in np.linspace(y_lo, y_hi, PLACEMENT_GRID[1])])
+            found = self.grids[area] = (np.array(STRAIGHT_IN_BACKS), np.array([*area, 2.2 * self.radius, self.radius]),
+                                        grid)
+        return found
 
     def best(self, xy, on_table, legal):
         """The best-scoring pot (`Pot`) of a legal first contact, or None."""
@@ -278,10 +285,23 @@ class GameGhostBallAgent(Agent):
         """Full at the nearest legal ball with a clear path (the nearest if none is clear;
         `plan_kernels.safety_ball`)."""
         n = len(on_table)
-        by_number = np.zeros(n, dtype=bool)
+        by_number, order, gaps = self.safety_scratch(n)
         by_number[1:] = legal
-        ball = safety_ball(np.ascontiguousarray(xy, dtype=np.float64)[None], np.asarray(on_table, dtype=bool)[None],
-                           by_number, 2.0 * self.radius * PATH_CLEARANCE, np.empty(n, dtype=np.int64), np.empty(n))
+        xy = np.ascontiguousarray(xy, dtype=np.float64)
+        clearance = 2.0 * self.radius * PATH_CLEARANCE
+        ball = safety_ball(xy[None], np.asarray(on_table, dtype=bool)[None], by_number, clearance, order, gaps)
         if ball < 0:
             return Shot.aimed((1.0, 0.0), SAFETY_SPEED, place=place)
-        return Shot.aimed(geo.unit(xy[ball] - xy[0]), SAFETY_SPEED, place=place)
+        # geo.unit of the line to the ball in Python floats (the same roundings: numpy's hypot,
+        # IEEE division), which Shot.aimed takes as they are
+        dx, dy = float(xy[ball, 0] - xy[0, 0]), float(xy[ball, 1] - xy[0, 1])
+        length = float(np.hypot(dx, dy))
+        return Shot.aimed((dx / length, dy / length) if length > 0 else (1.0, 0.0), SAFETY_SPEED, place=place)
+
+    def safety_scratch(self, n: int) -> tuple:
+        """`safety`'s arrays for n balls (the legal balls by number, the order and gaps
+        `safety_ball` works in), made once per n and reused (the call holds the GIL)."""
+        found = self.scratch.get(n)
+        if found is None:
+            found = self.scratch[n] = (np.zeros(n, dtype=bool), np.empty(n, dtype=np.int64), np.empty(n))
+        return found

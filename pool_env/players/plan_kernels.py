@@ -1,9 +1,9 @@
 """The ghost-ball planner's compiled loops: per candidate, the formulas of `geometry`, over arrays.
 
 Each loop runs over the candidates of the arrays `planner` describes (a candidate is one
-position, object ball and pocket): `aim_kernel` finds the pocket windows, `plan_kernel` the
-pots, `group_best` the best pot of each group of candidates (`position_kernels` runs them
-for one position at a time).
+position, object ball and pocket): `window_kernels.aim_kernel` finds the pocket windows,
+`plan_kernel` the pots, `group_best` the best pot of each group of candidates
+(`position_kernels` runs them for one position at a time).
 """
 
 from __future__ import annotations
@@ -121,55 +121,6 @@ def path_clear(xy, on, q, ball, ax, ay, bx, by, clearance):
         if point_segment_within(px, py, ax, ay, bx, by, clearance):
             return False
     return True
-
-
-# --- pocket windows -------------------------------------------------------------------------------
-@helper
-def window_open(xy, on, q, ball, ax, ay, bx, by, rails, reach):
-    """The line from the ball (ax, ay) to the mouth point (bx, by) clears the rails and the other balls."""
-    for r in range(rails.shape[0]):
-        if segments_within(ax, ay, bx, by, rails[r, 0], rails[r, 1], rails[r, 2], rails[r, 3], reach[0]):
-            return False
-    return path_clear(xy, on, q, ball, ax, ay, bx, by, reach[1])
-
-
-@helper
-def near_rails(rails, ax, ay, jaw, reach, out):
-    """The rails whose box, grown by `reach`, meets the box of the paths from (ax, ay) to the
-    mouth: the others are farther than `reach` from every such path (their verdict is open)."""
-    lo_x, hi_x = min(ax, min(jaw[0], jaw[2])) - reach, max(ax, max(jaw[0], jaw[2])) + reach
-    lo_y, hi_y = min(ay, min(jaw[1], jaw[3])) - reach, max(ay, max(jaw[1], jaw[3])) + reach
-    k = 0
-    for r in range(rails.shape[0]):
-        if (min(rails[r, 0], rails[r, 2]) <= hi_x and max(rails[r, 0], rails[r, 2]) >= lo_x
-                and min(rails[r, 1], rails[r, 3]) <= hi_y and max(rails[r, 1], rails[r, 3]) >= lo_y):
-            for e in range(4):
-                out[k, e] = rails[r, e]
-            k += 1
-    return k
-
-
-@kernel
-def aim_kernel(xy, on, index, jaws, rails, lams, reach, near, out):
-    """Per candidate (position, ball, pocket): the middle of the widest open run of mouth
-    points and the share of the mouth open, as out[i] = (x, y, share); share 0: closed."""
-    samples = lams.shape[0]
-    for i in range(index.shape[0]):
-        q, ball, p = index[i, 0], index[i, 1], index[i, 2]
-        ax, ay, jaw = xy[q, ball, 0], xy[q, ball, 1], jaws[p]
-        k = near_rails(rails, ax, ay, jaw, reach[0], near)
-        best, best_start, run = 0, 0, 0
-        for s in range(samples):
-            bx = jaw[0] + lams[s] * (jaw[2] - jaw[0])
-            by = jaw[1] + lams[s] * (jaw[3] - jaw[1])
-            run = run + 1 if window_open(xy, on, q, ball, ax, ay, bx, by, near[:k], reach) else 0
-            if run > best:  # the first of the longest runs, as argmax picks
-                best, best_start = run, s - run + 1
-        out[i, 2] = best / samples
-        if best > 0:
-            middle = 0.5 * (lams[best_start] + lams[best_start + best - 1])
-            out[i, 0] = jaw[0] + middle * (jaw[2] - jaw[0])
-            out[i, 1] = jaw[1] + middle * (jaw[3] - jaw[1])
 
 
 # --- the plan -------------------------------------------------------------------------------------

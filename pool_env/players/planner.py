@@ -37,13 +37,13 @@ from .plan_kernels import (
     SCORE,
     SCRATCH,
     SPEED,
-    aim_kernel,
     batch_fault,
     group_best,
     plan_fault,
     plan_kernel,
 )
-from .position_kernels import all_finite, best_from, plan_from, plan_lie, position_windows
+from .position_kernels import all_finite, best_from, best_lie, plan_from, plan_in_hand, plan_lie, position_windows
+from .window_kernels import MAX_BALLS, aim_kernel
 
 __all__ = ["D1", "D2", "DN", "DX", "DY", "OK", "PLAN_COLUMNS", "SCORE", "SCRATCH", "SPEED", "ShotPlanner",
            "first_best"]
@@ -70,6 +70,7 @@ class ShotPlanner:
         self.work: dict = {}  # the one-position kernels' scratch arrays, by candidates (`scratch`)
         self.single = (np.empty((1, 2)), np.empty(1), np.empty(6), np.empty((1, PLAN_COLUMNS)),
                        np.empty(PLAN_COLUMNS))  # best_from's scratch and its best row
+        self.lie = np.empty((1, 2))  # best_lie's spot: where the cue ball lies
 
     def scratch(self, m: int) -> tuple:
         """Scratch arrays for m candidates of the one-position kernels, (m, 3), (m, 2), (m,)
@@ -88,6 +89,8 @@ class ShotPlanner:
         index = np.ascontiguousarray(index, dtype=np.int64)
         if xy.ndim != 3 or xy.shape[2] != 2 or on.shape != xy.shape[:2]:
             raise ValueError(f"xy must be (Q, n, 2) and on (Q, n), got {xy.shape} and {on.shape}")
+        if xy.shape[1] > MAX_BALLS:
+            raise ValueError(f"a position holds at most {MAX_BALLS} balls, got {xy.shape[1]}")
         if index.ndim != 2 or index.shape[1] != columns:
             raise ValueError(f"index must be (N, {columns}) (position, ball, pocket), got {index.shape}")
         fault = batch_fault(xy, on, index, len(self.pockets))
@@ -127,6 +130,8 @@ class ShotPlanner:
         legal = np.ascontiguousarray(legal, dtype=bool)
         if xy.shape[2:] != (2,) or on.shape != xy.shape[:2] or legal.shape != xy.shape[1:2]:
             raise ValueError(f"xy must be (n, 2), on and legal (n,), got {xy.shape[1:]}, {on.shape[1:]}, {legal.shape}")
+        if xy.shape[1] > MAX_BALLS:
+            raise ValueError(f"a position holds at most {MAX_BALLS} balls, got {xy.shape[1]}")
         return xy, on, legal, xy.shape[1] * len(self.pockets)
 
     def plan_lie(self, xy, on, legal, arrival: float):
@@ -144,6 +149,19 @@ class ShotPlanner:
             raise ValueError("xy must be finite for the cue ball and the object balls on the table")
         return index[:count], rows[:count], best
 
+    def best_lie(self, xy, on, legal, arrival: float):
+        """`plan_lie`'s choice in one compiled call without planning every candidate
+        (`position_kernels.best_lie`: `best_from` from where the cue ball lies). Returns
+        (index (N, 3), the best pot's row (PLAN_COLUMNS,) or None, its candidate or -1): the
+        same candidate and row as `plan_lie`'s. ValueError for a position that is not finite."""
+        xy, on, legal, m = self.one_position(xy, on, legal)
+        index = np.empty((m, 3), dtype=np.int64)
+        aims = self.scratch(m)[0]
+        count, i = best_lie(xy, on, legal, self.tables, float(arrival), (index, aims, self.lie, self.single))
+        if count < 0:
+            raise ValueError("xy must be finite for the cue ball and the object balls on the table")
+        return index[:count], (None if i < 0 else self.single[4].copy()), i
+
     def windows(self, xy, on, legal):
         """One position's (index, aims): `candidates` and `aims` of xy (n, 2), on (n,) the object
         balls on the table, legal (n,) the balls to pot, in one compiled call
@@ -154,6 +172,34 @@ class ShotPlanner:
         if count < 0:
             raise ValueError("xy must be finite for the cue ball and the object balls on the table")
         return index[:count], aims[:count]
+
+    def plan_in_hand(self, xy, on, legal, arrival: float, hand, tries: int):
+        """One position's ball-in-hand pots in one compiled call (`position_kernels.plan_in_hand`):
+        xy (n, 2), on (n,) and legal (n,) as `windows` takes them; hand = (backs (B,), limits
+        (6,), grid (G, 2)) as `position_kernels.straight_in_spots` and `free_spots` read them;
+        the best-ranked `tries` straight-in spots are tried (the grid's free spots if none is).
+        Returns (index, aims: `windows`; the spots tried (S, 2); the spot of the best pot or -1,
+        its candidate or -1, its row (PLAN_COLUMNS,) or None: `best_from` of those spots).
+        ValueError for a position that is not finite."""
+        xy, on, legal, m = self.one_position(xy, on, legal)
+        backs, limits, grid = hand
+        index, aims, tried = np.empty((m, 3), dtype=np.int64), np.empty((m, 3)), np.empty((max(tries, len(grid)), 2))
+        spots, ranks, order, keep = self.hand_scratch(m * len(backs), tries, len(grid))
+        count, t, spot, i = plan_in_hand(xy, on, legal, self.tables, float(arrival), hand,
+                                         (index, aims, spots, ranks, order, tried, keep, self.single))
+        if count < 0:
+            raise ValueError("xy must be finite for the cue ball and the object balls on the table")
+        return index[:count], aims[:count], tried[:t], spot, i, (None if spot < 0 else self.single[4].copy())
+
+    def hand_scratch(self, spots: int, tries: int, grid: int) -> tuple:
+        """`plan_in_hand`'s scratch arrays (spots (K, 2), ranks (K,), order (T,), keep (G,)),
+        made once per size and reused (nothing returned points into them)."""
+        key = ("hand", spots, tries, grid)
+        found = self.work.get(key)
+        if found is None:
+            found = self.work[key] = (np.empty((spots, 2)), np.empty(spots), np.empty(tries, dtype=np.int64),
+                                      np.empty(grid, dtype=np.bool_))
+        return found
 
     def from_arrays(self, xy, on, index, aims, spots) -> tuple:
         """(xy, on, index, aims, spots) as `plan_from` and `best_from` read them; ValueError

@@ -1,7 +1,7 @@
 """The ghost-ball planner's compiled calls for one position: its windows, and its pots from its cue-ball spots.
 
 A decision of `GameGhostBallAgent.decide` is one of these calls (or two, with ball in hand):
-each runs `plan_kernels`' loops over the position's candidates (every legal ball into every
+each runs `window_kernels`' and `plan_kernels`' loops over the position's candidates (every legal ball into every
 pocket, in `planner.ShotPlanner.candidates` order) without the batch arrays' setup, and
 picks the best pot as `plan_kernels.group_best` does; the safety's ball and the ball-in-hand
 spots are chosen here too.
@@ -14,7 +14,8 @@ import math
 import numpy as np
 
 from ..physics.jit import helper, kernel
-from .plan_kernels import OK, PLAN_COLUMNS, R_, SCORE, aim_kernel, batch_fault, path_clear, plan_kernel
+from .plan_kernels import OK, PLAN_COLUMNS, R_, SCORE, batch_fault, path_clear, plan_kernel
+from .window_kernels import aim_kernel
 
 
 @kernel
@@ -58,6 +59,22 @@ def plan_lie(xy, on, legal, tables, arrival, buffers):
         if rows[i, OK] > 0.0 and (best < 0 or rows[i, SCORE] > rows[best, SCORE]):
             best = i
     return k, best
+
+
+@kernel
+def best_lie(xy, on, legal, tables, arrival, buffers):
+    """`plan_lie`'s choice without its rows, in one call: `position_windows`, then `best_from`
+    from where the cue ball lies (the candidates whose score bound falls below the best so far
+    are not planned). buffers = (index (M, 3), aims (M, 3), spot (1, 2), best_from's buffers;
+    the best pot's row goes into their best). Returns (candidates, the best pot's candidate,
+    the first of equal ones, or -1); (-1, -1) if a position is not finite."""
+    index, aims, spot, single = buffers
+    k = position_windows(xy, on, legal, tables, index, aims)
+    if k < 0:
+        return -1, -1
+    spot[0, 0], spot[0, 1] = xy[0, 0, 0], xy[0, 0, 1]
+    _, i = best_from(xy, on, index[:k], aims[:k], spot, tables, arrival, single)
+    return k, i
 
 
 @helper
@@ -130,6 +147,64 @@ def plan_from(xy, on, index, aims, spots, tables, arrival, buffers):
         if head >= 0 and block[head, SCORE] > best_score:  # the first spot of the highest score
             best_spot, best_row, best_score = s, s * n + head, block[head, SCORE]
     return best_spot, best_row
+
+
+@helper
+def ahead(spots, ranks, a, b):
+    """Spot a of spots (K, 2) ranks before spot b: (rank, x, y) greater, as sorting them in reverse orders them."""
+    if ranks[a] != ranks[b]:
+        return ranks[a] > ranks[b]
+    if spots[a, 0] != spots[b, 0]:
+        return spots[a, 0] > spots[b, 0]
+    return spots[a, 1] > spots[b, 1]
+
+
+@helper
+def top_spots(spots, ranks, kept, order):
+    """The best-ranked of spots[:kept] (`ahead`; equal ones, the same spot, the later first),
+    at most order.shape[0] of them, by index into order, best first; returns how many."""
+    t = 0
+    for m in range(kept):
+        j = t
+        while j > 0 and not ahead(spots, ranks, order[j - 1], m):
+            j -= 1
+        if j >= order.shape[0]:
+            continue
+        for u in range(min(t, order.shape[0] - 1), j, -1):
+            order[u] = order[u - 1]
+        order[j] = m
+        t = min(t + 1, order.shape[0])
+    return t
+
+
+@kernel
+def plan_in_hand(xy, on, legal, tables, arrival, hand, buffers):
+    """One position's ball-in-hand pots in one call: its windows (`position_windows`), the
+    straight-in spots behind its open windows (`straight_in_spots`), the best-ranked of them
+    (`top_spots`, as many as `order` holds) or, if none is free, the free spots of the grid
+    (`free_spots`), and the best pot from those (`best_from`). hand = (backs, limits, grid
+    (G, 2)) as `straight_in_spots` and `free_spots` read them; buffers = (index (M, 3), aims
+    (M, 3), spots (2 M, 2), ranks (2 M,), order (T,) int, tries (max(T, G), 2), keep (G,),
+    best_from's buffers). The spots tried go into tries. Returns (candidates, spots tried,
+    the spot of the best pot or -1, its candidate or -1); (-1, 0, -1, -1) if a position is
+    not finite."""
+    index, aims, spots, ranks, order, tries, keep, single = buffers
+    backs, limits, grid = hand
+    k = position_windows(xy, on, legal, tables, index, aims)
+    if k < 0:
+        return -1, 0, -1, -1
+    kept = straight_in_spots(xy[0], on[0], index[:k], aims[:k], backs, limits, spots, ranks)
+    t = top_spots(spots, ranks, kept, order)
+    for u in range(t):
+        tries[u, 0], tries[u, 1] = spots[order[u], 0], spots[order[u], 1]
+    if t == 0:  # no straight-in spot is free: the grid's free spots
+        free_spots(xy[0], on[0], grid, limits, keep)
+        for g in range(grid.shape[0]):
+            if keep[g]:
+                tries[t, 0], tries[t, 1] = grid[g, 0], grid[g, 1]
+                t += 1
+    spot, i = best_from(xy, on, index[:k], aims[:k], tries[:t], tables, arrival, single)
+    return k, t, spot, i
 
 
 @helper
