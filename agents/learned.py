@@ -17,6 +17,7 @@ from pool_env.players.planner import D1, D2, DN, DX, DY, OK, SCORE, SCRATCH, SPE
 
 from .learned_features import contact_frame, outcome_features, roll_at_contact
 from .learned_pots import POT_COLUMNS, POT_PREFIX, PotNet
+from .learned_safeties import SAFE_PREFIX, SafetyNet
 from .search import SearchAgent
 from .search_candidates import ARRIVALS, Candidate
 from .search_position import decode, game_state, legal_mask, racked
@@ -24,8 +25,8 @@ from .search_position import decode, game_state, legal_mask, racked
 WEIGHTS = Path(__file__).with_name("weights")  # the shipped networks, one file per game
 KINDS = ("pot", "safety", "kick", "break")
 CANDIDATE_FEATURES = 36  # see `candidate_features`
-LAYOUT = 3  # the feature rows new nets are fitted on (`menu`)
-LABEL_LAYOUT = 2  # the rows labelled data keeps: layout 3 adds only the pot net's columns, at fit time
+LAYOUT = 4  # the feature rows new nets are fitted on (`menu`)
+LABEL_LAYOUT = 2  # the rows labelled data keeps: layouts 3 and 4 add only learned models' columns, at fit time
 BREAK_PREFIX = "break_"  # a saved net's arrays of its break net (`ValueNet.breaks`)
 
 
@@ -157,8 +158,10 @@ def candidate_features(cands, rows, d, table: Table, game_ball: int, pockets, ra
     net's layout has it: the batched planner gives no open fraction), scratch risk,
     arrival-speed index, the pocket (one-hot, 6), the object ball (x, y), is it the
     game ball (the 9, the 8), the cue ball's predicted rest (x, y), the next shot's ghost-ball
-    quality from there (`next_qualities`), the rest in a pocket; for every shot: the first ball
-    it meets is legal, the distance to it, the first ball met after one rail is legal."""
+    quality from there (`next_qualities`), the rest in a pocket; for a game's break, in the pot's
+    slot kept at 0, the aim's offset from the nearest object ball's centre (in ball radii: the
+    same for a break candidate in every rack, whose jitter turns the direction); for every shot:
+    the first ball it meets is legal, the distance to it, the first ball met after one rail is legal."""
     out = np.zeros((len(cands), CANDIDATE_FEATURES), dtype=np.float32)
     scale = np.array([2.0 / table.length, 2.0 / table.width])
     for i, (c, row) in enumerate(zip(cands, rows, strict=True)):
@@ -178,11 +181,24 @@ def candidate_features(cands, rows, d, table: Table, game_ball: int, pockets, ra
             out[i, 29:31] = np.asarray(rest) * scale - 1.0
             out[i, 31] = quality
             out[i, 32] = geo.enters_pocket(np.asarray(rest).reshape(1, 2), pockets)
+        elif c.kind == "break" and c.spot is not None:
+            out[i, 16] = aim_offset(d, cue, c.direction, radius)
     hits = contacts_of(cands, d, table, radius) if hits is None else hits
     out[:, 33] = [int(b) in d.legal for b in hits[:, 0]]
     out[:, 34] = np.minimum(hits[:, 1], 3.0)
     out[:, 35] = [int(b) in d.legal for b in hits[:, 2]]
     return out
+
+
+def aim_offset(d, cue, direction, radius: float) -> float:
+    """How far (in ball radii, signed) the line from `cue` along `direction` passes beside the
+    centre of the object ball nearest `cue`."""
+    objects = np.flatnonzero(d.on_table[1:]) + 1
+    if not len(objects):
+        return 0.0
+    to = d.xy[objects] - cue
+    near = to[np.argmin(np.hypot(to[:, 0], to[:, 1]))]
+    return float(direction[0] * near[1] - direction[1] * near[0]) / radius
 
 
 def contacts_of(cands, d, table: Table, radius: float) -> np.ndarray:
@@ -196,13 +212,16 @@ def contacts_of(cands, d, table: Table, radius: float) -> np.ndarray:
 
 
 def menu(search: SearchAgent, observation, game: str | None, layout: int = LAYOUT,
-         pots: PotNet | None = None) -> tuple[Menu, object]:
+         pots: PotNet | None = None, safeties: SafetyNet | None = None) -> tuple[Menu, object]:
     """The decision's `Menu` for a game observation, and its decoded view. Feature rows of
     `layout` 2: `candidate_features`, `learned_features.outcome_features`, the observation;
-    layout 3: and the pot net `pots`' columns (`pot_columns`); layout 1 (the first
-    shipped nets): without the outcome features."""
+    layout 3: and the pot net `pots`' columns (`pot_columns`); layout 4: and the safety net
+    `safeties`' columns (`SafetyNet.columns`); layout 1 (the first shipped nets): without the
+    outcome features."""
     if layout >= 3 and pots is None:
         raise ValueError("layout 3 feature rows need the pot net (pots=)")
+    if layout >= 4 and safeties is None:
+        raise ValueError("layout 4 feature rows need the safety net (safeties=)")
     d = decode(observation, search.n_balls, search.table, game=game is not None)
     state = game_state(d, game, search.rule_options) if game is not None else None
     cands, rows = shot_menu(search, d, state)
@@ -214,6 +233,8 @@ def menu(search: SearchAgent, observation, game: str | None, layout: int = LAYOU
     parts.append(np.broadcast_to(np.asarray(observation, dtype=np.float32), (len(cands), len(observation))))
     if layout >= 3:
         parts.append(pot_columns(search, pots, d, state, parts[0]))
+    if layout >= 4:
+        parts.append(safeties.columns(search, parts[0], d, state))
     return Menu(cands, np.concatenate(parts, axis=1)), d
 
 
@@ -245,13 +266,18 @@ class ValueNet:
     the arrays of `save`/`load` (an .npz file). `breaks` (the arrays named "break_..."), if
     any, is a second net that scores the break's menus (`score`). "columns", if saved, is how
     many leading feature columns the net reads. `pots` (the arrays named "pot_...") is the
-    pot net whose columns a layout-3 net's rows end with (`menu`)."""
+    pot net whose columns a layout-3 net's rows end with (`menu`); `safeties` ("safe_...")
+    the safety net whose columns follow them in a layout-4 net's rows."""
 
-    def __init__(self, arrays: dict, breaks: ValueNet | None = None, pots: PotNet | None = None):
-        own = {k: v for k, v in arrays.items() if not k.startswith((BREAK_PREFIX, POT_PREFIX))}
+    def __init__(self, arrays: dict, breaks: ValueNet | None = None, pots: PotNet | None = None,
+                 safeties: SafetyNet | None = None):
+        prefixes = (BREAK_PREFIX, POT_PREFIX, SAFE_PREFIX)
+        own = {k: v for k, v in arrays.items() if not k.startswith(prefixes)}
         inner = {k[len(BREAK_PREFIX):]: v for k, v in arrays.items() if k.startswith(BREAK_PREFIX)}
         pot = {k[len(POT_PREFIX):]: v for k, v in arrays.items() if k.startswith(POT_PREFIX)}
+        safe = {k[len(SAFE_PREFIX):]: v for k, v in arrays.items() if k.startswith(SAFE_PREFIX)}
         self.pots = pots if pots is not None else PotNet(pot) if pot else None
+        self.safeties = safeties if safeties is not None else SafetyNet(safe) if safe else None
         self.arrays = {k: np.asarray(v, dtype=np.float32) for k, v in own.items()}
         self.layers = sorted({int(k[1:]) for k in self.arrays if k.startswith("w")})
         self.layout = int(self.arrays["layout"]) if "layout" in self.arrays else 1
@@ -274,9 +300,10 @@ class ValueNet:
         return h[:, 0]
 
     def all_arrays(self) -> dict:
-        """Its arrays with those of its break net and pot net (prefixed): what `save` writes."""
+        """Its arrays with those of its break net, pot net and safety net (prefixed): what `save` writes."""
         inner = {} if self.breaks is None else {BREAK_PREFIX + k: v for k, v in self.breaks.arrays.items()}
-        return {**self.arrays, **inner, **({} if self.pots is None else self.pots.save_arrays())}
+        return {**self.arrays, **inner, **({} if self.pots is None else self.pots.save_arrays()),
+                **({} if self.safeties is None else self.safeties.save_arrays())}
 
     def save(self, path) -> None:
         np.savez_compressed(path, **self.all_arrays())
@@ -324,7 +351,7 @@ class LearnedPlayer(Agent):
         return cls(game.mode, table=game.base_table, physics=game.base_physics, **options)
 
     def act(self, observation) -> np.ndarray:
-        m, d = menu(self.search, observation, self.game, self.net.layout, self.net.pots)
+        m, d = menu(self.search, observation, self.game, self.net.layout, self.net.pots, self.net.safeties)
         values = self.net.score(m.features)
         best = int(np.argmax(values))
         self.last_stats = {"candidates": len(m.candidates), "value": float(values[best]),

@@ -68,7 +68,7 @@ if __name__ == "__main__":
     args = parser.parse_args()
     held = make_dataset("nine_ball", None, args.games, seed=HELD_OUT_SEED, log=None)
     net = ValueNet.load(args.net)
-    for name, r in ranking(net, with_pots(held, net.pots)).items():
+    for name, r in ranking(net, with_pots(held, net.pots, safeties=net.safeties)).items():
         print(f"{name:24s} {r['decisions']:5d} decisions  top-1 {r['top1']:.3f}  regret {r['regret']:.3f}  "
               f"best {r['best']:.3f}  picked {r['picked']:.3f}")
     if args.oracle_games:

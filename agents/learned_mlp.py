@@ -36,3 +36,43 @@ def mlp_arrays(model, mean, std) -> dict:
         arrays[f"w{n}"] = m.weight.detach().numpy().T.copy()
         arrays[f"b{n}"] = m.bias.detach().numpy().copy()
     return arrays
+
+
+def fit_outputs(inputs, labels, outputs: int, loss, hidden, epochs: int, seed: int, lr: float, log, name: str) -> dict:
+    """The NumPy arrays of a `torch_mlp` with `outputs` linear outputs, fitted on one torch thread
+    (the same net from the same data) to minimise `loss(out, labels)` with Adam over shuffled
+    minibatches of 512 rows; `log` (if not None) gets the mean loss every 5 epochs."""
+    import torch
+
+    torch.set_num_threads(1)
+    torch.manual_seed(seed)
+    x, mean, std, model = torch_mlp(inputs, hidden)
+    model[-1] = torch.nn.Linear(model[-1].in_features, outputs)  # drawn after the one-output layer
+    y = torch.from_numpy(np.asarray(labels, dtype=np.float32))
+    opt = torch.optim.Adam(model.parameters(), lr=lr)
+    gen = torch.Generator().manual_seed(seed)
+    for epoch in range(epochs):
+        total, order = 0.0, torch.randperm(len(x), generator=gen)
+        for b in range(0, len(x), 512):
+            idx = order[b:b + 512]
+            total += descend(opt, loss(model(x[idx]), y[idx])) * len(idx)
+        if log is not None and (epoch + 1) % 5 == 0:
+            log(f"{name}: epoch {epoch + 1}/{epochs}, loss {total / len(x):.4f}")
+    return mlp_arrays(model, mean, std)
+
+
+class NumpyMLP:
+    """An MLP in NumPy (tanh hidden layers, linear outputs, the inputs standardised) of the
+    arrays mean, std, w0, b0, ...: `__call__` of input rows gives their outputs (N, outputs)."""
+
+    def __init__(self, arrays: dict):
+        self.arrays = {k: np.asarray(v, dtype=np.float32) for k, v in arrays.items()}
+        self.layers = sorted(int(k[1:]) for k in self.arrays if k.startswith("w"))
+
+    def __call__(self, x) -> np.ndarray:
+        h = (np.asarray(x, dtype=np.float32) - self.arrays["mean"]) / self.arrays["std"]
+        for n in self.layers:
+            h = h @ self.arrays[f"w{n}"] + self.arrays[f"b{n}"]
+            if n != self.layers[-1]:
+                h = np.tanh(h)
+        return h

@@ -12,7 +12,7 @@ from pool_env.game import MAX_SPEED, GameView
 from pool_env.physics import Balls, Table
 from pool_env.players.planner import DN, DX, DY, OK, SPEED
 
-from .learned_mlp import descend, mlp_arrays, torch_mlp
+from .learned_mlp import NumpyMLP, fit_outputs
 from .search import SearchAgent
 from .search_candidates import ARRIVALS, Candidate
 from .search_position import game_state
@@ -122,12 +122,11 @@ def planned_pots(search: SearchAgent, positions) -> tuple[np.ndarray, list]:
     return np.array(rows).reshape(-1, 6), cands
 
 
-def simulate_pots(search: SearchAgent, positions, rows, cands) -> np.ndarray:
-    """(M, 4) float32 labels of the planned pots, each simulated without noise from its own
-    position (the two balls alone): the ball dropped in the planned pocket, the cue ball
-    dropped, the cue ball's rest (x, y in m; where it dropped, its last place on the cloth).
-    `make_pot_data` turns the rests into the pot's frame, as `pot_inputs` sees it."""
-    sim, out = search.sim, np.zeros((len(rows), 4), dtype=np.float32)
+def two_ball_records(search: SearchAgent, positions, rows, cands):
+    """(k, the `JudgedShot` of cands[k]) of planned shots (rows[:, 0]: the index of each one's
+    position, the rows grouped by it), each simulated without noise from its own position:
+    the cue ball and the object ball BALL alone on the table."""
+    sim = search.sim
     on = np.zeros(search.n_balls, dtype=bool)
     on[[0, BALL]] = True
     starts = np.flatnonzero(np.r_[True, rows[1:, 0] != rows[:-1, 0]]) if len(rows) else []
@@ -138,12 +137,22 @@ def simulate_pots(search: SearchAgent, positions, rows, cands) -> np.ndarray:
         sim.reset(balls=Balls(xy, radius=search.radius, pocketed=~on), state=game_state(view, search.game))
         shots = [sim.decode(search.action(c, None)) for c in cands[a:b]]
         for k, r in enumerate(sim.evaluate(shots, draws=1, seed=0, records=False)):
-            o = r.outcome
-            if o is None:
-                continue
-            out[a + k, 0] = BALL in o.pocketed and o.pocket_of.get(BALL) == int(rows[a + k, 1])
-            out[a + k, 1] = o.cue_pocketed
-            out[a + k, 2:4] = r.balls_after.xy[0]
+            yield a + k, r
+
+
+def simulate_pots(search: SearchAgent, positions, rows, cands) -> np.ndarray:
+    """(M, 4) float32 labels of the planned pots (`two_ball_records`): the ball dropped in the
+    planned pocket, the cue ball dropped, the cue ball's rest (x, y in m; where it dropped, its
+    last place on the cloth). `make_pot_data` turns the rests into the pot's frame, as
+    `pot_inputs` sees it."""
+    out = np.zeros((len(rows), 4), dtype=np.float32)
+    for i, r in two_ball_records(search, positions, rows, cands):
+        o = r.outcome
+        if o is None:
+            continue
+        out[i, 0] = BALL in o.pocketed and o.pocket_of.get(BALL) == int(rows[i, 1])
+        out[i, 1] = o.cue_pocketed
+        out[i, 2:4] = r.balls_after.xy[0]
     return out
 
 
@@ -174,21 +183,27 @@ def make_pot_data(positions: int = 1000, seed: int = 0, log=print, first_chunk: 
     return {"inputs": np.concatenate(inputs), "labels": np.concatenate(labels)}
 
 
-def _pot_part(job) -> dict:
-    positions, seed, first_chunk = job
-    return make_pot_data(positions, seed, log=None, first_chunk=first_chunk)
+def _chunks_part(job) -> dict:
+    make, positions, seed, first_chunk = job
+    return make(positions, seed, log=None, first_chunk=first_chunk)
+
+
+def parallel_chunks(make, positions: int, seed: int, workers: int) -> dict:
+    """`make(positions, seed, log=None, first_chunk=...)` (a data maker that draws its positions
+    in seeded chunks of CHUNK, as `make_pot_data`) split over `workers` processes by whole
+    chunks, joined in order: the same data as one process makes, whatever the number of workers."""
+    chunks = -(-positions // CHUNK)
+    share = -(-chunks // workers) * CHUNK
+    jobs = [(make, min(share, positions - k * share), seed, k * share // CHUNK) for k in range(workers)
+            if positions - k * share > 0]
+    with ProcessPoolExecutor(len(jobs), mp_context=get_context("spawn")) as pool:
+        parts = list(pool.map(_chunks_part, jobs))
+    return {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
 
 
 def parallel_pot_data(positions: int, seed: int = 0, workers: int = 2) -> dict:
-    """`make_pot_data` split over `workers` processes by whole chunks, joined in order: the same
-    data as one process makes, whatever the number of workers."""
-    chunks = -(-positions // CHUNK)
-    share = -(-chunks // workers) * CHUNK
-    jobs = [(min(share, positions - k * share), seed, k * share // CHUNK) for k in range(workers)
-            if positions - k * share > 0]
-    with ProcessPoolExecutor(len(jobs), mp_context=get_context("spawn")) as pool:
-        parts = list(pool.map(_pot_part, jobs))
-    return {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
+    """`make_pot_data` on `workers` processes (`parallel_chunks`)."""
+    return parallel_chunks(make_pot_data, positions, seed, workers)
 
 
 def fit_pots(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, lr: float = 2e-3, log=print) -> PotNet:
@@ -196,42 +211,20 @@ def fit_pots(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, lr:
     and the squared error of the cue ball's rest where it did not drop; Adam, minibatches of 512."""
     import torch
 
-    torch.set_num_threads(1)
-    torch.manual_seed(seed)
-    x, mean, std, model = torch_mlp(data["inputs"], hidden)
-    model[-1] = torch.nn.Linear(model[-1].in_features, POT_OUTPUTS)  # drawn after the one-output layer
-    y = torch.from_numpy(np.asarray(data["labels"], dtype=np.float32))
-    opt = torch.optim.Adam(model.parameters(), lr=lr)
     bce = torch.nn.functional.binary_cross_entropy_with_logits
-    gen = torch.Generator().manual_seed(seed)
-    for epoch in range(epochs):
-        total, order = 0.0, torch.randperm(len(x), generator=gen)
-        for b in range(0, len(x), 512):
-            idx = order[b:b + 512]
-            out, t = model(x[idx]), y[idx]
-            kept = 1.0 - t[:, 1]
-            rest = (((out[:, 2:4] - t[:, 2:4]) ** 2).sum(axis=1) * kept).sum() / kept.sum().clamp(min=1.0)
-            total += descend(opt, bce(out[:, 0], t[:, 0]) + bce(out[:, 1], t[:, 1]) + rest) * len(idx)
-        if log is not None and (epoch + 1) % 5 == 0:
-            log(f"pot fit: epoch {epoch + 1}/{epochs}, loss {total / len(x):.4f}")
-    return PotNet(mlp_arrays(model, mean, std))
+
+    def loss(out, t):
+        kept = 1.0 - t[:, 1]
+        rest = (((out[:, 2:4] - t[:, 2:4]) ** 2).sum(axis=1) * kept).sum() / kept.sum().clamp(min=1.0)
+        return bce(out[:, 0], t[:, 0]) + bce(out[:, 1], t[:, 1]) + rest
+
+    return PotNet(fit_outputs(data["inputs"], data["labels"], POT_OUTPUTS, loss, hidden, epochs, seed, lr, log,
+                              "pot fit"))
 
 
-class PotNet:
-    """The pot model in NumPy (tanh hidden layers, linear outputs, the inputs standardised):
-    `__call__` of `pot_inputs` rows gives (N, POT_OUTPUTS); `columns` the value net's features."""
-
-    def __init__(self, arrays: dict):
-        self.arrays = {k: np.asarray(v, dtype=np.float32) for k, v in arrays.items()}
-        self.layers = sorted(int(k[1:]) for k in self.arrays if k.startswith("w"))
-
-    def __call__(self, x) -> np.ndarray:
-        h = (np.asarray(x, dtype=np.float32) - self.arrays["mean"]) / self.arrays["std"]
-        for n in self.layers:
-            h = h @ self.arrays[f"w{n}"] + self.arrays[f"b{n}"]
-            if n != self.layers[-1]:
-                h = np.tanh(h)
-        return h
+class PotNet(NumpyMLP):
+    """The pot model in NumPy (`NumpyMLP`): `__call__` of `pot_inputs` rows gives
+    (N, POT_OUTPUTS); `columns` the value net's features."""
 
     def predict(self, x) -> tuple:
         """(the probability of the pot, of a scratch, the cue ball's rest in the pot's frame (N, 2))."""

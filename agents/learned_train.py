@@ -17,6 +17,7 @@ from .learned import CANDIDATE_FEATURES, KINDS, LABEL_LAYOUT, LAYOUT, LearnedPla
 from .learned_features import OUTCOME_FEATURES
 from .learned_mlp import descend, mlp_arrays, torch_mlp
 from .learned_pots import POT_COLUMNS, PotNet, fit_pots, parallel_pot_data
+from .learned_safeties import SAFE_COLUMNS, SafetyNet, fit_safeties, parallel_safe_data
 from .match import alternate, play_game, points
 from .search import SearchAgent, balls_of, game_state
 from .search_position import decode
@@ -24,7 +25,7 @@ from .stats import wilson
 
 ROUND_SEEDS = 100_000  # round r's games are seeded seed + r * ROUND_SEEDS + k (train.py's games start at 1,000,000)
 EVAL_NOISES = (None, "olympiad")  # the recipe's evaluations: the published figures
-BREAK_COLUMNS, BREAK_HIDDEN, BREAK_EPOCHS = 12, (32,), 60  # the break net: its inputs, layers, epochs
+BREAK_COLUMNS, BREAK_HIDDEN, BREAK_EPOCHS = 17, (32,), 60  # the break net: its inputs, layers, epochs
 EXPLORE = 0.25  # share of the data games' shots played by a random menu candidate (positions off the usual path)
 
 
@@ -150,40 +151,50 @@ def fit(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, lr: floa
     return value_net(model, mean, std)
 
 
-def with_pots(data: dict, pots: PotNet | None, game: str = "nine_ball") -> dict:
+def with_pots(data: dict, pots: PotNet | None, game: str = "nine_ball", safeties: SafetyNet | None = None) -> dict:
     """A dataset of LABEL_LAYOUT rows with the pot net's columns (`learned.pot_columns`) added,
-    each decision's position read back from its rows' observation: the rows `menu` makes of
-    LAYOUT (unchanged without a pot net)."""
+    and with `safeties` the safety net's (`SafetyNet.columns`) after them, each decision's
+    position read back from its rows' observation: the rows `menu` makes of layout 3 or 4
+    (unchanged without a pot net)."""
     if pots is None:
+        if safeties is not None:
+            raise ValueError("the safety net's columns follow the pot net's: pass pots too")
         return data
     search = SearchAgent(game, noise=None)
     features = np.asarray(data["features"])
-    extra = np.zeros((len(features), POT_COLUMNS + 2), dtype=np.float32)
+    width = POT_COLUMNS + 2 + (0 if safeties is None else SAFE_COLUMNS)
+    extra = np.zeros((len(features), width), dtype=np.float32)
     start = CANDIDATE_FEATURES + OUTCOME_FEATURES
     decision = np.asarray(data["decision"])
     edges = np.flatnonzero(np.r_[True, decision[1:] != decision[:-1], True])
     for a, b in zip(edges[:-1], edges[1:]):
         d = decode(features[a, start:], search.n_balls, search.table)
-        extra[a:b] = pot_columns(search, pots, d, game_state(d, game), features[a:b, :CANDIDATE_FEATURES])
+        state, rows = game_state(d, game), features[a:b, :CANDIDATE_FEATURES]
+        extra[a:b, :POT_COLUMNS + 2] = pot_columns(search, pots, d, state, rows)
+        if safeties is not None:
+            extra[a:b, POT_COLUMNS + 2:] = safeties.columns(search, rows, d, state)
     return {**data, "features": np.concatenate([features, extra], axis=1)}
 
 
 def fit_player(data: dict, hidden=(256, 256), epochs: int = 30, seed: int = 0, log=print,
-               pots: PotNet | None = None, game: str = "nine_ball") -> ValueNet:
+               pots: PotNet | None = None, game: str = "nine_ball", safeties: SafetyNet | None = None) -> ValueNet:
     """The learned player's nets: `fit` of the shot net on every decision but the break, and
     of a break net (`ValueNet.breaks`, one layer of BREAK_HIDDEN) on the breaks' candidates that
-    reads only their own shot (BREAK_COLUMNS: kind, speed, tip, direction, spot): the rack is the
+    reads only their own shot (BREAK_COLUMNS: kind, speed, tip, direction, spot, aim offset): the rack is the
     same but for its jitter, so the break net learns each break's mean value. With `pots` the
-    shot net reads the rows of LAYOUT (the pot net's columns added, `with_pots`; the rows of `game`)."""
+    shot net reads the rows of layout 3 (the pot net's columns added, `with_pots`; the rows of
+    `game`), and with `safeties` too those of layout 4 (LAYOUT: the safety net's columns after them)."""
     rows = np.asarray(data["features"][:, KINDS.index("break")] == 1.0)
-    shot = fit(with_pots(subset(data, ~rows), pots, game), hidden, epochs, seed, log=log)
-    shot = ValueNet({**shot.arrays, "layout": np.float32(LAYOUT if pots is not None else LABEL_LAYOUT)}, pots=pots)
+    shot = fit(with_pots(subset(data, ~rows), pots, game, safeties), hidden, epochs, seed, log=log)
+    layout = LABEL_LAYOUT if pots is None else 3 if safeties is None else LAYOUT
+    shot = ValueNet({**shot.arrays, "layout": np.float32(layout)}, pots=pots, safeties=safeties)
     if not rows.any():
         return shot
     breaks = rack_means(subset(data, rows))
     breaks["features"] = breaks["features"][:, :BREAK_COLUMNS]
     net = fit(breaks, BREAK_HIDDEN, BREAK_EPOCHS, seed, log=None)
-    return ValueNet(shot.arrays, breaks=ValueNet({**net.arrays, "columns": np.float32(BREAK_COLUMNS)}), pots=pots)
+    return ValueNet(shot.arrays, breaks=ValueNet({**net.arrays, "columns": np.float32(BREAK_COLUMNS)}), pots=pots,
+                    safeties=safeties)
 
 
 def rack_means(breaks: dict) -> dict:
@@ -239,8 +250,31 @@ def match(player, game: str = "nine_ball", noise=None, games: int = 400, seed: i
     return {"games": games, "wins": wins, "win_rate": wins / games, "ci95": (lo, hi)}
 
 
+def shot_models(pot_positions: int, safe_positions: int, seed: int, workers: int, out, log, timing: dict) -> tuple:
+    """`recipe`'s pot net and safety net (either None when its positions are 0; no safety net
+    without a pot net), their data saved into `out` and their seconds into `timing`."""
+    pots = safeties = None
+    Path(out).mkdir(parents=True, exist_ok=True)
+    if pot_positions:
+        t = time.perf_counter()
+        pot_data = parallel_pot_data(pot_positions, seed, workers)
+        pots = fit_pots(pot_data, seed=seed, log=log)
+        np.savez_compressed(Path(out) / "pots-data.npz", **pot_data)
+        timing["pots"] = time.perf_counter() - t
+        log(f"pot net: {len(pot_data['labels'])} simulated pots, fitted in {timing['pots']:.0f} s")
+    if pot_positions and safe_positions:
+        t = time.perf_counter()
+        safe_data = parallel_safe_data(safe_positions, seed + 1, workers)
+        safeties = fit_safeties(safe_data, seed=seed, log=log)
+        np.savez_compressed(Path(out) / "safe-data.npz", **safe_data)
+        timing["safeties"] = time.perf_counter() - t
+        log(f"safety net: {len(safe_data['labels'])} simulated safeties and kicks, "
+            f"fitted in {timing['safeties']:.0f} s")
+    return pots, safeties
+
+
 def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int, workers: int, out, log=print,
-           epochs: int = 30, pot_positions: int = 0) -> dict:
+           epochs: int = 30, pot_positions: int = 0, safe_positions: int = 0) -> dict:
     """The learned player, start to finish: `data_games` ghost-ball self-play games labelled
     (`parallel_dataset`), a value net fitted; then `rounds - 1` times as many games again of
     that net against the ghost-ball player, labelled and added, the net fitted anew; the last
@@ -249,16 +283,12 @@ def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int
     the labelled data (`learned-data.npz`) and the result (`learned.json`) into `out`; returns
     the result. With `pot_positions`, first a pot net (`learned_pots`) fitted to the pots
     planned from that many random positions (simulated on `workers` processes, seeded `seed`),
-    whose columns the value nets then read (layout 3; its data saved as `pots-data.npz`)."""
-    started, net, parts, timing, pots = time.perf_counter(), None, [], {}, None
-    if pot_positions:
-        t = time.perf_counter()
-        pot_data = parallel_pot_data(pot_positions, seed, workers)
-        pots = fit_pots(pot_data, seed=seed, log=log)
-        Path(out).mkdir(parents=True, exist_ok=True)
-        np.savez_compressed(Path(out) / "pots-data.npz", **pot_data)
-        timing["pots"] = time.perf_counter() - t
-        log(f"pot net: {len(pot_data['labels'])} simulated pots, fitted in {timing['pots']:.0f} s")
+    whose columns the value nets then read (layout 3; its data saved as `pots-data.npz`); and
+    with `safe_positions` too, a safety net (`learned_safeties`) fitted to the safeties and kicks
+    planned from that many random positions (seeded `seed` + 1), whose columns follow (layout 4;
+    its data saved as `safe-data.npz`)."""
+    started, net, parts, timing = time.perf_counter(), None, [], {}
+    pots, safeties = shot_models(pot_positions, safe_positions, seed, workers, out, log, timing)
     for r in range(rounds):
         t = time.perf_counter()
         parts.append(parallel_dataset(game, noise, data_games, seed + ROUND_SEEDS * r, workers, net))
@@ -266,7 +296,7 @@ def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int
         timing[f"data_round_{r}"] = time.perf_counter() - t
         log(f"round {r}: {int(data['decision'].max()) + 1} decisions labelled in {timing[f'data_round_{r}']:.0f} s")
         t = time.perf_counter()
-        net = fit_player(data, epochs=epochs, seed=seed, log=log, pots=pots, game=game)
+        net = fit_player(data, epochs=epochs, seed=seed, log=log, pots=pots, game=game, safeties=safeties)
         timing[f"fit_round_{r}"] = time.perf_counter() - t
     Path(out).mkdir(parents=True, exist_ok=True)
     net.save(Path(out) / "learned.npz")
@@ -276,7 +306,7 @@ def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int
                 for n in dict.fromkeys((noise, *EVAL_NOISES))}
     timing["evaluation"], timing["total"] = time.perf_counter() - t, time.perf_counter() - started
     result = {**by_noise[str(noise or "none")], "game": game, "noise": noise, "data_games": data_games,
-              "rounds": rounds, "epochs": epochs, "pot_positions": pot_positions,
+              "rounds": rounds, "epochs": epochs, "pot_positions": pot_positions, "safe_positions": safe_positions,
               "decisions": int(data["decision"].max()) + 1,
               "rows": len(data["values"]), "by_noise": by_noise, "seconds": timing}
     (Path(out) / "learned.json").write_text(json.dumps(result, indent=2))

@@ -170,14 +170,16 @@ def test_the_recipe_runs_end_to_end_and_writes_its_net_and_result(tmp_path):
     import train
 
     code = train.cli(["--algo", "value", "--env-id", "PoolNineBall-v0", "--data-games", "2", "--rounds", "2",
-                      "--eval-episodes", "2", "--n-envs", "1", "--pot-positions", "30", "--out", str(tmp_path),
+                      "--eval-episodes", "2", "--n-envs", "1", "--pot-positions", "30", "--safe-positions", "20",
+                      "--out", str(tmp_path),
                       "--run-name", "r", "--no-progress-bar"])
     assert code == 0
     result = json.loads((tmp_path / "r" / "learned.json").read_text())
     assert result["games"] == 2 and 0 <= result["wins"] <= 2 and result["rounds"] == 2 and result["decisions"] >= 2
     net = ValueNet.load(tmp_path / "r" / "learned.npz")
     assert net.arrays["w0"].shape[0] == net.arrays["mean"].shape[0]
-    assert net.layout == 3 and net.pots is not None and result["pot_positions"] == 30
+    assert net.layout == 4 and net.pots is not None and result["pot_positions"] == 30
+    assert net.safeties is not None and result["safe_positions"] == 20
 
 
 def test_the_recipe_refuses_a_break_env_in_one_line():
