@@ -33,16 +33,16 @@ BLAS_THREADS = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 OUTCOME_WEIGHT = 0.0  # the game's result in the fitted label, the rest the search's calibrated value (docs/players.md)
 
 
-def self_play(games: int, seed: int = DATA_SEED, noise=NOISE, budget: int = 600, log=None) -> dict:
+def self_play(games: int, seed: int = DATA_SEED, noise=NOISE, budget: int = 600, log=None, leaf: bool = False) -> dict:
     """`SearchAgent` against itself on games seeded seed .. seed + games - 1 (breaks alternating):
     every position before a shot, its `position_features`, labelled 1 if the player to shoot
     there went on to win (games with no winner are left out), and the search's own value of its
     decision there (`last_stats["value"]`, in the search's units). Arrays features (N, F),
-    label (N,), search_value (N,), game (N,) (the game's seed), leaf (N, LEAF_FEATURES) (their
-    `leaf_features`)."""
+    label (N,), search_value (N,), game (N,) (the game's seed); with `leaf`, leaf (N,
+    LEAF_FEATURES) (their `leaf_features`: the learned player reads every position)."""
     sim = Game(GAME, noise=noise)
     players = [SearchAgent(GAME, noise=noise, budget=budget) for _ in range(2)]
-    learned = LearnedPlayer(GAME)
+    learned = LearnedPlayer(GAME) if leaf else None
     feats, labels, values, seeds, leaves = [], [], [], [], []
     start = time.perf_counter()
     for k in range(games):
@@ -60,7 +60,8 @@ def self_play(games: int, seed: int = DATA_SEED, noise=NOISE, budget: int = 600,
         if winner is not None and positions:
             decided.append(players[shooters[-1]].last_stats["value"])
             feats.append(position_features(players[0], positions))
-            leaves.append(leaf_features(learned, positions))
+            if learned is not None:
+                leaves.append(leaf_features(learned, positions))
             labels.append((np.array(shooters) == winner).astype(np.float32))
             values.append(np.array(decided, dtype=np.float32))
             seeds.append(np.full(len(positions), seed + k, dtype=np.int64))
@@ -71,22 +72,25 @@ def self_play(games: int, seed: int = DATA_SEED, noise=NOISE, budget: int = 600,
     def joined(parts, dtype):
         return np.concatenate(parts) if parts else np.zeros(0, dtype)
 
-    return {"features": np.concatenate(feats) if feats else np.zeros((0, POSITION_FEATURES), np.float32),
+    data = {"features": np.concatenate(feats) if feats else np.zeros((0, POSITION_FEATURES), np.float32),
             "label": joined(labels, np.float32), "search_value": joined(values, np.float32),
-            "game": joined(seeds, np.int64),
-            "leaf": np.concatenate(leaves) if leaves else np.zeros((0, LEAF_FEATURES), np.float32)}
+            "game": joined(seeds, np.int64)}
+    if leaf:
+        data["leaf"] = np.concatenate(leaves) if leaves else np.zeros((0, LEAF_FEATURES), np.float32)
+    return data
 
 
 def _self_play_part(job) -> dict:
-    games, seed, noise, budget = job
-    return self_play(games, seed, noise, budget, log=print if seed == DATA_SEED else None)
+    games, seed, noise, budget, leaf = job
+    return self_play(games, seed, noise, budget, log=print if seed == DATA_SEED else None, leaf=leaf)
 
 
-def parallel_self_play(games: int, seed: int = DATA_SEED, workers: int = 2, noise=NOISE, budget: int = 600) -> dict:
+def parallel_self_play(games: int, seed: int = DATA_SEED, workers: int = 2, noise=NOISE, budget: int = 600,
+                       leaf: bool = False) -> dict:
     """`self_play` split over `workers` processes (part k: the games seeded from seed + k * share),
     joined in seed order: the same data whatever process finishes first."""
     share = -(-games // workers)
-    jobs = [(min(share, games - k * share), seed + k * share, noise, budget)
+    jobs = [(min(share, games - k * share), seed + k * share, noise, budget, leaf)
             for k in range(workers) if games - k * share > 0]
     if len(jobs) == 1:
         return _self_play_part(jobs[0])
@@ -252,7 +256,7 @@ def recipe(data_games: int, eval_games: int, out, workers: int = 2, budget: int 
     out.mkdir(parents=True, exist_ok=True)
     timing, t = {}, time.perf_counter()
     if data is None:
-        data = parallel_self_play(data_games, workers=workers, budget=budget)
+        data = parallel_self_play(data_games, workers=workers, budget=budget, leaf=leaf)
         np.savez_compressed(out / "value-data.npz", **data)
     timing["data"] = time.perf_counter() - t
     log(f"data: {len(data['label'])} positions of {len(np.unique(data['game']))} games in {timing['data']:.0f} s")
