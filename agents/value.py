@@ -8,8 +8,9 @@ from pool_env import rules
 from pool_env.game import GAME_BALLS, game_observation
 from pool_env.players import game_of
 
-from .learned import WEIGHTS, ValueNet
+from .learned import WEIGHTS, LearnedPlayer, ValueNet
 from .search import IN_HAND_QUALITY, SearchAgent
+from .value_leaf import LEAF, LEAF_TOP, leaf_features
 
 MAX_SHOTS = 100  # the observation's shot-counter scale (the game envs' max_shots); the counter is left out
 OBSERVATION_ROWS = 43  # a 9-ball observation without its shot counter: balls (30), legal (9), in hand (2), fouls (2)
@@ -59,15 +60,19 @@ class ValueSearchAgent(SearchAgent):
     simulations under the game's noise and the rules' judgement are the search's; each outcome
     is then worth 1 (a win), 0 (a loss or a shot the simulator could not finish), V (the shooter
     keeps the table) or 1 - V (the opponent to shoot, with ball in hand after a foul), V the
-    net's win probability of the player to shoot there (`position_features`), all outcomes of a
-    decision in one planner batch and one net evaluation. `blend` in [0, 1] mixes in the
-    search's own value (its lookahead, mapped from [-1, 1] to [0, 1]) with that weight (0: the
-    net alone). The candidate with the best mean over its noise draws is played."""
+    net's win probability of the player to shoot there, all outcomes of a decision in one net
+    evaluation. The net reads `position_features` (one planner batch a decision) or, if it is a
+    leaf net (saved with LEAF), `value_leaf.leaf_features`: the learned player's best predicted
+    shot value from each outcome (no simulation). `top` (a leaf net's default LEAF_TOP) limits
+    the net's choice to the search's `top` best candidates by its own lookahead value. `blend`
+    in [0, 1] mixes in the search's own value (its lookahead, mapped from [-1, 1] to [0, 1])
+    with that weight (0: the net alone). The candidate with the best mean over its noise draws
+    is played."""
 
     name = "search+value"
 
     def __init__(self, game: str | None = "nine_ball", net: ValueNet | None = None, blend: float = 0.0,
-                 every: bool = False, **options):
+                 every: bool = False, top: int | None = None, **options):
         if game not in GAME_BALLS:
             raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
         if net is None:  # a game without a shipped net is refused as the learned player's is (the tournament skips it)
@@ -79,25 +84,36 @@ class ValueSearchAgent(SearchAgent):
             raise ValueError(f"search+value plays 9-ball only (its features are 9-ball's), got {game!r}")
         if not 0.0 <= float(blend) <= 1.0:
             raise ValueError(f"blend must be in [0, 1], got {blend!r}")
+        if top is not None and int(top) < 1:
+            raise ValueError(f"top must be >= 1 or None, got {top!r}")
         super().__init__(game, **options)
         self.net, self.blend, self.every = net, float(blend), bool(every)
+        self.learned = None
+        if LEAF in getattr(net, "arrays", {}):  # a net over `leaf_features`: the learned player reads the positions
+            self.learned = LearnedPlayer(game, table=self.table, physics=self.physics, radius=self.radius)
+            top = LEAF_TOP if top is None else top
+        self.top = None if top is None else int(top)
 
     def evaluate(self, d, state, candidates, start) -> tuple[np.ndarray, int]:
         """(each candidate's value, the candidates simulated): simulated and judged as by
         `SearchAgent.evaluate` (with `seconds`, chunks until the time is up); the candidates its
-        lookahead would score (`looked_at`; `every`: all simulated) get the mean of
-        `outcome_values` over their noise draws, blended with the search's lookahead value if
-        `blend`; the rest stay below any of them (their plain value - 10, as the search does)."""
+        lookahead would score (`looked_at`; `every`: all simulated), or with `top` the `top` best
+        of them by the search's own lookahead value, get the mean of `outcome_values` over their
+        noise draws, blended with the search's lookahead value if `blend`; the rest stay below
+        any of them."""
         s = self.noise_samples
         records, judged, plain = self.judged(d, state, candidates, start)
         done = len(records) // s
         chosen = np.arange(done) if self.every else self.looked_at(plain, done, d.legal)
-        values = plain - 10.0
+        deep = plain - 10.0
+        if self.blend > 0.0 or self.top is not None:
+            self.look_ahead(deep, chosen, judged, start)
+        if self.top is not None:
+            chosen = np.argsort(-deep, kind="stable")[: min(self.top, len(chosen))]
+        values = deep - 10.0
         won = self.outcome_values([records[c * s + k] for c in chosen for k in range(s)])
         values[chosen] = won.reshape(len(chosen), s).mean(axis=1)
         if self.blend > 0.0:
-            deep = plain - 10.0
-            self.look_ahead(deep, chosen, judged, start)
             values[chosen] = (1.0 - self.blend) * values[chosen] + self.blend * 0.5 * (deep[chosen] + 1.0)
         return values, done
 
@@ -115,7 +131,9 @@ class ValueSearchAgent(SearchAgent):
                 open_rows.append(k)
                 positions.append((record.balls_after, record.state_after))
         if open_rows:
-            v = win_probability(self.net, position_features(self, positions))
+            features = position_features(self, positions) if self.learned is None else \
+                leaf_features(self.learned, positions)
+            v = win_probability(self.net, features)
             mine = np.array([after.shooter == 0 for _, after in positions])
             values[open_rows] = np.where(mine, v, 1.0 - v)
         return values

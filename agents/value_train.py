@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import time
 from concurrent.futures import ProcessPoolExecutor
 from multiprocessing import get_context
@@ -13,30 +14,36 @@ import numpy as np
 
 from pool_env.game import Game
 
-from .learned import ValueNet
+from .learned import LearnedPlayer, ValueNet
 from .learned_mlp import torch_mlp
 from .learned_train import value_net
 from .match import alternate, play_game, player_seed, points
 from .search import SearchAgent
 from .stats import wilson
 from .value import POSITION_FEATURES, ValueSearchAgent, position_features, win_probability
+from .value_leaf import LEAF_FEATURES, fit_leaf, leaf_features, logistic
 
 GAME, NOISE = "nine_ball", "olympiad"
 DATA_SEED, EVAL_SEED = 0, 1_000_000  # game k of the data is seeded DATA_SEED + k, of the evaluation EVAL_SEED + k
 HIDDEN = (32,)  # one tanh layer: more fit the games' noise (held-out log loss, docs/players.md)
 HELD_OUT = 0.1  # the share of the data games (the last ones) kept out of the fit to measure it
+# The nets' matrices are small: BLAS threads in each worker only contend for the cores (on a
+# shared machine they made a decision several times slower).
+BLAS_THREADS = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 OUTCOME_WEIGHT = 0.0  # the game's result in the fitted label, the rest the search's calibrated value (docs/players.md)
 
 
-def self_play(games: int, seed: int = DATA_SEED, noise=NOISE, budget: int = 600, log=None) -> dict:
+def self_play(games: int, seed: int = DATA_SEED, noise=NOISE, budget: int = 600, log=None, leaf: bool = False) -> dict:
     """`SearchAgent` against itself on games seeded seed .. seed + games - 1 (breaks alternating):
     every position before a shot, its `position_features`, labelled 1 if the player to shoot
     there went on to win (games with no winner are left out), and the search's own value of its
     decision there (`last_stats["value"]`, in the search's units). Arrays features (N, F),
-    label (N,), search_value (N,), game (N,) (the game's seed)."""
+    label (N,), search_value (N,), game (N,) (the game's seed); with `leaf`, leaf (N,
+    LEAF_FEATURES) (their `leaf_features`: the learned player reads every position)."""
     sim = Game(GAME, noise=noise)
     players = [SearchAgent(GAME, noise=noise, budget=budget) for _ in range(2)]
-    feats, labels, values, seeds = [], [], [], []
+    learned = LearnedPlayer(GAME) if leaf else None
+    feats, labels, values, seeds, leaves = [], [], [], [], []
     start = time.perf_counter()
     for k in range(games):
         for seat, player in enumerate(players):
@@ -53,6 +60,8 @@ def self_play(games: int, seed: int = DATA_SEED, noise=NOISE, budget: int = 600,
         if winner is not None and positions:
             decided.append(players[shooters[-1]].last_stats["value"])
             feats.append(position_features(players[0], positions))
+            if learned is not None:
+                leaves.append(leaf_features(learned, positions))
             labels.append((np.array(shooters) == winner).astype(np.float32))
             values.append(np.array(decided, dtype=np.float32))
             seeds.append(np.full(len(positions), seed + k, dtype=np.int64))
@@ -63,21 +72,25 @@ def self_play(games: int, seed: int = DATA_SEED, noise=NOISE, budget: int = 600,
     def joined(parts, dtype):
         return np.concatenate(parts) if parts else np.zeros(0, dtype)
 
-    return {"features": np.concatenate(feats) if feats else np.zeros((0, POSITION_FEATURES), np.float32),
+    data = {"features": np.concatenate(feats) if feats else np.zeros((0, POSITION_FEATURES), np.float32),
             "label": joined(labels, np.float32), "search_value": joined(values, np.float32),
             "game": joined(seeds, np.int64)}
+    if leaf:
+        data["leaf"] = np.concatenate(leaves) if leaves else np.zeros((0, LEAF_FEATURES), np.float32)
+    return data
 
 
 def _self_play_part(job) -> dict:
-    games, seed, noise, budget = job
-    return self_play(games, seed, noise, budget, log=print if seed == DATA_SEED else None)
+    games, seed, noise, budget, leaf = job
+    return self_play(games, seed, noise, budget, log=print if seed == DATA_SEED else None, leaf=leaf)
 
 
-def parallel_self_play(games: int, seed: int = DATA_SEED, workers: int = 2, noise=NOISE, budget: int = 600) -> dict:
+def parallel_self_play(games: int, seed: int = DATA_SEED, workers: int = 2, noise=NOISE, budget: int = 600,
+                       leaf: bool = False) -> dict:
     """`self_play` split over `workers` processes (part k: the games seeded from seed + k * share),
     joined in seed order: the same data whatever process finishes first."""
     share = -(-games // workers)
-    jobs = [(min(share, games - k * share), seed + k * share, noise, budget)
+    jobs = [(min(share, games - k * share), seed + k * share, noise, budget, leaf)
             for k in range(workers) if games - k * share > 0]
     if len(jobs) == 1:
         return _self_play_part(jobs[0])
@@ -95,18 +108,11 @@ def split(data: dict, held_out: float = HELD_OUT) -> tuple[dict, dict]:
     return ({k: v[keep] for k, v in data.items()}, {k: v[~keep] for k, v in data.items()})
 
 
-def calibration(data: dict, steps: int = 50) -> tuple[float, float]:
+def calibration(data: dict) -> tuple[float, float]:
     """(a, b) of the logistic map P(the shooter wins) = sigmoid(a + b v) from the search's own
-    decision value v to the labelled outcomes (maximum likelihood, Newton's method)."""
-    v = np.asarray(data["search_value"], dtype=np.float64)
-    y = np.asarray(data["label"], dtype=np.float64)
-    x = np.stack([np.ones_like(v), v], axis=1)
-    w = np.zeros(2)
-    for _ in range(steps):
-        p = 1.0 / (1.0 + np.exp(-x @ w))
-        hessian = (x * (p * (1.0 - p))[:, None]).T @ x + 1e-9 * np.eye(2)
-        w -= np.linalg.solve(hessian, x.T @ (p - y))
-    return float(w[0]), float(w[1])
+    decision value v to the labelled outcomes (maximum likelihood: `value_leaf.logistic`)."""
+    a, b = logistic(np.asarray(data["search_value"], dtype=np.float64)[:, None], data["label"])
+    return float(a), float(b)
 
 
 def targets(data: dict, outcome_weight: float = OUTCOME_WEIGHT, calibrated: tuple | None = None) -> dict:
@@ -165,74 +171,108 @@ def scores(net: ValueNet, data: dict) -> dict:
 
 
 def versus(games: int, seed: int = EVAL_SEED, noise=NOISE, budget: int = 600, net: ValueNet | None = None,
-           options: dict | None = None) -> list:
+           options: dict | None = None, clock: dict | None = None) -> list:
     """search+value against search on games seeded seed + k, search+value breaking the even k
     (seats and breaks alternate), both with `budget` simulations a decision (`options`: more of
-    `ValueSearchAgent`'s, blend, every): for each game 1 (search+value won), 0 or 0.5 (no winner)."""
+    `ValueSearchAgent`'s, blend, every, top): for each game 1 (search+value won), 0 or 0.5 (no
+    winner). `clock`, if given, gets each player's decisions and CPU seconds ([n, s] by name)."""
     sim = Game(GAME, noise=noise)
     value = ValueSearchAgent(GAME, net=net, noise=noise, budget=budget, **(options or {}))
     plain = SearchAgent(GAME, noise=noise, budget=budget)
+    clock = {} if clock is None else clock
     out = []
     for game_seed, breaker, other in alternate(range(seed, seed + games), value, plain, first=seed):
-        for seat, player in enumerate((breaker, other)):
+        seats = (breaker, other)
+        for seat, player in enumerate(seats):
             player.reset(seed=player_seed(game_seed, seat))
-        winner = play_game(sim, (breaker, other), game_seed, 0)  # seat 0 breaks
+
+        def timed(obs, who, seats=seats):
+            start = time.process_time()
+            action = seats[who].act(obs)
+            spent = clock.setdefault(seats[who].name, [0, 0.0])
+            spent[0] += 1
+            spent[1] += time.process_time() - start
+            return action
+
+        winner = play_game(sim, seats, game_seed, 0, timed)  # seat 0 breaks
         out.append(points(winner, 0 if breaker is value else 1))
     return out
 
 
-def _versus_part(job) -> list:
+def _versus_part(job) -> tuple:
     games, seed, noise, budget, arrays, options = job
-    return versus(games, seed, noise, budget, None if arrays is None else ValueNet(arrays), options)
+    clock = {}
+    results = versus(games, seed, noise, budget, None if arrays is None else ValueNet(arrays), options, clock)
+    return results, clock
 
 
 def match(games: int = 400, seed: int = EVAL_SEED, workers: int = 2, noise=NOISE, budget: int = 600,
           net: ValueNet | None = None, options: dict | None = None) -> dict:
-    """`versus` split over `workers` processes: wins, the win rate and its 95 % Wilson interval."""
+    """`versus` split over `workers` processes: wins, the win rate and its 95 % Wilson interval,
+    each player's decisions and decisions per CPU second."""
     share = -(-games // workers)
     arrays = None if net is None else net.arrays
     jobs = [(min(share, games - k * share), seed + k * share, noise, budget, arrays, options)
             for k in range(workers) if games - k * share > 0]
     if len(jobs) == 1:
-        results = _versus_part(jobs[0])
+        parts = [_versus_part(jobs[0])]
     else:
         with ProcessPoolExecutor(len(jobs), mp_context=get_context("spawn")) as pool:
-            results = [r for part in pool.map(_versus_part, jobs) for r in part]
-    wins = float(sum(results))
+            parts = list(pool.map(_versus_part, jobs))
+    wins = float(sum(r for results, _ in parts for r in results))
     lo, hi = wilson(wins, games)
+    decisions = {name: sum(c[name][0] for _, c in parts if name in c) for name in ("search+value", "search")}
+    cpu = {name: sum(c[name][1] for _, c in parts if name in c) for name in ("search+value", "search")}
+    per_second = {name: decisions[name] / cpu[name] if cpu[name] > 0 else None for name in cpu}
     return {"games": games, "wins": wins, "win_rate": wins / games, "ci95": [lo, hi], "seeds": [seed, seed + games - 1],
-            "budget": budget, "options": options or {}, "noise": noise}
+            "budget": budget, "options": options or {}, "noise": noise, "decisions": decisions,
+            "decisions_per_cpu_second": per_second}
+
+
+def fitted_net(data: dict, outcome_weight: float, leaf: bool, log=print) -> ValueNet:
+    """The net the recipe fits to `targets`: over `position_features` (`fit`) or, with `leaf`,
+    the logistic leaf net over `leaf_features` (`value_leaf.fit_leaf`)."""
+    labelled = targets(data, outcome_weight)
+    if not leaf:
+        return fit(labelled, log=log)
+    game = np.asarray(data["game"])
+    played = np.r_[False, game[1:] == game[:-1]]  # each game's first position is the rack, never a leaf
+    return fit_leaf(data["leaf"][played], labelled["label"][played])
 
 
 def recipe(data_games: int, eval_games: int, out, workers: int = 2, budget: int = 600, data=None, log=print,
-           outcome_weight: float = OUTCOME_WEIGHT) -> dict:
+           outcome_weight: float = OUTCOME_WEIGHT, leaf: bool = False) -> dict:
     """The whole recipe: `data_games` search self-play games (olympiad noise, `workers` processes),
-    a net fitted (to `targets`) on all but the held-out games (scored there against their
-    outcomes), then fitted on every game and played against search for `eval_games` games.
-    Writes value.npz, value-data.npz and value.json into `out`; returns the result."""
+    a net fitted (`fitted_net`; `leaf`: the leaf net) on all but the held-out games (scored there
+    against their outcomes), then fitted on every game and played against search for
+    `eval_games` games. Writes value.npz, value-data.npz and value.json into `out`; returns the
+    result."""
     if outcome_weight < 1.0 and data is not None and "search_value" not in data:
         raise ValueError("this data has no search_value (made before the search's values were kept): "
                          "fit it with --outcome-weight 1 or play new data")
+    if leaf and data is not None and "leaf" not in data:
+        raise ValueError("this data has no leaf features (made before they were kept): play new data")
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     timing, t = {}, time.perf_counter()
     if data is None:
-        data = parallel_self_play(data_games, workers=workers, budget=budget)
+        data = parallel_self_play(data_games, workers=workers, budget=budget, leaf=leaf)
         np.savez_compressed(out / "value-data.npz", **data)
     timing["data"] = time.perf_counter() - t
     log(f"data: {len(data['label'])} positions of {len(np.unique(data['game']))} games in {timing['data']:.0f} s")
     t = time.perf_counter()
     train, held = split(data)
-    held_scores = scores(fit(targets(train, outcome_weight), log=log), held) if len(held["label"]) else {}
+    shown = {**held, "features": held["leaf"]} if leaf else held
+    held_scores = scores(fitted_net(train, outcome_weight, leaf, log), shown) if len(held["label"]) else {}
     log(f"held out: {held_scores}")
-    net = fit(targets(data, outcome_weight), log=log)
+    net = fitted_net(data, outcome_weight, leaf, log)
     net.save(out / "value.npz")
     timing["fit"] = time.perf_counter() - t
     t = time.perf_counter()
     result = match(eval_games, workers=workers, budget=budget, net=net) if eval_games else {}
     timing["evaluation"] = time.perf_counter() - t
     result = {**result, "data_games": int(len(np.unique(data["game"]))), "positions": int(len(data["label"])),
-              "outcome_weight": outcome_weight,
+              "outcome_weight": outcome_weight, "leaf": leaf,
               "held_out": held_scores, "seconds": timing, "workers": workers}
     (out / "value.json").write_text(json.dumps(result, indent=2) + "\n")
     if eval_games:
@@ -242,6 +282,8 @@ def recipe(data_games: int, eval_games: int, out, workers: int = 2, budget: int 
 
 
 def main(argv=None) -> dict:
+    for name in BLAS_THREADS:  # the worker processes inherit these: one BLAS thread each
+        os.environ.setdefault(name, "1")
     parser = argparse.ArgumentParser(prog="python -m agents.value_train", description=__doc__)
     parser.add_argument("--games", type=int, default=800, help="search self-play games for the data")
     parser.add_argument("--eval-games", type=int, default=400, help="games of search+value against search (0: none)")
@@ -252,13 +294,17 @@ def main(argv=None) -> dict:
     parser.add_argument("--net", default=None, help="only play this value net against search (--eval-games games)")
     parser.add_argument("--blend", type=float, default=0.0, help="with --net: the search's own value's weight")
     parser.add_argument("--every", action="store_true", help="with --net: score every candidate, not the lookahead's")
+    parser.add_argument("--top", type=int, default=None,
+                        help="with --net: rescore only the search's best TOP candidates (a leaf net's default: 5)")
+    parser.add_argument("--leaf", action="store_true",
+                        help="fit the leaf net (the learned player's best shot value, balls left, ball in hand)")
     parser.add_argument("--eval-seed", type=int, default=EVAL_SEED)
     parser.add_argument("--outcome-weight", type=float, default=OUTCOME_WEIGHT,
                         help="the game's result in the label (0: the search's calibrated value alone, 1: the result)")
     args = parser.parse_args(argv)
     if args.net is not None:
         result = match(args.eval_games, args.eval_seed, args.workers, budget=args.budget, net=ValueNet.load(args.net),
-                       options={"blend": args.blend, "every": args.every})
+                       options={"blend": args.blend, "every": args.every, "top": args.top})
         print(json.dumps(result))
         return result
     if args.games < 1 or args.eval_games < 0 or args.workers < 1 or not 0.0 <= args.outcome_weight <= 1.0:
@@ -269,7 +315,7 @@ def main(argv=None) -> dict:
         with np.load(args.data) as f:
             data = dict(f)
     return recipe(args.games, args.eval_games, args.out, args.workers, args.budget, data,
-                  outcome_weight=args.outcome_weight)
+                  outcome_weight=args.outcome_weight, leaf=args.leaf)
 
 
 if __name__ == "__main__":

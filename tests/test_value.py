@@ -150,7 +150,7 @@ def test_self_play_labels_each_position_by_whether_its_shooter_won_and_one_fit_r
     data = self_play(2, seed=5, budget=24)
     assert data["features"].shape == (len(data["label"]), POSITION_FEATURES) and len(data["label"]) >= 2
     assert set(np.unique(data["label"])) <= {0.0, 1.0}
-    assert set(np.unique(data["game"])) <= {5, 6}
+    assert set(np.unique(data["game"])) <= {5, 6} and "leaf" not in data  # leaf features only when asked
     # the search's value of each decision, in its units: a loss (-1) to a win (+1)
     assert data["search_value"].shape == data["label"].shape and np.all(np.abs(data["search_value"]) <= 1.0)
     train, held = split(data, 0.5)
