@@ -31,6 +31,15 @@ def callable_balls(view, game: str) -> tuple:
     return tuple(int(b) for b in np.flatnonzero(mask) + 1)
 
 
+def planned_pot(candidate, row, place=None) -> Shot:
+    """The pot of a plan row (PLAN_COLUMNS,) for its candidate (position, ball, pocket), the cue
+    ball placed at `place` with ball in hand: the row read as Python floats (as `pot_of` reads
+    it), which a Shot takes as they are."""
+    found = row.tolist()
+    return Shot.aimed((found[DX], found[DY]), found[SPEED], place=place, pocket=int(candidate[2]),
+                      ball=int(candidate[1]))
+
+
 class GameGhostBallAgent(Agent):
     """Plays a game env's observation by the rules with the ghost-ball method
     (`GhostBallAgent`'s planner): on the break, full at the apex ball from the head spot; then
@@ -100,8 +109,7 @@ class GameGhostBallAgent(Agent):
             xy, objects, legal = self.arrays([view])
             index, found, k = self.planner.batch.best_lie(xy[0], objects[0], legal[0], self.planner.arrival_speed)
             if k >= 0 and found[SCORE] > -math.inf:
-                row = found.tolist()  # Python floats: a Shot takes them as they are
-                return Shot.aimed((row[DX], row[DY]), row[SPEED], pocket=int(index[k, 2]), ball=int(index[k, 1]))
+                return planned_pot(index[k], found)
             return self.safety(xy[0], view.on_table, legal[0, 1:], None)
         if view.ball_in_hand is None or (view.on_table.all() and view.ball_in_hand == "behind_head_string"):
             return self.decide_batch([view])[0]  # a pocketed cue ball without ball in hand, or the break
@@ -122,10 +130,8 @@ class GameGhostBallAgent(Agent):
             k = -1
         elif s < 0:  # no spot has a pot: from the area's middle (the windows do not depend on the cue ball)
             row, _, k = batch.best_from(xy, objects, index, aims, cue[None], arrival)
-        if k >= 0:  # the pot's row as Python floats (what `pot_of` reads of it)
-            found = row.tolist()
-            return Shot.aimed((found[DX], found[DY]), found[SPEED], place=place, pocket=int(index[k, 2]),
-                              ball=int(index[k, 1]))
+        if k >= 0:
+            return planned_pot(index[k], row, place)
         trial = xy[0].copy()
         trial[0] = cue
         return self.safety(trial, view.on_table, legal[0, 1:], place)
