@@ -12,7 +12,8 @@ import pytest
 from scenes import named
 
 import pool_env
-from pool_env.envs.break_env import PoolBreakEnv, spread, spread_gain
+from pool_env.envs.break_env import PoolBreakEnv
+from pool_env.envs.rewards import spread, spread_gain
 from pool_env.game import MAX_FORCE, cue_force, decode_observation
 from pool_env.physics import BALL_MASS, Balls, Physics, SimulationError, Table
 from pool_env.records.video import HOLD_SECONDS, ShotVideoRecorder, record_video
