@@ -147,7 +147,8 @@ class Compiled:
                 return f(*args)
         if RECORD is not None:
             return _recorded(self, args)
-        return self.dispatcher(*args)
+        d = self._dispatcher  # once made, without the property's call (the players' kernels come here every call)
+        return (self.dispatcher if d is None else d)(*args)
 
     def __getattr__(self, name):
         if name.startswith("__"):
