@@ -43,7 +43,7 @@ def warm_up_shots():
         balls = rack(table, seed=0) if table.pockets.shape[0] else Balls([[0.5, 0.5], [1.0, 0.6], [1.5, 0.4]])
         read(simulate(strike(balls, force=(8 * 0.170097 / 0.005, 0.0)), table, physics)).at(0.05)
     table = Table.eight_foot()
-    read(simulate(Balls([[0.5, 0.5], [1.0, 0.55]], v=[[2.0, 0.2], [0.0, 0.0]]), table, physics))
+    read(simulate(Balls([[0.5, 0.5], [1.0, 0.55]], v=[[2.0, 0.2], [0.0, 0.0]]), table, physics), final_first=True)
     read(simulate(strike(rack(table), force=(30.0, 0.0), elevation=0.3, offset=(0.0, 0.01)), table, physics))
     simulate_batch([strike(rack(table, seed=s), force=(200.0, 1.0)) for s in range(2)], table, physics, threads=2)
     struck = strike(rack(table), force=(30.0, 0.0))
@@ -51,11 +51,14 @@ def warm_up_shots():
     warm_up()
 
 
-def read(result):
-    """`result` after reading what the envs and the rules read of every shot, each a compiled
-    call of its own: the balls at rest and the event facts."""
-    _ = result.final  # a property: read for its compiled call
+def read(result, final_first=False):
+    """`result` after reading what the envs and the rules read of every shot: the event facts
+    and the balls at rest, in one compiled call; or (`final_first`) the balls at rest alone,
+    then the facts, each a compiled call of its own."""
+    if final_first:
+        _ = result.final  # a property: read for its compiled call
     result.event_facts()
+    _ = result.final
     return result
 
 

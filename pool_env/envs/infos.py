@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..physics import Balls
+from ..physics.facts import DROPS, FIRST, HEAD
 from ..physics.kinds import BALL_BALL_KINDS, BALL_CUSHION, BALL_POCKET
 from ..rules import codes
 
@@ -17,7 +18,13 @@ def shot_info(result, after: Balls, error: str | None = None) -> dict:
     as they are. Every value is a number, a bool or an array of a fixed shape."""
     pocketed = np.zeros(len(after.pocketed), dtype=np.bool_)
     first, cushions, events = -1, 0, 0
-    if result is not None:
+    facts = None if result is None else result.event_facts()
+    if facts is not None:  # the first contact and the drops as the rules read them, in one compiled call
+        kinds = result.event_arrays[1]
+        events, cushions, first = kinds.shape[0], int(np.count_nonzero(kinds == BALL_CUSHION)), facts[FIRST]
+        for k in range(facts[DROPS]):
+            pocketed[facts[HEAD + 2 * k]] = True
+    elif result is not None:  # a Result without the engine's output (a fixed-step run's): its events
         _, kinds, i_s, j_s = (a.tolist() for a in result.event_arrays)  # lists: a shot has tens of events
         events = len(kinds)
         for kind, i, j in zip(kinds, i_s, j_s):

@@ -23,12 +23,13 @@ def shot_record(struck: StruckShot, result, state, table: Table, mode: Mode, dec
         error = f"{type(result).__name__}: {result}"
         return ShotRecord(*head, struck.placed, None, None, state, False, error, elevation=struck.elevation,
                           called_ball=struck.called_ball)
-    final = result.final
     if mode.rules is None:
+        final = result.final
         cleared = table.pockets.shape[0] > 0 and bool(final.pocketed[1:].all())
         over = mode.one_shot or bool(final.pocketed[0]) or cleared
         return ShotRecord(*head, final, result, None, None, over, elevation=struck.elevation)
-    outcome = rules.read_outcome(state, result)
+    outcome = rules.read_outcome(state, result)  # first: a Result reads its facts and final state in one call
+    final = result.final
     key = (outcome, struck.called_pocket, struck.called_ball, struck.push_out)
     judged = None if rulings is None else rulings.get(key)
     if judged is None:

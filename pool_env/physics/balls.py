@@ -118,8 +118,22 @@ class Balls:
         """Balls from arrays the engine produced (already valid): no checks, no copies. `air`
         (N, 2) holds each ball's z and vz (None: every ball on the cloth)."""
         out = cls.__new__(cls)
-        out.radius, out.mass = like.radius, like.mass
-        out._set(xy, v, w, pocketed, like._radii, like._masses, air)
+        out.radius, out.mass, out._radii, out._masses = like.radius, like.mass, like._radii, like._masses
+        # read_only's setflags on the new arrays only: those of `like` are read-only already
+        # (a struck cue ball keeps the positions, a placed one the velocities and spins)
+        if xy is not like.xy:
+            xy.setflags(write=False)
+        if v is not like.v:
+            v.setflags(write=False)
+        if w is not like.w:
+            w.setflags(write=False)
+        if pocketed is not like.pocketed:
+            pocketed.setflags(write=False)
+        if air is None:
+            air = _on_cloth(xy.shape[0])
+        elif air is not like.air:
+            air.setflags(write=False)
+        out.xy, out.v, out.w, out.pocketed, out.air = xy, v, w, pocketed, air
         return out
 
     @property

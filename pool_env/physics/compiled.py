@@ -47,10 +47,11 @@ def arg_key(a):
     typeof for what the engine takes: arrays by dtype, dimensions, layout and writability;
     None, bools, ints, floats and numpy scalars by type). A tuple is keyed as a tuple, whatever
     it holds: the functions Python passes tuples to (engine.simulate_scene, the engine's
-    entry, and batch_run's) are called from their own modules, which build them with fixed
-    types (the physics tuple's model ids None exactly when `full` is None: see engine.run, so
-    that argument tells the two apart); checking each of their ~30 items would cost more than
-    a 2-ball shot's whole simulation."""
+    entry, and batch_run's; packed.final_arrays and facts.final_facts, which copy a run's
+    final state and facts) are called from modules that build them with fixed types (the
+    physics tuple's model ids None exactly when `full` is None: see engine.run, so that
+    argument tells the two apart); checking each of their ~30 items would cost more than a
+    2-ball shot's whole simulation."""
     t = type(a)
     if t is np.ndarray:
         flags = a.flags
@@ -146,7 +147,8 @@ class Compiled:
                 return f(*args)
         if RECORD is not None:
             return _recorded(self, args)
-        return self.dispatcher(*args)
+        d = self._dispatcher  # once made, without the property's call (the players' kernels come here every call)
+        return (self.dispatcher if d is None else d)(*args)
 
     def __getattr__(self, name):
         if name.startswith("__"):

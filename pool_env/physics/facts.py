@@ -5,7 +5,7 @@ import numpy as np
 from .bundles import EVENTS, ROWS
 from .jit import allocating, helper
 from .kinds import BALL_BALL, BALL_BALL_SETTLE, BALL_CUSHION, BALL_OFF_TABLE, BALL_POCKET, CUE, ROW_WIDTH
-from .packed import output_offsets
+from .packed import final_arrays, output_offsets
 from .pressed import pressed_cushion_events
 
 # A run's facts, one int64 row: the first ball the cue ball touched (-1: none), a cushion
@@ -72,3 +72,18 @@ def output_facts(output, radii, params, rails, jaws, row):  # pragma: no cover -
                                              params, rails, jaws)
             break
     read_facts(log, e, pressed, row)
+
+
+@allocating
+def final_facts(output, bodies, out):  # pragma: no cover - compiled
+    """`output_facts` and `packed.final_arrays` of one finished run in one call (what a
+    rules' game reads of every shot): `output` = (floats, ints, n, size) as output_facts
+    takes it, `bodies` = (radii, params, rails, jaws), `out` = (xy, v, w, pocketed, air, row),
+    final_arrays' arrays and the facts row. Returns final_arrays' flag (some ball off the
+    cloth). Tuples: Result.event_facts builds them with fixed types, so the ahead-of-time
+    dispatch keys them by their type alone (compiled.arg_key), not array by array."""
+    floats, ints = output[0], output[1]
+    radii, params, rails, jaws = bodies
+    xy, v, w, pocketed, air, row = out
+    output_facts(output, radii, params, rails, jaws, row)
+    return final_arrays((floats, ints), (xy, v, w, pocketed, air))

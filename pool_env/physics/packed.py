@@ -109,12 +109,16 @@ def _offsets(n, size):
 
 
 @kernel
-def final_arrays(floats, ints, xy, v, w, pocketed, air):
-    """The final rows and states of an output (the first n rows of its floats, the first n
-    of its ints; n = xy.shape[0] balls) copied into a Balls' arrays: xy (n, 2), v (n, 2),
-    w (n, 3), pocketed (n,) (the state POCKETED) and air (n, 2) (z, vz). Returns True if
-    some z or vz is not 0, as np.count_nonzero counts them (the Balls then keeps air, else
-    None: every ball on the cloth). One call instead of three copies, a comparison and a count."""
+def final_arrays(output, out):
+    """The final rows and states of an output (`output` = (floats, ints): the first n rows of
+    its floats, the first n of its ints; n = xy.shape[0] balls) copied into a Balls' arrays,
+    `out` = (xy (n, 2), v (n, 2), w (n, 3), pocketed (n,) (the state POCKETED), air (n, 2)
+    (z, vz)). Returns True if some z or vz is not 0, as np.count_nonzero counts them (the
+    Balls then keeps air, else None: every ball on the cloth). One call instead of three
+    copies, a comparison and a count; its arrays in two tuples, which the ahead-of-time
+    dispatch keys by their type alone (compiled.arg_key: Result.final builds them)."""
+    floats, ints = output
+    xy, v, w, pocketed, air = out
     lifted = False
     for k in range(xy.shape[0]):
         r = k * ROW_WIDTH

@@ -8,7 +8,7 @@ import numpy as np
 
 from .bundles import EVENTS, ROWS, Scene
 from .engine import sample
-from .facts import facts_width, output_facts
+from .facts import facts_width, final_facts, output_facts
 from .kinds import COUNTERS, EVENT_KINDS, POCKETED, ROW_WIDTH, VZ, Z
 from .packed import event_views, final_arrays, output_views
 from .pressed import pressed_cushion_events
@@ -108,8 +108,14 @@ class Result:
         if self._facts is None and self._scene is None:
             floats, ints, n, size, _ = self._log
             row = np.empty(facts_width(n), dtype=np.int64)
-            output_facts((floats, ints, n, size), self._balls.radii, self.physics.engine_args()[0], self.table.rails,
-                         self.table.jaws, row)
+            radii, params, table = self._balls.radii, self.physics.engine_args()[0], self.table
+            if self._final is None:  # the final state too, in the same call: the rules' games read both
+                xy, v, w, pocketed, air = _final_buffers(n)
+                lifted = final_facts((floats, ints, n, size), (radii, params, table.rails, table.jaws),
+                                     (xy, v, w, pocketed, air, row))
+                self._final = self._balls._trusted(xy, v, w, pocketed, self._balls, air if lifted else None)
+            else:
+                output_facts((floats, ints, n, size), radii, params, table.rails, table.jaws, row)
             self._facts = row.tolist()
         return self._facts
 
@@ -118,9 +124,8 @@ class Result:
         """The balls when everything rests (Balls; `.pocketed` marks balls off the table)."""
         if self._final is None and self._scene is None:  # the engine's output as it came: one compiled copy
             floats, ints, n = self._log[:3]
-            xy, v, w, air, pocketed = np.empty((n, 2)), np.empty((n, 2)), np.empty((n, 3)), np.empty((n, 2)), \
-                np.empty(n, dtype=np.bool_)
-            lifted = final_arrays(floats, ints, xy, v, w, pocketed, air)
+            xy, v, w, pocketed, air = _final_buffers(n)
+            lifted = final_arrays((floats, ints), (xy, v, w, pocketed, air))
             self._final = self._balls._trusted(xy, v, w, pocketed, self._balls, air if lifted else None)
         elif self._final is None:
             S, st = self._scene[:2]
@@ -190,6 +195,12 @@ class Result:
 
     def __repr__(self):
         return f"Result({len(self.event_arrays[0])} events, duration={self.duration:.3f} s)"
+
+
+def _final_buffers(n):
+    """Empty arrays for the final state of n balls, as packed.final_arrays fills them: xy, v,
+    w, pocketed, air (their types fixed here: they go to compiled code in tuples)."""
+    return np.empty((n, 2)), np.empty((n, 2)), np.empty((n, 3)), np.empty(n, dtype=np.bool_), np.empty((n, 2))
 
 
 def _air(rows):
