@@ -51,16 +51,21 @@ def first_met(balls, start, d, radius: float, skip) -> tuple[np.ndarray, np.ndar
     return first, run[np.arange(len(d)), first]
 
 
-def spin_at(v0, top, distance, physics: Physics) -> np.ndarray:
-    """`learned_features.roll_at_contact` of arrays: R times the forward spin of a cue ball struck
-    at `v0` with the tip `top` ball radii above centre, after `distance` m."""
+def struck_at(v0, top, distance, physics: Physics) -> tuple:
+    """(speed, R times the forward spin) of a cue ball struck at `v0` with the tip `top` ball
+    radii above centre, after `distance` m (`learned_features.roll_at_contact` of arrays): the
+    slip v - R w = v0 (1 - 5/2 top) decays at 7/2 mu_s g, v changing at mu_s g, until it rolls;
+    then v = R w falls at mu_r g."""
     g, mu_s = physics.g, physics.mu_s
     slip = v0 * (1.0 - 2.5 * top)
     a = mu_s * g * np.where(slip < 0, -1.0, 1.0)
     t_slide = 2.0 * np.abs(slip) / (7.0 * mu_s * g)
     x_slide = v0 * t_slide - 0.5 * a * t_slide**2
     t = (v0 - np.sqrt(np.maximum(v0 * v0 - 2.0 * a * distance, 0.0))) / a
-    return np.where(distance <= x_slide, 2.5 * top * v0 + 2.5 * a * t, roll_speed(v0, distance, physics))
+    v_roll = v0 - a * t_slide
+    rolling = np.sqrt(np.maximum(v_roll * v_roll - 2.0 * physics.mu_r * g * (distance - x_slide), 0.0))
+    sliding = distance <= x_slide
+    return np.where(sliding, v0 - a * t, rolling), np.where(sliding, 2.5 * top * v0 + 2.5 * a * t, rolling)
 
 
 def collide(v, roll, dn, dt, physics: Physics) -> tuple:
@@ -155,11 +160,10 @@ def combo_columns(search, features, d, game_ball: int) -> np.ndarray:
     if not len(rows) or not len(balls):
         return out
     hit, run, aim, cue = balls[k[rows]], run[rows], aim[rows], cue[rows]
-    v = roll_speed(f[rows, 4] * MAX_SPEED, run, phys)
+    v, spin = struck_at(f[rows, 4] * MAX_SPEED, f[rows, 6], run, phys)
     ghost = cue + aim * run[:, None]
     n = unit_rows(xy[hit] - ghost)
     t = np.column_stack([-n[:, 1], n[:, 0]])
-    spin = spin_at(f[rows, 4] * MAX_SPEED, f[rows, 6], run, phys)
     on_, ot, cn, ct = collide(v, spin, (aim * n).sum(axis=1), (aim * t).sum(axis=1), phys)
     obj_v = np.hypot(on_, ot)
     after = cn[:, None] * n + ct[:, None] * t

@@ -17,6 +17,7 @@ TABLE = Table.eight_foot()
 L, W, R = TABLE.length, TABLE.width, BALL_RADIUS
 SEARCH = SearchAgent("nine_ball", noise=None)
 PHYS = SEARCH.physics
+MU_R_G = PHYS.mu_r * PHYS.g
 DIAGONAL = np.array([1.0, 1.0]) / math.sqrt(2.0)  # from the corner pocket at the origin up the table
 
 
@@ -91,11 +92,18 @@ def test_breaks_kicks_and_shots_into_a_rail_first_have_zero_columns():
 
 
 def test_the_array_speeds_and_spins_are_the_scalar_closed_forms():
-    for v0, dist, top in [(2.0, 0.1, 0.0), (2.0, 1.5, 0.0), (0.5, 2.0, 0.0), (3.0, 0.4, -0.3), (3.0, 0.3, 0.3)]:
+    from agents.learned_features import roll_at_contact
+
+    for v0, dist in [(2.0, 0.1), (2.0, 1.5), (0.5, 2.0)]:
         assert lc.roll_speed(v0, dist, PHYS) == pytest.approx(geometry.speed_after(v0, dist, PHYS), abs=1e-12)
-        from agents.learned_features import roll_at_contact
-        assert lc.spin_at(np.float64(v0), top, dist, PHYS) == pytest.approx(roll_at_contact(v0, top, dist, PHYS),
-                                                                           abs=1e-9)
+    for v0, dist, top in [(2.0, 0.1, 0.0), (2.0, 1.5, 0.0), (3.0, 0.4, -0.3), (3.0, 2.5, -0.3), (3.0, 0.3, 0.3),
+                          (2.0, 1.0, 0.4)]:
+        speed, spin = lc.struck_at(np.float64(v0), top, dist, PHYS)
+        assert spin == pytest.approx(roll_at_contact(v0, top, dist, PHYS), abs=1e-9)
+        if top == 0.0:
+            assert speed == pytest.approx(geometry.speed_after(v0, dist, PHYS), abs=1e-9)
+    speed, spin = lc.struck_at(np.float64(2.0), 0.4, 1.0, PHYS)  # natural roll: it rolls from the start
+    assert speed == spin == pytest.approx(math.sqrt(4.0 - 2.0 * MU_R_G), abs=1e-9)
     assert lc.roll_speed(1.0, lc.reach(1.0, PHYS) + 1e-9, PHYS) == 0.0
 
 

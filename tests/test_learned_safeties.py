@@ -95,7 +95,7 @@ def test_the_break_rows_carry_their_aim_offset_the_same_in_every_rack():
 
 def test_the_safety_and_combo_columns_added_to_saved_rows_are_those_the_menu_makes_and_survive_a_save(tmp_path):
     from agents.learned_pots import fit_pots, make_pot_data
-    from agents.learned_train import LABEL_LAYOUT, play_game, with_pots
+    from agents.learned_train import LABEL_LAYOUT, fit_player, play_game, with_pots
     from pool_env.players import GameGhostBallAgent
 
     pots = fit_pots(make_pot_data(10, seed=1, log=None), hidden=(8,), epochs=1, log=None)
@@ -112,6 +112,9 @@ def test_the_safety_and_combo_columns_added_to_saved_rows_are_those_the_menu_mak
     data = {"features": np.concatenate(rows), "values": np.zeros(len(decision)), "decision": decision}
     assert np.array_equal(with_pots(data, pots, safeties=safeties)["features"], np.concatenate(full))
     assert np.array_equal(with_pots(data, pots, safeties=safeties, combos=True)["features"], combos)
+    data["values"] = np.linspace(-1.0, 1.0, len(decision), dtype=np.float32)
+    five = fit_player(data, hidden=(4,), epochs=1, log=None, pots=pots, safeties=safeties, combos=True)
+    assert five.layout == 5 and np.isfinite(five.score(combos[decision == 3])).all()
     assert np.array_equal(menu(search, seen[3], "nine_ball", 4, pots, safeties)[0].features,
                           combos[decision == 3, :-COMBO_COLUMNS])
     cols = np.concatenate(full)[:, -ls.SAFE_COLUMNS:]
