@@ -78,6 +78,8 @@ class Args:
                                 "to fit the pot net the value nets read (0: no pot net)")
     safe_positions: int = option(30000, "--algo value: random two-ball positions whose safeties and kicks are "
                                  "simulated to fit the safety net the value nets read (0: none; needs the pot net)")
+    combos: bool = option(False, "--algo value: the value nets also read where each shot sends its object ball and "
+                          "the cue ball into a third ball, and that ball's line to a pocket (needs the safety net)")
     # --- hyperparameters (PPO unless marked) ---
     learning_rate: float = option(1e-3, "optimizer step size (PPO and SAC)")
     lr_schedule: str = option("linear", "learning rate over training: constant, or linear decay to 0",
@@ -220,7 +222,7 @@ def learned_player(args: Args, run) -> Path:
     noise = None if args.noise == "none" else args.noise
     recipe(game, noise, args.data_games, args.rounds, run.eval_seeds, args.seed, args.n_envs, run.dir,
            log=log.info, epochs=args.fit_epochs, pot_positions=args.pot_positions,
-           safe_positions=args.safe_positions)
+           safe_positions=args.safe_positions, combos=args.combos)
     log.info("run folder: %s", run.dir.resolve())
     return run.dir
 

@@ -15,6 +15,7 @@ from pool_env.players import Agent, game_of
 from pool_env.players import geometry as geo
 from pool_env.players.planner import D1, D2, DN, DX, DY, OK, SCORE, SCRATCH, SPEED
 
+from .learned_combos import combo_columns
 from .learned_features import contact_frame, outcome_features, roll_at_contact
 from .learned_pots import POT_COLUMNS, POT_PREFIX, PotNet
 from .learned_safeties import SAFE_PREFIX, SafetyNet
@@ -25,8 +26,8 @@ from .search_position import decode, game_state, legal_mask, racked
 WEIGHTS = Path(__file__).with_name("weights")  # the shipped networks, one file per game
 KINDS = ("pot", "safety", "kick", "break")
 CANDIDATE_FEATURES = 36  # see `candidate_features`
-LAYOUT = 4  # the feature rows new nets are fitted on (`menu`)
-LABEL_LAYOUT = 2  # the rows labelled data keeps: layouts 3 and 4 add only learned models' columns, at fit time
+LAYOUT = 5  # the feature rows new nets are fitted on (`menu`)
+LABEL_LAYOUT = 2  # the rows labelled data keeps: layouts 3-5 add only columns computed from them, at fit time
 BREAK_PREFIX = "break_"  # a saved net's arrays of its break net (`ValueNet.breaks`)
 
 
@@ -216,8 +217,9 @@ def menu(search: SearchAgent, observation, game: str | None, layout: int = LAYOU
     """The decision's `Menu` for a game observation, and its decoded view. Feature rows of
     `layout` 2: `candidate_features`, `learned_features.outcome_features`, the observation;
     layout 3: and the pot net `pots`' columns (`pot_columns`); layout 4: and the safety net
-    `safeties`' columns (`SafetyNet.columns`); layout 1 (the first shipped nets): without the
-    outcome features."""
+    `safeties`' columns (`SafetyNet.columns`); layout 5: and the third balls the shots send
+    their object ball or cue ball into (`learned_combos.combo_columns`); layout 1 (the first
+    shipped nets): without the outcome features."""
     if layout >= 3 and pots is None:
         raise ValueError("layout 3 feature rows need the pot net (pots=)")
     if layout >= 4 and safeties is None:
@@ -235,6 +237,8 @@ def menu(search: SearchAgent, observation, game: str | None, layout: int = LAYOU
         parts.append(pot_columns(search, pots, d, state, parts[0]))
     if layout >= 4:
         parts.append(safeties.columns(search, parts[0], d, state))
+    if layout >= 5:
+        parts.append(combo_columns(search, parts[0], d, game_ball))
     return Menu(cands, np.concatenate(parts, axis=1)), d
 
 
@@ -267,7 +271,7 @@ class ValueNet:
     any, is a second net that scores the break's menus (`score`). "columns", if saved, is how
     many leading feature columns the net reads. `pots` (the arrays named "pot_...") is the
     pot net whose columns a layout-3 net's rows end with (`menu`); `safeties` ("safe_...")
-    the safety net whose columns follow them in a layout-4 net's rows."""
+    the safety net whose columns follow them in a layout-4 or 5 net's rows."""
 
     def __init__(self, arrays: dict, breaks: ValueNet | None = None, pots: PotNet | None = None,
                  safeties: SafetyNet | None = None):

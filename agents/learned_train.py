@@ -14,6 +14,7 @@ from pool_env.game import Game
 from pool_env.players import GameGhostBallAgent
 
 from .learned import CANDIDATE_FEATURES, KINDS, LABEL_LAYOUT, LAYOUT, LearnedPlayer, ValueNet, menu, pot_columns
+from .learned_combos import COMBO_COLUMNS, combo_columns
 from .learned_features import OUTCOME_FEATURES
 from .learned_mlp import descend, mlp_arrays, torch_mlp
 from .learned_pots import POT_COLUMNS, PotNet, fit_pots, parallel_pot_data
@@ -151,18 +152,22 @@ def fit(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, lr: floa
     return value_net(model, mean, std)
 
 
-def with_pots(data: dict, pots: PotNet | None, game: str = "nine_ball", safeties: SafetyNet | None = None) -> dict:
+def with_pots(data: dict, pots: PotNet | None, game: str = "nine_ball", safeties: SafetyNet | None = None,
+              combos: bool = False) -> dict:
     """A dataset of LABEL_LAYOUT rows with the pot net's columns (`learned.pot_columns`) added,
-    and with `safeties` the safety net's (`SafetyNet.columns`) after them, each decision's
-    position read back from its rows' observation: the rows `menu` makes of layout 3 or 4
-    (unchanged without a pot net)."""
-    if pots is None:
-        if safeties is not None:
-            raise ValueError("the safety net's columns follow the pot net's: pass pots too")
+    with `safeties` the safety net's (`SafetyNet.columns`) after them and with `combos` the
+    third balls' (`learned_combos.combo_columns`) after those, each decision's position read
+    back from its rows' observation: the rows `menu` makes of layout 3, 4 or 5 (unchanged
+    without a pot net)."""
+    if pots is None or (combos and safeties is None):
+        if safeties is not None or combos:
+            raise ValueError("the safety net's columns follow the pot net's, the combos' the safety net's: "
+                             "pass them all")
         return data
     search = SearchAgent(game, noise=None)
     features = np.asarray(data["features"])
-    width = POT_COLUMNS + 2 + (0 if safeties is None else SAFE_COLUMNS)
+    safe_width = 0 if safeties is None else SAFE_COLUMNS
+    width = POT_COLUMNS + 2 + safe_width + (COMBO_COLUMNS if combos else 0)
     extra = np.zeros((len(features), width), dtype=np.float32)
     start = CANDIDATE_FEATURES + OUTCOME_FEATURES
     decision = np.asarray(data["decision"])
@@ -172,21 +177,25 @@ def with_pots(data: dict, pots: PotNet | None, game: str = "nine_ball", safeties
         state, rows = game_state(d, game), features[a:b, :CANDIDATE_FEATURES]
         extra[a:b, :POT_COLUMNS + 2] = pot_columns(search, pots, d, state, rows)
         if safeties is not None:
-            extra[a:b, POT_COLUMNS + 2:] = safeties.columns(search, rows, d, state)
+            extra[a:b, POT_COLUMNS + 2:POT_COLUMNS + 2 + safe_width] = safeties.columns(search, rows, d, state)
+        if combos:
+            extra[a:b, POT_COLUMNS + 2 + safe_width:] = combo_columns(search, rows, d, 9 if game == "nine_ball" else 8)
     return {**data, "features": np.concatenate([features, extra], axis=1)}
 
 
 def fit_player(data: dict, hidden=(256, 256), epochs: int = 30, seed: int = 0, log=print,
-               pots: PotNet | None = None, game: str = "nine_ball", safeties: SafetyNet | None = None) -> ValueNet:
+               pots: PotNet | None = None, game: str = "nine_ball", safeties: SafetyNet | None = None,
+               combos: bool = False) -> ValueNet:
     """The learned player's nets: `fit` of the shot net on every decision but the break, and
     of a break net (`ValueNet.breaks`, one layer of BREAK_HIDDEN) on the breaks' candidates that
     reads only their own shot (BREAK_COLUMNS: kind, speed, tip, direction, spot, aim offset): the rack is the
     same but for its jitter, so the break net learns each break's mean value. With `pots` the
     shot net reads the rows of layout 3 (the pot net's columns added, `with_pots`; the rows of
-    `game`), and with `safeties` too those of layout 4 (LAYOUT: the safety net's columns after them)."""
+    `game`), with `safeties` too those of layout 4 (the safety net's columns after them), and
+    with `combos` those of layout 5 (LAYOUT: the third balls' columns after those)."""
     rows = np.asarray(data["features"][:, KINDS.index("break")] == 1.0)
-    shot = fit(with_pots(subset(data, ~rows), pots, game, safeties), hidden, epochs, seed, log=log)
-    layout = LABEL_LAYOUT if pots is None else 3 if safeties is None else LAYOUT
+    shot = fit(with_pots(subset(data, ~rows), pots, game, safeties, combos), hidden, epochs, seed, log=log)
+    layout = LABEL_LAYOUT if pots is None else 3 if safeties is None else LAYOUT if combos else 4
     shot = ValueNet({**shot.arrays, "layout": np.float32(layout)}, pots=pots, safeties=safeties)
     if not rows.any():
         return shot
@@ -274,7 +283,7 @@ def shot_models(pot_positions: int, safe_positions: int, seed: int, workers: int
 
 
 def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int, workers: int, out, log=print,
-           epochs: int = 30, pot_positions: int = 0, safe_positions: int = 0) -> dict:
+           epochs: int = 30, pot_positions: int = 0, safe_positions: int = 0, combos: bool = False) -> dict:
     """The learned player, start to finish: `data_games` ghost-ball self-play games labelled
     (`parallel_dataset`), a value net fitted; then `rounds - 1` times as many games again of
     that net against the ghost-ball player, labelled and added, the net fitted anew; the last
@@ -286,7 +295,8 @@ def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int
     whose columns the value nets then read (layout 3; its data saved as `pots-data.npz`); and
     with `safe_positions` too, a safety net (`learned_safeties`) fitted to the safeties and kicks
     planned from that many random positions (seeded `seed` + 1), whose columns follow (layout 4;
-    its data saved as `safe-data.npz`)."""
+    its data saved as `safe-data.npz`); and with `combos` too, the third balls' columns
+    (`learned_combos`, no data of their own) after those (layout 5)."""
     started, net, parts, timing = time.perf_counter(), None, [], {}
     pots, safeties = shot_models(pot_positions, safe_positions, seed, workers, out, log, timing)
     for r in range(rounds):
@@ -296,7 +306,8 @@ def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int
         timing[f"data_round_{r}"] = time.perf_counter() - t
         log(f"round {r}: {int(data['decision'].max()) + 1} decisions labelled in {timing[f'data_round_{r}']:.0f} s")
         t = time.perf_counter()
-        net = fit_player(data, epochs=epochs, seed=seed, log=log, pots=pots, game=game, safeties=safeties)
+        net = fit_player(data, epochs=epochs, seed=seed, log=log, pots=pots, game=game, safeties=safeties,
+                         combos=combos and safeties is not None)
         timing[f"fit_round_{r}"] = time.perf_counter() - t
     Path(out).mkdir(parents=True, exist_ok=True)
     net.save(Path(out) / "learned.npz")
@@ -307,6 +318,7 @@ def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int
     timing["evaluation"], timing["total"] = time.perf_counter() - t, time.perf_counter() - started
     result = {**by_noise[str(noise or "none")], "game": game, "noise": noise, "data_games": data_games,
               "rounds": rounds, "epochs": epochs, "pot_positions": pot_positions, "safe_positions": safe_positions,
+              "combos": combos and safeties is not None,
               "decisions": int(data["decision"].max()) + 1,
               "rows": len(data["values"]), "by_noise": by_noise, "seconds": timing}
     (Path(out) / "learned.json").write_text(json.dumps(result, indent=2))

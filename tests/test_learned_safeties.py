@@ -5,6 +5,7 @@ import pytest
 
 from agents import learned_safeties as ls
 from agents.learned import CANDIDATE_FEATURES, ValueNet, menu
+from agents.learned_combos import COMBO_COLUMNS
 from agents.match import observe
 from agents.search import SearchAgent
 from agents.search_candidates import BREAK_OFFSETS, Candidate
@@ -92,9 +93,9 @@ def test_the_break_rows_carry_their_aim_offset_the_same_in_every_rack():
     assert np.allclose(sorted(set(np.round(offsets[0], 3))), sorted(BREAK_OFFSETS), atol=1e-4)
 
 
-def test_the_safety_columns_added_to_saved_rows_are_those_the_menu_makes_and_survive_a_save(tmp_path):
+def test_the_safety_and_combo_columns_added_to_saved_rows_are_those_the_menu_makes_and_survive_a_save(tmp_path):
     from agents.learned_pots import fit_pots, make_pot_data
-    from agents.learned_train import LABEL_LAYOUT, play_game, with_pots
+    from agents.learned_train import LABEL_LAYOUT, fit_player, play_game, with_pots
     from pool_env.players import GameGhostBallAgent
 
     pots = fit_pots(make_pot_data(10, seed=1, log=None), hidden=(8,), epochs=1, log=None)
@@ -105,10 +106,17 @@ def test_the_safety_columns_added_to_saved_rows_are_those_the_menu_makes_and_sur
     seen = []
     play_game(game, (ghost, ghost), 21, 0, lambda obs, who: seen.append(obs))  # None: the players' own shots
     rows = [menu(search, obs, "nine_ball", LABEL_LAYOUT)[0].features for obs in seen[:8]]
-    full = [menu(search, obs, "nine_ball", 4, pots, safeties)[0].features for obs in seen[:8]]
+    combos = np.concatenate([menu(search, obs, "nine_ball", 5, pots, safeties)[0].features for obs in seen[:8]])
+    full = [combos[:, :-COMBO_COLUMNS]]  # layout 4: layout 5 without the combos after it
     decision = np.concatenate([np.full(len(r), k) for k, r in enumerate(rows)])
     data = {"features": np.concatenate(rows), "values": np.zeros(len(decision)), "decision": decision}
     assert np.array_equal(with_pots(data, pots, safeties=safeties)["features"], np.concatenate(full))
+    assert np.array_equal(with_pots(data, pots, safeties=safeties, combos=True)["features"], combos)
+    data["values"] = np.linspace(-1.0, 1.0, len(decision), dtype=np.float32)
+    five = fit_player(data, hidden=(4,), epochs=1, log=None, pots=pots, safeties=safeties, combos=True)
+    assert five.layout == 5 and np.isfinite(five.score(combos[decision == 3])).all()
+    assert np.array_equal(menu(search, seen[3], "nine_ball", 4, pots, safeties)[0].features,
+                          combos[decision == 3, :-COMBO_COLUMNS])
     cols = np.concatenate(full)[:, -ls.SAFE_COLUMNS:]
     kinds = np.concatenate(full)[:, :4].argmax(axis=1)
     assert not cols[kinds == 0].any() and cols[(kinds == 1) | (kinds == 2), 0].min() > 0.0
