@@ -51,12 +51,17 @@ def cue_rest(search: SearchAgent, cue, obj, d, speed: float, top: float):
     return path[-1] if len(path) else ghost
 
 
+def game_ball_of(game: str | None) -> int:
+    """The ball that wins the game: the 9 in 9-ball, else the 8."""
+    return 9 if game == "nine_ball" else 8
+
+
 def next_qualities(search: SearchAgent, xy, on_table, state, balls, rests) -> np.ndarray:
     """(M,): the best ghost-ball score (capped at 1) of the shooter's next shot if ball `balls[m]`
     drops and the cue ball stops at `rests[m]` (1 if that ball wins the game), all at once."""
     if state is None or not len(balls):
         return np.zeros(len(balls))
-    game_ball = 9 if state.kind == "nine_ball" else 8
+    game_ball = game_ball_of(state.kind)
     n = len(on_table)
     xys = np.repeat(np.asarray(xy, dtype=np.float64)[None], len(balls), axis=0)
     xys[:, 0] = rests
@@ -227,7 +232,7 @@ def menu(search: SearchAgent, observation, game: str | None, layout: int = LAYOU
     d = decode(observation, search.n_balls, search.table, game=game is not None)
     state = game_state(d, game, search.rule_options) if game is not None else None
     cands, rows = shot_menu(search, d, state)
-    game_ball = 9 if game == "nine_ball" else 8
+    game_ball = game_ball_of(game)
     hits = contacts_of(cands, d, search.table, search.radius)
     parts = [candidate_features(cands, rows, d, search.table, game_ball, search.pockets, search.radius, hits)]
     if layout >= 2:

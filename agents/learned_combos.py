@@ -13,12 +13,17 @@ from .learned_features import GAP_CAP
 COMBO_COLUMNS = 12  # see `combo_columns`: 6 for the object ball's next ball, 6 for the cue ball's
 
 
+def slide_distance(v0, physics: Physics) -> np.ndarray:
+    """How far a ball struck without spin at `v0` m/s slides before it rolls: 12 v0^2 / (49 mu_s g)."""
+    return 12.0 * v0 * v0 / (49.0 * physics.mu_s * physics.g)
+
+
 def roll_speed(v0, distance, physics: Physics) -> np.ndarray:
     """`geometry.speed_after` of arrays: the speed of a ball struck without spin at `v0` after
     `distance` m (it slides for 12 v0^2 / (49 mu_s g) m, leaving that phase at 5/7 v0); 0 once stopped."""
     g, mu_s, mu_r = physics.g, physics.mu_s, physics.mu_r
     v0, distance = np.asarray(v0, dtype=np.float64), np.asarray(distance, dtype=np.float64)
-    slide = 12.0 * v0 * v0 / (49.0 * mu_s * g)
+    slide = slide_distance(v0, physics)
     sliding = np.sqrt(np.maximum(v0 * v0 - 2.0 * mu_s * g * distance, 0.0))
     rolling = np.sqrt(np.maximum((5.0 / 7.0 * v0) ** 2 - 2.0 * mu_r * g * (distance - slide), 0.0))
     return np.where(distance <= slide, sliding, rolling)
@@ -27,7 +32,7 @@ def roll_speed(v0, distance, physics: Physics) -> np.ndarray:
 def reach(v0, physics: Physics) -> np.ndarray:
     """How far a ball struck without spin at `v0` m/s travels before it stops (the zero of `roll_speed`)."""
     v0 = np.asarray(v0, dtype=np.float64)
-    return 12.0 * v0 * v0 / (49.0 * physics.mu_s * physics.g) + (5.0 / 7.0 * v0) ** 2 / (2.0 * physics.mu_r * physics.g)
+    return slide_distance(v0, physics) + (5.0 / 7.0 * v0) ** 2 / (2.0 * physics.mu_r * physics.g)
 
 
 def to_rail(start, d, table: Table, radius: float) -> np.ndarray:
@@ -87,7 +92,7 @@ def spin_after(v0, distance, physics: Physics) -> np.ndarray:
     """`geometry.forward_spin_after` of arrays: R times the forward spin of a ball struck without
     spin, after `distance` m (5/2 of the speed lost while sliding, the speed once it rolls)."""
     v = roll_speed(v0, distance, physics)
-    return np.where(distance > 12.0 * v0 * v0 / (49.0 * physics.mu_s * physics.g), v, 2.5 * (v0 - v))
+    return np.where(distance > slide_distance(v0, physics), v, 2.5 * (v0 - v))
 
 
 def unit_rows(v) -> np.ndarray:

@@ -13,7 +13,17 @@ import numpy as np
 from pool_env.game import Game
 from pool_env.players import GameGhostBallAgent
 
-from .learned import CANDIDATE_FEATURES, KINDS, LABEL_LAYOUT, LAYOUT, LearnedPlayer, ValueNet, menu, pot_columns
+from .learned import (
+    CANDIDATE_FEATURES,
+    KINDS,
+    LABEL_LAYOUT,
+    LAYOUT,
+    LearnedPlayer,
+    ValueNet,
+    game_ball_of,
+    menu,
+    pot_columns,
+)
 from .learned_combos import COMBO_COLUMNS, combo_columns
 from .learned_features import OUTCOME_FEATURES
 from .learned_mlp import descend, mlp_arrays, torch_mlp
@@ -179,7 +189,7 @@ def with_pots(data: dict, pots: PotNet | None, game: str = "nine_ball", safeties
         if safeties is not None:
             extra[a:b, POT_COLUMNS + 2:POT_COLUMNS + 2 + safe_width] = safeties.columns(search, rows, d, state)
         if combos:
-            extra[a:b, POT_COLUMNS + 2 + safe_width:] = combo_columns(search, rows, d, 9 if game == "nine_ball" else 8)
+            extra[a:b, POT_COLUMNS + 2 + safe_width:] = combo_columns(search, rows, d, game_ball_of(game))
     return {**data, "features": np.concatenate([features, extra], axis=1)}
 
 
