@@ -39,6 +39,7 @@ PUSH_OUT_TURNS = tuple(math.radians(a) for a in range(0, 360, 45))  # ... in eig
 IN_HAND_QUALITY = 1.0  # the next shooter's quality with ball in hand
 LOOKAHEAD_WORK = 150  # outcomes x legal balls the lookahead scores per decision (best plain value first)
 SIMULATION_CHUNK, LOOKAHEAD_CHUNK = 64, 4  # with `seconds`: candidates simulated, looked ahead, between time checks
+ROUND_KEEP = 0.25  # with rounds > 1: the share of the candidates (best mean value first) each round keeps
 
 
 class SearchAgent(CandidateShots, Agent):
@@ -68,11 +69,14 @@ class SearchAgent(CandidateShots, Agent):
     def __init__(self, game: str | None = "nine_ball", table: Table | None = None, physics: Physics | None = None,
                  noise: dict | None = None, spin: bool = True, budget: int = 600, noise_samples: int = 6,
                  seed: int | None = 0, lookahead: bool = True, threads: int = 1, seconds: float | None = None,
-                 rule_options: dict | None = None, radius: float = BALL_RADIUS, decisions: bool = False):
+                 rule_options: dict | None = None, radius: float = BALL_RADIUS, decisions: bool = False,
+                 rounds: int = 1, common: bool = False):
         if game is not None and game not in GAME_BALLS:
             raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)} or None (PoolBreakRun-v0)")
         if int(budget) < 1 or int(noise_samples) < 1:
             raise ValueError(f"budget and noise_samples must be >= 1, got {budget!r}, {noise_samples!r}")
+        if int(rounds) < 1 or (int(rounds) > 1 and seconds is not None):
+            raise ValueError(f"rounds must be >= 1, and 1 with a time budget (seconds), got {rounds!r}")
         self.game, self.n_balls = game, GAME_BALLS.get(game, 16)
         self.table = Table.eight_foot() if table is None else table
         self.physics = Physics.standard() if physics is None else physics
@@ -80,6 +84,7 @@ class SearchAgent(CandidateShots, Agent):
         self.budget, self.noise_samples = int(budget), int(noise_samples) if noise else 1
         self.lookahead, self.threads, self.seconds = bool(lookahead), int(threads), seconds
         self.rule_options = dict(rule_options or {})
+        self.rounds, self.common, self.last_simulations = int(rounds), bool(common), None
         self.plans = SearchPlanner(self.table, self.physics, radius)  # the pots, qualities and spots, at once
         self.scorer = GhostBallAgent(self.table, self.physics, radius=radius)  # its break shots (PoolBreakRun-v0)
         self.pockets = self.scorer.pockets
@@ -111,9 +116,11 @@ class SearchAgent(CandidateShots, Agent):
         d = decode(observation, self.n_balls, self.table, game=self.game is not None)
         state = game_state(d, self.game, self.rule_options) if self.game is not None else None
         candidates = self.candidates(d, state)[: max(1, self.budget // self.noise_samples)]
+        self.last_simulations = None
         values, simulated = self.evaluate(d, state, candidates, start)
         best = int(np.argmax(values))
-        self.last_stats = {"candidates": len(candidates), "simulations": simulated * self.noise_samples,
+        simulations = simulated * self.noise_samples if self.last_simulations is None else self.last_simulations
+        self.last_stats = {"candidates": len(candidates), "simulations": simulations,
                            "seconds": time.perf_counter() - start, "value": float(values[best]),
                            "kind": candidates[best].kind}
         if d.push_out:  # WPA 2.4: a push out, if one scores better than the best shot
@@ -151,6 +158,8 @@ class SearchAgent(CandidateShots, Agent):
         `Game.evaluate` of the candidates' actions (as the env reads them) from the decoded
         position, in one batch (with `seconds`, in chunks until the time is up; a candidate
         left unsimulated gets -inf)."""
+        if self.rounds > 1 and self.noise:
+            return self.in_rounds(d, state, candidates), len(candidates)
         records, judged, plain = self.judged(d, state, candidates, start)
         done = len(records) // self.noise_samples
         if not self.lookahead:
@@ -158,6 +167,41 @@ class SearchAgent(CandidateShots, Agent):
         values = plain - 10.0  # only the candidates that get the lookahead can be chosen
         self.look_ahead(values, self.looked_at(plain, done, d.legal), judged, start)
         return values, done
+
+    def in_rounds(self, d: GameView, state, candidates) -> np.ndarray:
+        """Each candidate's mean value over its draws, the budget spent in `rounds` equal rounds
+        (sequential halving): round 1 simulates every candidate, each later round the best
+        ROUND_KEEP of the last round's by their mean so far, each with as many noise draws as its
+        share of the round's budget allows (at least one). Only the last round's candidates can
+        be chosen (-inf for the rest): they have the most draws. Each draw is worth
+        `draw_values`."""
+        share = min(self.budget, len(candidates) * self.noise_samples) // self.rounds  # no more than one pass spends
+        sums, counts = np.zeros(len(candidates)), np.zeros(len(candidates))
+        alive = np.arange(len(candidates))
+        for r in range(self.rounds):
+            if r:
+                best = np.argsort(-(sums[alive] / counts[alive]), kind="stable")
+                alive = alive[best[: max(1, math.ceil(ROUND_KEEP * len(alive)))]]
+            draws = max(1, share // len(alive))
+            records = self.simulate(d, state, [candidates[c] for c in alive], None, draws)
+            sums[alive] += self.draw_values(state, records).reshape(len(alive), draws).sum(axis=1)
+            counts[alive] += draws
+        values = np.full(len(candidates), -np.inf)
+        values[alive] = sums[alive] / counts[alive]
+        self.last_simulations = int(counts.sum())
+        return values
+
+    def draw_values(self, state, records) -> np.ndarray:
+        """(R,) the value of each simulated shot (`judge`, then `deep_value` with the lookahead;
+        the qualities of all the outcomes that need one planned at once)."""
+        judged = [self.judge(state, record, None) for record in records]
+        if not self.lookahead:
+            return np.array([v for v, _ in judged])
+        infos = [info for _, info in judged]
+        asked = [i for i in infos if i is not None and (i[0] == "miss" or i[3] is None)]
+        qualities = iter(self.qualities([i[1].xy for i in asked], [~i[1].pocketed for i in asked],
+                                        [i[2] for i in asked]) if asked else ())
+        return np.array([self.deep_value(v, info, qualities) for v, info in judged])
 
     def judged(self, d: GameView, state, candidates, start) -> tuple[list, list, np.ndarray]:
         """(the `simulate` records, each judged (`judge`), each candidate's mean plain value
@@ -174,10 +218,11 @@ class SearchAgent(CandidateShots, Agent):
         LOOKAHEAD_WORK outcomes x legal balls allow (at least 4), among the `done` simulated."""
         return np.argsort(-plain)[: max(4, LOOKAHEAD_WORK // (self.noise_samples * max(1, len(legal))))][:done]
 
-    def simulate(self, d: GameView, state, candidates, start) -> list:
+    def simulate(self, d: GameView, state, candidates, start, draws: int | None = None) -> list:
         """The `ShotRecord`s of the candidates' actions (as the env reads them) from the decoded
-        position, `noise_samples` draws each, candidate major: `Game.evaluate` in one batch (with
-        `seconds`, `SIMULATION_CHUNK` candidates at a time while the time lasts)."""
+        position, `draws` (default `noise_samples`) draws each, candidate major: `Game.evaluate`
+        in one batch (with `seconds`, `SIMULATION_CHUNK` candidates at a time while the time
+        lasts)."""
         self.sim.reset(balls=balls_of(d, self.radius), state=state)
         area, pockets = self.sim.placement_area(), self.table.pockets.shape[0]  # as sim.decode reads them
         targets = self.sim.called_targets  # 10-ball: a pot calls the first, the lowest ball (its target)
@@ -188,8 +233,8 @@ class SearchAgent(CandidateShots, Agent):
         for at in range(0, len(shots), chunk):
             if records and time.perf_counter() - start > self.seconds:
                 break
-            records += self.sim.evaluate(shots[at:at + chunk], draws=self.noise_samples, seed=self.rng,
-                                         threads=self.threads, records=False)
+            records += self.sim.evaluate(shots[at:at + chunk], draws=draws or self.noise_samples, seed=self.rng,
+                                         threads=self.threads, records=False, common=self.common)
         return records
 
     def look_ahead(self, values, chosen, judged, start) -> None:

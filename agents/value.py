@@ -101,6 +101,8 @@ class ValueSearchAgent(SearchAgent):
         of them by the search's own lookahead value, get the mean of `outcome_values` over their
         noise draws, blended with the search's lookahead value if `blend`; the rest stay below
         any of them."""
+        if self.rounds > 1 and self.noise:
+            return self.in_rounds(d, state, candidates), len(candidates)
         s = self.noise_samples
         records, judged, plain = self.judged(d, state, candidates, start)
         done = len(records) // s
@@ -116,6 +118,10 @@ class ValueSearchAgent(SearchAgent):
         if self.blend > 0.0:
             values[chosen] = (1.0 - self.blend) * values[chosen] + self.blend * 0.5 * (deep[chosen] + 1.0)
         return values, done
+
+    def draw_values(self, state, records) -> np.ndarray:
+        """With `rounds`: each simulated shot worth its `outcome_values` (the net's lookahead)."""
+        return self.outcome_values(records)
 
     def outcome_values(self, records) -> np.ndarray:
         """(R,) the shooter's win probability after each simulated shot (the class docstring)."""

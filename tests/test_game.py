@@ -109,6 +109,38 @@ def test_evaluate_equals_restoring_and_playing_each_draw_and_changes_nothing():
     same_record(alone, game.play(shots[0]))
 
 
+class RowNormals:
+    """A generator stand-in whose normals are one row's, in order (`noisy_shot` asks only `normal`)."""
+
+    def __init__(self, row):
+        self.row, self.at = list(row), 0
+
+    def normal(self, loc, scale):
+        self.at += 1
+        return loc + scale * self.row[self.at - 1]
+
+
+def test_common_noise_gives_draw_j_of_every_shot_row_j_of_one_block_of_normals():
+    game = mid_game()
+    snap = game.snapshot()
+    shots = [Shot.aimed((math.cos(a), math.sin(a)), 2.5, (0.0, 0.2)) for a in np.linspace(0, 2 * math.pi, 4)]
+    records = game.evaluate(shots, draws=3, seed=11, common=True)
+    block = np.random.default_rng(11).standard_normal((3, 5))  # draws x (aim, speed, side, top, elevation)
+    own = game.rng
+    for k, shot in enumerate(shots):
+        for j in range(3):
+            game.rng = own
+            game.restore(snap)
+            game.rng = RowNormals(block[j])
+            same_record(records[3 * k + j], game.play(shot))
+    game.rng = own
+    game.restore(snap)
+    twins = game.evaluate([shots[0], shots[0]], draws=2, seed=3, common=True)
+    same_record(twins[0], twins[2])  # the same shot under the same cue errors: the same outcome
+    apart = game.evaluate([shots[0], shots[0]], draws=2, seed=3)
+    assert not np.array_equal(apart[0].balls_after.xy, apart[2].balls_after.xy)
+
+
 def test_play_batch_equals_playing_each_game():
     games = [Game("eight_ball", noise="olympiad", seed=s) for s in (1, 2, 3)]
     twins = [Game("eight_ball", noise="olympiad", seed=s) for s in (1, 2, 3)]

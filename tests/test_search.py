@@ -173,3 +173,26 @@ def test_quality_is_the_best_ghost_ball_score_of_the_pots_it_filters():
                 best = max(best, pot.score if pot is not None else 0.0)
         assert agent.quality(xy, on, legal) == pytest.approx(min(best, 1.0), abs=1e-12)
     assert agent.quality(xy, np.r_[False, on[1:]], legal) == 1.0  # the cue ball in hand: IN_HAND_QUALITY
+
+
+def test_rounds_spend_no_more_simulations_than_one_pass_and_choose_among_the_most_sampled():
+    env = gym.make("PoolNineBall-v0", noise="olympiad")
+    obs, _ = env.reset(seed=5)
+    obs, *_ = env.step(GameGhostBallAgent.from_env(env).act(obs))  # the break; then a mid-game position
+    one = SearchAgent.from_env(env, seed=1)
+    one.act(obs)
+    halving = SearchAgent.from_env(env, seed=1, rounds=3)
+    action = halving.act(obs)
+    assert env.action_space.contains(action)
+    n = halving.last_stats["candidates"]
+    assert n == one.last_stats["candidates"] > 4
+    # Round 1: every candidate, 2n draws in all (6n / 3 rounds); rounds 2-3: ceil(n/4), then ceil(n/16) of them.
+    kept = -(-n // 4)
+    assert halving.last_stats["simulations"] == n * 2 + kept * (2 * n // kept) + (-(-kept // 4)) * (2 * n // -(-kept // 4))
+    assert halving.last_stats["simulations"] <= one.last_stats["simulations"] == 6 * n
+    again = SearchAgent.from_env(env, seed=1, rounds=3)
+    assert np.array_equal(again.act(obs), action)  # deterministic by seed
+    with pytest.raises(ValueError, match="rounds must be >= 1, and 1 with a time budget"):
+        SearchAgent.from_env(env, rounds=2, seconds=1.0)
+    with pytest.raises(ValueError, match="rounds must be >= 1"):
+        SearchAgent.from_env(env, rounds=0)

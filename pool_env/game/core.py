@@ -413,7 +413,7 @@ class Game:
         return self
 
     def evaluate(self, shots, draws: int = 1, seed=None, threads: int | None = 1,
-                 records: bool = True) -> list[ShotRecord] | list[JudgedShot]:
+                 records: bool = True, common: bool = False) -> list[ShotRecord] | list[JudgedShot]:
         """K candidate `shots` (Shots or action vectors) x `draws` noise draws each, from the
         state now, simulated in one `simulate_batch` call (`threads` as there); the game does not
         change. Returns the K x draws records, shot major (record k * draws + j is draw j of
@@ -423,6 +423,9 @@ class Game:
         `restore(snapshot)` then `play(shot k)`). Record k * draws + j equals restoring the
         snapshot, setting `rng` to that generator as it stands after the draws before it, and
         playing shot k. ValueError for no shots, draws < 1 or a bad shot (naming which).
+        `common=True` gives every shot the same noise (common random numbers: draw j of each
+        shot takes the same cue errors, drawn once from the generator as `draws` x 5 normals),
+        so differences between shots are measured without the noise between their draws.
 
         `records=False` returns `JudgedShot`s instead (the records' outcome, ruling, state and
         balls after, without the physics `Result`): in the pool games the level shots are
@@ -445,7 +448,8 @@ class Game:
                 raise ValueError(f"shot {k}: {exc}") from None
         rng = evaluation_rng(seed, self.rng)
         placements: dict = {}  # candidate shots often place the cue ball on the same spot
-        normals, struck = DrawnNormals(rng), []  # each shot's noise in one generator call
+        common_draws = int(draws) if common and self.noise is not None else 0
+        normals, struck = DrawnNormals(rng, common_draws), []  # each shot's noise in one generator call
         for shot, action in decoded:
             normals.arm(int(draws) * normals_per_draw(shot, self.noise))
             struck += [self._strike_or_fail(shot, action, normals, placements) for _ in range(int(draws))]

@@ -23,15 +23,21 @@ class DrawnNormals:
     call, made at the first ask (`arm` says how many the shot takes; a shot that fails before
     its noise is drawn takes none). A Generator's `normal(loc, scale)` is loc + scale times
     its next standard normal, so the values, and the generator after them, are bit for bit
-    those of the calls one by one."""
+    those of the calls one by one. With `common_draws` (common random numbers) the normals of
+    that many draws are taken from the generator once, as a (draws, NORMALS_PER_DRAW + 1)
+    block, and every shot's draw j reads row j's first normals."""
 
-    __slots__ = ("rng", "armed", "values", "at")
+    __slots__ = ("rng", "armed", "values", "at", "common")
 
-    def __init__(self, rng: np.random.Generator):
+    def __init__(self, rng: np.random.Generator, common_draws: int = 0):
         self.rng, self.armed, self.values, self.at = rng, 0, [], 0
+        self.common = rng.standard_normal((common_draws, NORMALS_PER_DRAW + 1)) if common_draws else None
 
     def arm(self, count: int) -> None:
         """The next shot's draws take `count` normals in all."""
+        if self.common is not None:  # a shot that failed before its noise may leave its row unread
+            self.values, self.at = self.common[:, : count // len(self.common)].ravel().tolist(), 0
+            return
         if self.at != len(self.values):
             raise RuntimeError(f"DrawnNormals: the last shot left {len(self.values) - self.at} normals unused")
         self.armed = count

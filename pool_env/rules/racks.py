@@ -115,8 +115,11 @@ def spot_balls(balls: Balls, table: Table, numbers) -> Balls:
     close to the foot spot as it fits without overlapping a ball (it may touch one, SPOT_GAP
     apart); if that stretch is full, on the long string in front of the foot spot, as close
     as it fits. Several balls go in numerical order, the lowest nearest the foot spot. The
-    balls must be at rest; velocities and spins of the spotted balls are zeroed. Raises
-    ValueError if a number is not a pocketed ball or no room is left on the long string."""
+    balls must be at rest; velocities and spins of the spotted balls are zeroed. Only the
+    spotted balls are checked against the others: the balls already on the table stay as they
+    lie (a simulated rest may leave two of them a fraction of a micrometre into each other,
+    which is not the spotting's to refuse). Raises ValueError if a number is not a pocketed
+    ball or no room is left on the long string."""
     if not isinstance(balls, Balls):
         raise TypeError(f"balls must be pool_env.physics.Balls, got {type(balls).__name__}")
     _check_table(table)
@@ -124,12 +127,22 @@ def spot_balls(balls: Balls, table: Table, numbers) -> Balls:
     for b in numbers:
         if not 0 < b < len(balls) or not balls.pocketed[b]:
             raise ValueError(f"ball {b} cannot be spotted: only pocketed object balls (1..{len(balls) - 1}) can")
-    xy, v, w, pocketed = balls.xy.copy(), balls.v.copy(), balls.w.copy(), balls.pocketed.copy()
+    balls = resting(balls, numbers)
     radii = balls.radii
-    for b in numbers:
-        xy[b] = (_spot_x(table, xy, radii, pocketed, float(radii[b])), 0.5 * table.width)
-        v[b], w[b], pocketed[b] = 0.0, 0.0, False
-    return Balls(xy, v, w, radius=balls.radius, mass=balls.mass, pocketed=pocketed)
+    for b in numbers:  # each checked against the balls on the table; the others stay as they lie
+        x = _spot_x(table, balls.xy, radii, balls.pocketed, float(radii[b]))
+        balls = balls.with_ball_at(b, (x, 0.5 * table.width))
+    return balls
+
+
+def resting(balls: Balls, numbers) -> Balls:
+    """`balls` with the balls `numbers` (about to be spotted) not moving."""
+    numbers = list(numbers)
+    if not (np.any(balls.v[numbers]) or np.any(balls.w[numbers])):
+        return balls
+    v, w = balls.v.copy(), balls.w.copy()
+    v[numbers], w[numbers] = 0.0, 0.0
+    return Balls(balls.xy, v, w, radius=balls.radius, mass=balls.mass, pocketed=balls.pocketed)
 
 
 def blocked_on_line(y: float, r: float, xy, radii, pocketed) -> list:

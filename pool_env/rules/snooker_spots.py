@@ -13,7 +13,7 @@ import numpy as np
 
 from ..physics.objects import Balls, Table
 from ..physics.snooker import BAULK_LINE, BLACK_SPOT_FROM_TOP, D_RADIUS, SNOOKER_BALL_MASS, SNOOKER_BALL_RADIUS
-from .racks import SPOT_GAP, blocked_on_line
+from .racks import SPOT_GAP, blocked_on_line, resting
 
 N_SNOOKER_BALLS = 22
 REDS = frozenset(range(1, 16))
@@ -96,12 +96,11 @@ def spot_colours(balls: Balls, table: Table, numbers) -> Balls:
     for b in numbers:
         if b not in COLOURS or b >= len(balls) or not balls.pocketed[b]:
             raise ValueError(f"ball {b} cannot be spotted: only pocketed colours (16-21) can")
-    xy, v, w, pocketed = balls.xy.copy(), balls.v.copy(), balls.w.copy(), balls.pocketed.copy()
+    balls = resting(balls, numbers)
     radii, spots = balls.radii, colour_spots(table)
-    for b in numbers:
-        xy[b] = _spot_for(b, spots, table, xy, radii, pocketed)
-        v[b], w[b], pocketed[b] = 0.0, 0.0, False
-    return Balls(xy, v, w, radius=balls.radius, mass=balls.mass, pocketed=pocketed)
+    for b in numbers:  # each checked against the balls on the table; the others stay as they lie
+        balls = balls.with_ball_at(b, _spot_for(b, spots, table, balls.xy, radii, balls.pocketed))
+    return balls
 
 
 def occupied(spot, r, xy, radii, pocketed) -> bool:
