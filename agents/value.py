@@ -15,6 +15,7 @@ from .value_leaf import LEAF, LEAF_TOP, leaf_features
 MAX_SHOTS = 100  # the observation's shot-counter scale (the game envs' max_shots); the counter is left out
 OBSERVATION_ROWS = 43  # a 9-ball observation without its shot counter: balls (30), legal (9), in hand (2), fouls (2)
 POSITION_FEATURES = OBSERVATION_ROWS + 2  # ... and the shooter's best ghost-ball quality, the object balls left
+ROUNDS = 4  # a position net's search: the budget in four rounds of sequential halving (docs/players.md)
 
 
 def value_weights_path(game: str = "nine_ball"):
@@ -67,12 +68,19 @@ class ValueSearchAgent(SearchAgent):
     the net's choice to the search's `top` best candidates by its own lookahead value. `blend`
     in [0, 1] mixes in the search's own value (its lookahead, mapped from [-1, 1] to [0, 1])
     with that weight (0: the net alone). The candidate with the best mean over its noise draws
-    is played."""
+    is played.
+
+    With noise, a position net's search spends its budget in `rounds` (default ROUNDS) rounds
+    of sequential halving (`SearchAgent.in_rounds`), every draw scored by the net, and with
+    `common` random numbers (the candidates of a round under the same cue errors); `blend`,
+    `every` and `top` are options of the single pass (`rounds=1`), which a leaf net takes by
+    default."""
 
     name = "search+value"
 
     def __init__(self, game: str | None = "nine_ball", net: ValueNet | None = None, blend: float = 0.0,
-                 every: bool = False, top: int | None = None, **options):
+                 every: bool = False, top: int | None = None, rounds: int | None = None, common: bool = True,
+                 **options):
         if game not in GAME_BALLS:
             raise ValueError(f"unknown game {game!r}; choose one of {', '.join(GAME_BALLS)}")
         if net is None:  # a game without a shipped net is refused as the learned player's is (the tournament skips it)
@@ -86,10 +94,14 @@ class ValueSearchAgent(SearchAgent):
             raise ValueError(f"blend must be in [0, 1], got {blend!r}")
         if top is not None and int(top) < 1:
             raise ValueError(f"top must be >= 1 or None, got {top!r}")
-        super().__init__(game, **options)
+        leaf = LEAF in getattr(net, "arrays", {})  # a net over `leaf_features`: the learned player reads the positions
+        rounds = (1 if leaf else ROUNDS) if rounds is None else rounds
+        if int(rounds) > 1 and (blend or every or top is not None):
+            raise ValueError("blend, every and top are options of the single-pass search: give rounds=1 with them")
+        super().__init__(game, rounds=rounds, common=common, **options)
         self.net, self.blend, self.every = net, float(blend), bool(every)
         self.learned = None
-        if LEAF in getattr(net, "arrays", {}):  # a net over `leaf_features`: the learned player reads the positions
+        if leaf:
             self.learned = LearnedPlayer(game, table=self.table, physics=self.physics, radius=self.radius)
             top = LEAF_TOP if top is None else top
         self.top = None if top is None else int(top)

@@ -20,7 +20,7 @@ from .learned_train import value_net
 from .match import alternate, play_game, player_seed, points
 from .search import SearchAgent
 from .stats import wilson
-from .value import POSITION_FEATURES, ValueSearchAgent, position_features, win_probability
+from .value import POSITION_FEATURES, ROUNDS, ValueSearchAgent, position_features, win_probability
 from .value_leaf import LEAF_FEATURES, fit_leaf, leaf_features, logistic
 
 GAME, NOISE = "nine_ball", "olympiad"
@@ -31,17 +31,21 @@ HELD_OUT = 0.1  # the share of the data games (the last ones) kept out of the fi
 # shared machine they made a decision several times slower).
 BLAS_THREADS = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 OUTCOME_WEIGHT = 0.0  # the game's result in the fitted label, the rest the search's calibrated value (docs/players.md)
+SELF_PLAY: dict = {}  # the self-play searchers' options: the plain search (the shipped net's data)
 
 
-def self_play(games: int, seed: int = DATA_SEED, noise=NOISE, budget: int = 600, log=None, leaf: bool = False) -> dict:
-    """`SearchAgent` against itself on games seeded seed .. seed + games - 1 (breaks alternating):
+def self_play(games: int, seed: int = DATA_SEED, noise=NOISE, budget: int = 600, log=None, leaf: bool = False,
+              search: dict | None = None) -> dict:
+    """`SearchAgent` (`search`: its options beyond the budget and noise; default SELF_PLAY)
+    against itself on games seeded seed .. seed + games - 1 (breaks alternating):
     every position before a shot, its `position_features`, labelled 1 if the player to shoot
     there went on to win (games with no winner are left out), and the search's own value of its
     decision there (`last_stats["value"]`, in the search's units). Arrays features (N, F),
     label (N,), search_value (N,), game (N,) (the game's seed); with `leaf`, leaf (N,
     LEAF_FEATURES) (their `leaf_features`: the learned player reads every position)."""
     sim = Game(GAME, noise=noise)
-    players = [SearchAgent(GAME, noise=noise, budget=budget) for _ in range(2)]
+    players = [SearchAgent(GAME, noise=noise, budget=budget, **(SELF_PLAY if search is None else search))
+               for _ in range(2)]
     learned = LearnedPlayer(GAME) if leaf else None
     feats, labels, values, seeds, leaves = [], [], [], [], []
     start = time.perf_counter()
@@ -170,15 +174,27 @@ def scores(net: ValueNet, data: dict) -> dict:
             "base_log_loss": log_loss(base), "base_brier": float(np.mean((base - y) ** 2))}
 
 
+def challenger(net: ValueNet | None, noise, budget: int, options: dict, ghost_ball: bool = False) -> SearchAgent:
+    """The player measured against the plain search: search+value with `net` (None: the
+    shipped one) and `options`, or with `ghost_ball` the search itself with the same options
+    (its allocation of the budget, `rounds` and `common`, without the net: what the net adds)."""
+    if ghost_ball:
+        return SearchAgent(GAME, noise=noise, budget=budget, **options)
+    return ValueSearchAgent(GAME, net=net, noise=noise, budget=budget, **options)
+
+
 def versus(games: int, seed: int = EVAL_SEED, noise=NOISE, budget: int = 600, net: ValueNet | None = None,
-           options: dict | None = None, clock: dict | None = None) -> list:
-    """search+value against search on games seeded seed + k, search+value breaking the even k
-    (seats and breaks alternate), both with `budget` simulations a decision (`options`: more of
-    `ValueSearchAgent`'s, blend, every, top): for each game 1 (search+value won), 0 or 0.5 (no
-    winner). `clock`, if given, gets each player's decisions and CPU seconds ([n, s] by name)."""
+           options: dict | None = None, clock: dict | None = None, ghost_ball: bool = False,
+           opponent: dict | None = None) -> list:
+    """search+value (`challenger`) against search (`opponent`: its options, default none: the
+    plain search) on games seeded seed + k, search+value breaking the even k (seats and breaks
+    alternate), both with `budget` simulations a decision (`options`: more of
+    `ValueSearchAgent`'s: rounds, common, blend, every, top): for each game 1 (search+value
+    won), 0 or 0.5 (no winner). `clock`, if given, gets each side's decisions and CPU seconds
+    ([n, s] under "search+value" and "search")."""
     sim = Game(GAME, noise=noise)
-    value = ValueSearchAgent(GAME, net=net, noise=noise, budget=budget, **(options or {}))
-    plain = SearchAgent(GAME, noise=noise, budget=budget)
+    value = challenger(net, noise, budget, options or {}, ghost_ball)
+    plain = SearchAgent(GAME, noise=noise, budget=budget, **(opponent or {}))
     clock = {} if clock is None else clock
     out = []
     for game_seed, breaker, other in alternate(range(seed, seed + games), value, plain, first=seed):
@@ -189,7 +205,7 @@ def versus(games: int, seed: int = EVAL_SEED, noise=NOISE, budget: int = 600, ne
         def timed(obs, who, seats=seats):
             start = time.process_time()
             action = seats[who].act(obs)
-            spent = clock.setdefault(seats[who].name, [0, 0.0])
+            spent = clock.setdefault("search+value" if seats[who] is value else "search", [0, 0.0])
             spent[0] += 1
             spent[1] += time.process_time() - start
             return action
@@ -200,19 +216,21 @@ def versus(games: int, seed: int = EVAL_SEED, noise=NOISE, budget: int = 600, ne
 
 
 def _versus_part(job) -> tuple:
-    games, seed, noise, budget, arrays, options = job
+    games, seed, noise, budget, arrays, options, ghost_ball, opponent = job
     clock = {}
-    results = versus(games, seed, noise, budget, None if arrays is None else ValueNet(arrays), options, clock)
+    net = None if arrays is None else ValueNet(arrays)
+    results = versus(games, seed, noise, budget, net, options, clock, ghost_ball, opponent)
     return results, clock
 
 
 def match(games: int = 400, seed: int = EVAL_SEED, workers: int = 2, noise=NOISE, budget: int = 600,
-          net: ValueNet | None = None, options: dict | None = None) -> dict:
+          net: ValueNet | None = None, options: dict | None = None, ghost_ball: bool = False,
+          opponent: dict | None = None) -> dict:
     """`versus` split over `workers` processes: wins, the win rate and its 95 % Wilson interval,
     each player's decisions and decisions per CPU second."""
     share = -(-games // workers)
     arrays = None if net is None else net.arrays
-    jobs = [(min(share, games - k * share), seed + k * share, noise, budget, arrays, options)
+    jobs = [(min(share, games - k * share), seed + k * share, noise, budget, arrays, options, ghost_ball, opponent)
             for k in range(workers) if games - k * share > 0]
     if len(jobs) == 1:
         parts = [_versus_part(jobs[0])]
@@ -225,8 +243,8 @@ def match(games: int = 400, seed: int = EVAL_SEED, workers: int = 2, noise=NOISE
     cpu = {name: sum(c[name][1] for _, c in parts if name in c) for name in ("search+value", "search")}
     per_second = {name: decisions[name] / cpu[name] if cpu[name] > 0 else None for name in cpu}
     return {"games": games, "wins": wins, "win_rate": wins / games, "ci95": [lo, hi], "seeds": [seed, seed + games - 1],
-            "budget": budget, "options": options or {}, "noise": noise, "decisions": decisions,
-            "decisions_per_cpu_second": per_second}
+            "budget": budget, "options": options or {}, "ghost_ball": ghost_ball, "opponent": opponent or {},
+            "noise": noise, "decisions": decisions, "decisions_per_cpu_second": per_second}
 
 
 def fitted_net(data: dict, outcome_weight: float, leaf: bool, log=print) -> ValueNet:
@@ -281,6 +299,21 @@ def recipe(data_games: int, eval_games: int, out, workers: int = 2, budget: int 
     return result
 
 
+def player_options(args) -> dict:
+    """search+value's options from the command line (with --ghost-ball, the search's: its
+    rounds default to search+value's)."""
+    options = {"common": not args.no_common}
+    if args.rounds is not None or args.ghost_ball:
+        options["rounds"] = ROUNDS if args.rounds is None else args.rounds
+    if args.blend is not None:
+        options["blend"] = args.blend
+    if args.every:
+        options["every"] = True
+    if args.top is not None:
+        options["top"] = args.top
+    return options
+
+
 def main(argv=None) -> dict:
     for name in BLAS_THREADS:  # the worker processes inherit these: one BLAS thread each
         os.environ.setdefault(name, "1")
@@ -291,20 +324,35 @@ def main(argv=None) -> dict:
     parser.add_argument("--budget", type=int, default=600, help="simulations a decision, both players")
     parser.add_argument("--data", default=None, help="a value-data.npz to fit on instead of playing")
     parser.add_argument("--out", default="runs/value")
-    parser.add_argument("--net", default=None, help="only play this value net against search (--eval-games games)")
-    parser.add_argument("--blend", type=float, default=0.0, help="with --net: the search's own value's weight")
-    parser.add_argument("--every", action="store_true", help="with --net: score every candidate, not the lookahead's")
+    parser.add_argument("--net", default=None,
+                        help="only play this value net (a path, or 'shipped') against search (--eval-games games)")
+    parser.add_argument("--ghost-ball", action="store_true",
+                        help="only play the search with search+value's rounds and common draws but its ghost-ball "
+                             "lookahead (no net) against search: what the net adds")
+    parser.add_argument("--rounds", type=int, default=None,
+                        help=f"search+value's rounds of sequential halving (default {ROUNDS}; a leaf net's 1)")
+    parser.add_argument("--no-common", action="store_true", help="search+value's draws independent, not common")
+    parser.add_argument("--opponent-rounds", type=int, default=1,
+                        help="the search's rounds (default 1: the plain search)")
+    parser.add_argument("--opponent-common", action="store_true", help="the search's draws common")
+    parser.add_argument("--blend", type=float, default=None,
+                        help="with --net --rounds 1: the search's own value's weight")
+    parser.add_argument("--every", action="store_true",
+                        help="with --net --rounds 1: score every candidate, not the lookahead's")
     parser.add_argument("--top", type=int, default=None,
-                        help="with --net: rescore only the search's best TOP candidates (a leaf net's default: 5)")
+                        help="with --net --rounds 1: rescore only the search's best TOP candidates "
+                             "(a leaf net's default: 5)")
     parser.add_argument("--leaf", action="store_true",
                         help="fit the leaf net (the learned player's best shot value, balls left, ball in hand)")
     parser.add_argument("--eval-seed", type=int, default=EVAL_SEED)
     parser.add_argument("--outcome-weight", type=float, default=OUTCOME_WEIGHT,
                         help="the game's result in the label (0: the search's calibrated value alone, 1: the result)")
     args = parser.parse_args(argv)
-    if args.net is not None:
-        result = match(args.eval_games, args.eval_seed, args.workers, budget=args.budget, net=ValueNet.load(args.net),
-                       options={"blend": args.blend, "every": args.every, "top": args.top})
+    if args.net is not None or args.ghost_ball:
+        result = match(args.eval_games, args.eval_seed, args.workers, budget=args.budget,
+                       net=None if args.net in (None, "shipped") else ValueNet.load(args.net),
+                       options=player_options(args), ghost_ball=args.ghost_ball,
+                       opponent={"rounds": args.opponent_rounds, "common": args.opponent_common})
         print(json.dumps(result))
         return result
     if args.games < 1 or args.eval_games < 0 or args.workers < 1 or not 0.0 <= args.outcome_weight <= 1.0:

@@ -188,7 +188,8 @@ def test_rounds_spend_no_more_simulations_than_one_pass_and_choose_among_the_mos
     assert n == one.last_stats["candidates"] > 4
     # Round 1: every candidate, 2n draws in all (6n / 3 rounds); rounds 2-3: ceil(n/4), then ceil(n/16) of them.
     kept = -(-n // 4)
-    assert halving.last_stats["simulations"] == n * 2 + kept * (2 * n // kept) + (-(-kept // 4)) * (2 * n // -(-kept // 4))
+    last = -(-kept // 4)
+    assert halving.last_stats["simulations"] == n * 2 + kept * (2 * n // kept) + last * (2 * n // last)
     assert halving.last_stats["simulations"] <= one.last_stats["simulations"] == 6 * n
     again = SearchAgent.from_env(env, seed=1, rounds=3)
     assert np.array_equal(again.act(obs), action)  # deterministic by seed

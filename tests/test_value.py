@@ -111,14 +111,24 @@ def test_search_value_acts_in_the_action_space_and_replays_a_game_exactly_from_i
     assert game_actions(11, net) == first
 
 
-def test_search_value_scores_every_simulated_outcome_in_one_net_evaluation():
-    calls = []
+def test_search_value_scores_every_simulated_outcome_in_one_net_evaluation_a_round():
     net = small_net()
-    value = ValueSearchAgent(net=lambda x: calls.append(len(x)) or net(x), noise="olympiad", budget=60)
     game = Game("nine_ball", noise="olympiad", seed=2)
     game.play(SearchAgent("nine_ball", budget=30).act(game_observation_of(game)))
-    value.act(game_observation_of(game))
-    assert len(calls) == 1 and calls[0] <= value.last_stats["simulations"]
+    for rounds in (1, 4):
+        calls = []
+        value = ValueSearchAgent(net=lambda x, calls=calls: calls.append(len(x)) or net(x), noise="olympiad",
+                                 budget=60, rounds=rounds)
+        value.act(game_observation_of(game))
+        # the net sees each draw's outcome that has no winner: at most the simulations
+        assert len(calls) == rounds and sum(calls) <= value.last_stats["simulations"] <= 60
+
+
+def test_search_value_takes_blend_every_and_top_only_in_a_single_pass():
+    with pytest.raises(ValueError, match="single-pass search: give rounds=1"):
+        ValueSearchAgent(net=small_net(), blend=0.5)
+    assert ValueSearchAgent(net=small_net(), blend=0.5, rounds=1).rounds == 1
+    assert ValueSearchAgent(net=small_net()).rounds == 4 and ValueSearchAgent(net=small_net()).common
 
 
 def game_observation_of(game: Game) -> np.ndarray:
@@ -129,7 +139,7 @@ def game_observation_of(game: Game) -> np.ndarray:
 
 def test_search_value_refuses_a_bad_blend_and_another_game_by_name():
     with pytest.raises(ValueError, match="blend must be in"):
-        ValueSearchAgent(net=small_net(), blend=1.5)
+        ValueSearchAgent(net=small_net(), blend=1.5, rounds=1)
     with pytest.raises(ValueError, match="9-ball only"):
         ValueSearchAgent("eight_ball", net=small_net())
     with pytest.raises(FileNotFoundError, match="no eight_ball value net is shipped"):
@@ -190,3 +200,13 @@ def test_targets_mix_the_outcome_with_the_calibrated_search_value_by_weight():
     searched = targets(data, 0.0, calibrated=(0.0, np.log(3.0)))["label"]  # sigmoid(0) = 1/2, sigmoid(ln 3) = 3/4
     assert np.allclose(searched, [0.5, 0.75])
     assert np.allclose(targets(data, 0.25, calibrated=(0.0, np.log(3.0)))["label"], [0.625, 0.5625])
+
+
+def test_the_ghost_ball_ablation_plays_the_search_with_search_values_rounds_against_the_plain_search():
+    from agents.value_train import challenger, main
+
+    plain = challenger(None, "olympiad", 24, {"rounds": 4, "common": True}, ghost_ball=True)
+    assert type(plain) is SearchAgent and plain.rounds == 4 and plain.common
+    result = main(["--ghost-ball", "--eval-games", "2", "--workers", "1", "--budget", "24"])
+    assert result["ghost_ball"] and result["options"] == {"common": True, "rounds": 4}
+    assert result["opponent"] == {"rounds": 1, "common": False} and result["decisions"]["search+value"] > 0
