@@ -62,6 +62,9 @@ class SearchAgent(CandidateShots, Agent):
     time, each batch only while the decision has used less than `seconds` (the first batch of
     simulations always runs; a candidate left unsimulated is not chosen). Decisions then depend
     on the machine's speed; without it they depend only on the seed and the observation.
+    With noise, `rounds` > 1 spends the budget in that many rounds of sequential halving
+    (`in_rounds`) and `common=True` gives the candidates of a batch the same noise draws
+    (`Game.evaluate(common=True)`); both are off by default (docs/players.md measures them).
     `last_stats` holds the last decision's candidates, simulations, seconds and value."""
 
     name = "search"

@@ -31,7 +31,7 @@ HELD_OUT = 0.1  # the share of the data games (the last ones) kept out of the fi
 # shared machine they made a decision several times slower).
 BLAS_THREADS = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 OUTCOME_WEIGHT = 0.0  # the game's result in the fitted label, the rest the search's calibrated value (docs/players.md)
-SELF_PLAY: dict = {}  # the self-play searchers' options: the plain search (the shipped net's data)
+SELF_PLAY = {"rounds": ROUNDS, "common": True}  # the self-play searchers: search+value's allocation, no net
 
 
 def self_play(games: int, seed: int = DATA_SEED, noise=NOISE, budget: int = 600, log=None, leaf: bool = False,
