@@ -1,5 +1,6 @@
 """pool_env.game: the rules applied, exact snapshots, evaluate as restore + play, layout round trips, clear errors."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -23,7 +24,7 @@ from pool_env.game import (
     placement_area,
     play_batch,
 )
-from pool_env.physics import BALL_RADIUS, Table
+from pool_env.physics import BALL_RADIUS, Balls, Table
 
 R = BALL_RADIUS
 TABLE = Table.eight_foot()
@@ -324,3 +325,32 @@ def test_a_decoded_shot_is_the_checked_shot_of_its_fields():
             assert [type(v) for v in fields] == [type(getattr(checked, f)) for f in
                                                   ("force", "tip", "place", "pocket", "elevation", "ball", "push_out")]
             assert all(type(v) is float for pair in (shot.force, shot.tip, shot.place or ()) for v in pair)
+
+
+# A 9-ball position from search self-play (olympiad noise, the positions as the search decodes
+# them) and one of its simulated candidates under one draw of the noise: a foul that drops the
+# 9, which must be spotted (WPA 1.4), and a simulated rest that leaves the cue ball and the 2
+# 0.57 um into each other. Spotting places the 9 and does not refuse the other balls' rest.
+SELF_PLAY_XY = [(1.1133637426793577, 0.7559528660774232), (0.4325185775756836, 0.9458770895004274),
+                (2.1935459327697755, 1.1101163291931153), (1.2264734232425691, 0.4841359889507294),
+                (1.7522087287902834, 0.6206503200531006), (2.210959014892578, 0.6948465609550477),
+                (1.0042740786075592, 0.7709068799018861), (1.1132293380051852, 1.0316160345077516),
+                (0.16879571914672853, 0.14172607421875003), (0.8719803547859193, 0.2955208826065064)]
+SELF_PLAY_NOISE = {"bit_generator": "PCG64", "state": {"state": 85827422844955054994402317550281956126,
+                                                       "inc": 82760660333126578401489884607577641609},
+                   "has_uint32": 0, "uinteger": 0}
+
+
+def test_spotting_the_nine_places_it_clear_of_a_simulated_rest_it_does_not_recheck():
+    game = Game("nine_ball", noise="olympiad")
+    state = dataclasses.replace(rules.new_game("nine_ball"), ball_in_hand=None, is_break=False, shot=1)
+    game.reset(balls=Balls(np.array(SELF_PLAY_XY)), state=state)
+    noise = np.random.Generator(np.random.PCG64())
+    noise.bit_generator.state = SELF_PLAY_NOISE
+    shot = Shot(force=(-61.0140070208788, -140.40303487937453))
+    [record] = game.evaluate([shot], draws=1, seed=noise, common=True)
+    assert 9 in record.ruling.balls_to_spot and record.ruling.foul is not None
+    after = record.balls_after
+    assert not after.pocketed[9]
+    gaps = np.hypot(*(after.xy[~after.pocketed] - after.xy[9]).T)
+    assert np.sort(gaps)[1] >= 2 * BALL_RADIUS  # the 9 (WPA 1.4) touches no ball
