@@ -341,16 +341,29 @@ SELF_PLAY_NOISE = {"bit_generator": "PCG64", "state": {"state": 8582742284495505
                    "has_uint32": 0, "uinteger": 0}
 
 
-def test_spotting_the_nine_places_it_clear_of_a_simulated_rest_it_does_not_recheck():
+def self_play_foul():
+    """The record of that candidate, simulated from that position under that draw."""
     game = Game("nine_ball", noise="olympiad")
     state = dataclasses.replace(rules.new_game("nine_ball"), ball_in_hand=None, is_break=False, shot=1)
     game.reset(balls=Balls(np.array(SELF_PLAY_XY)), state=state)
     noise = np.random.Generator(np.random.PCG64())
     noise.bit_generator.state = SELF_PLAY_NOISE
     shot = Shot(force=(-61.0140070208788, -140.40303487937453))
-    [record] = game.evaluate([shot], draws=1, seed=noise, common=True)
+    return game.evaluate([shot], draws=1, seed=noise, common=True)[0]
+
+
+def test_spotting_the_nine_places_it_clear_of_a_simulated_rest_it_does_not_recheck():
+    record = self_play_foul()
     assert 9 in record.ruling.balls_to_spot and record.ruling.foul is not None
     after = record.balls_after
     assert not after.pocketed[9]
     gaps = np.hypot(*(after.xy[~after.pocketed] - after.xy[9]).T)
     assert np.sort(gaps)[1] >= 2 * BALL_RADIUS  # the 9 (WPA 1.4) touches no ball
+
+
+@pytest.mark.xfail(strict=True, reason="known: the cue ball chattering between the 2 and a cushion ends "
+                                       "1e-6 m into the 2 (invariants: overlap beyond 1 nm)")
+def test_the_cue_ball_wedged_between_the_two_and_a_cushion_stays_out_of_the_two():
+    from pool_env.physics.invariants import check
+
+    assert check(self_play_foul().result) == []
