@@ -87,7 +87,7 @@ class SearchAgent(CandidateShots, Agent):
         self.budget, self.noise_samples = int(budget), int(noise_samples) if noise else 1
         self.lookahead, self.threads, self.seconds = bool(lookahead), int(threads), seconds
         self.rule_options = dict(rule_options or {})
-        self.rounds, self.common, self.last_simulations = int(rounds), bool(common), None
+        self.rounds, self.common = int(rounds), bool(common)
         self.plans = SearchPlanner(self.table, self.physics, radius)  # the pots, qualities and spots, at once
         self.scorer = GhostBallAgent(self.table, self.physics, radius=radius)  # its break shots (PoolBreakRun-v0)
         self.pockets = self.scorer.pockets
@@ -119,10 +119,12 @@ class SearchAgent(CandidateShots, Agent):
         d = decode(observation, self.n_balls, self.table, game=self.game is not None)
         state = game_state(d, self.game, self.rule_options) if self.game is not None else None
         candidates = self.candidates(d, state)[: max(1, self.budget // self.noise_samples)]
-        self.last_simulations = None
-        values, simulated = self.evaluate(d, state, candidates, start)
+        if self.rounds > 1 and self.noise:
+            values, simulations = self.in_rounds(d, state, candidates)
+        else:
+            values, simulated = self.evaluate(d, state, candidates, start)
+            simulations = simulated * self.noise_samples
         best = int(np.argmax(values))
-        simulations = simulated * self.noise_samples if self.last_simulations is None else self.last_simulations
         self.last_stats = {"candidates": len(candidates), "simulations": simulations,
                            "seconds": time.perf_counter() - start, "value": float(values[best]),
                            "kind": candidates[best].kind}
@@ -161,8 +163,6 @@ class SearchAgent(CandidateShots, Agent):
         `Game.evaluate` of the candidates' actions (as the env reads them) from the decoded
         position, in one batch (with `seconds`, in chunks until the time is up; a candidate
         left unsimulated gets -inf)."""
-        if self.rounds > 1 and self.noise:
-            return self.in_rounds(d, state, candidates), len(candidates)
         records, judged, plain = self.judged(d, state, candidates, start)
         done = len(records) // self.noise_samples
         if not self.lookahead:
@@ -171,13 +171,13 @@ class SearchAgent(CandidateShots, Agent):
         self.look_ahead(values, self.looked_at(plain, done, d.legal), judged, start)
         return values, done
 
-    def in_rounds(self, d: GameView, state, candidates) -> np.ndarray:
-        """Each candidate's mean value over its draws, the budget spent in `rounds` equal rounds
-        (sequential halving): round 1 simulates every candidate, each later round the best
-        ROUND_KEEP of the last round's by their mean so far, each with as many noise draws as its
-        share of the round's budget allows (at least one). Only the last round's candidates can
-        be chosen (-inf for the rest): they have the most draws. Each draw is worth
-        `draw_values`."""
+    def in_rounds(self, d: GameView, state, candidates) -> tuple[np.ndarray, int]:
+        """(each candidate's mean value over its draws, the simulations made): the budget spent
+        in `rounds` equal rounds (sequential halving). Round 1 simulates every candidate, each
+        later round the best ROUND_KEEP of the last round's by their mean so far, each with as
+        many noise draws as its share of the round's budget allows (at least one). Only the last
+        round's candidates can be chosen (-inf for the rest): they have the most draws. Each
+        draw is worth `draw_values`."""
         share = min(self.budget, len(candidates) * self.noise_samples) // self.rounds  # no more than one pass spends
         sums, counts = np.zeros(len(candidates)), np.zeros(len(candidates))
         alive = np.arange(len(candidates))
@@ -191,20 +191,12 @@ class SearchAgent(CandidateShots, Agent):
             counts[alive] += draws
         values = np.full(len(candidates), -np.inf)
         values[alive] = sums[alive] / counts[alive]
-        self.last_simulations = int(counts.sum())
-        return values
+        return values, int(counts.sum())
 
     def draw_values(self, state, records) -> np.ndarray:
-        """(R,) the value of each simulated shot (`judge`, then `deep_value` with the lookahead;
-        the qualities of all the outcomes that need one planned at once)."""
+        """(R,) the value of each simulated shot: `judge`d, then with the lookahead `deep_values`."""
         judged = [self.judge(state, record, None) for record in records]
-        if not self.lookahead:
-            return np.array([v for v, _ in judged])
-        infos = [info for _, info in judged]
-        asked = [i for i in infos if i is not None and (i[0] == "miss" or i[3] is None)]
-        qualities = iter(self.qualities([i[1].xy for i in asked], [~i[1].pocketed for i in asked],
-                                        [i[2] for i in asked]) if asked else ())
-        return np.array([self.deep_value(v, info, qualities) for v, info in judged])
+        return self.deep_values(judged) if self.lookahead else np.array([v for v, _ in judged])
 
     def judged(self, d: GameView, state, candidates, start) -> tuple[list, list, np.ndarray]:
         """(the `simulate` records, each judged (`judge`), each candidate's mean plain value
@@ -249,12 +241,17 @@ class SearchAgent(CandidateShots, Agent):
             if self.seconds is not None and time.perf_counter() - start > self.seconds:
                 break
             part = chosen[at:at + chunk]
-            infos = [judged[c * s + k][1] for c in part for k in range(s)]
-            asked = [i for i in infos if i is not None and (i[0] == "miss" or i[3] is None)]
-            qualities = iter(self.qualities([i[1].xy for i in asked], [~i[1].pocketed for i in asked],
-                                            [i[2] for i in asked]) if asked else ())
-            for c in part:
-                values[c] = np.mean([self.deep_value(*judged[c * s + k], qualities) for k in range(s)])
+            deep = self.deep_values([judged[c * s + k] for c in part for k in range(s)])
+            for j, c in enumerate(part):
+                values[c] = np.mean(deep[j * s:(j + 1) * s])
+
+    def deep_values(self, judged) -> np.ndarray:
+        """(R,) the `deep_value` of each judged shot ((plain value, info) as `judge` gives), the
+        qualities of all the outcomes that need one planned in one batch."""
+        asked = [i for _, i in judged if i is not None and (i[0] == "miss" or i[3] is None)]
+        qualities = iter(self.qualities([i[1].xy for i in asked], [~i[1].pocketed for i in asked],
+                                        [i[2] for i in asked]) if asked else ())
+        return np.array([self.deep_value(v, info, qualities) for v, info in judged])
 
     def judge(self, state, record, cand):
         """(plain value, what the lookahead needs) of one simulated shot (a `ShotRecord`)."""

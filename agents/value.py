@@ -113,8 +113,6 @@ class ValueSearchAgent(SearchAgent):
         of them by the search's own lookahead value, get the mean of `outcome_values` over their
         noise draws, blended with the search's lookahead value if `blend`; the rest stay below
         any of them."""
-        if self.rounds > 1 and self.noise:
-            return self.in_rounds(d, state, candidates), len(candidates)
         s = self.noise_samples
         records, judged, plain = self.judged(d, state, candidates, start)
         done = len(records) // s

@@ -506,4 +506,3 @@ def test_spot_balls_on_the_long_string():
 def test_head_string():
     # The head string is a quarter of the length from the head rail.
     assert R.head_string_x(TABLE) == pytest.approx(L / 4)
-
