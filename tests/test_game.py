@@ -367,3 +367,29 @@ def test_the_cue_ball_wedged_between_the_two_and_a_cushion_stays_out_of_the_two(
     from pool_env.physics.invariants import check
 
     assert check(self_play_foul().result) == []
+
+
+def test_a_shot_the_rules_cannot_settle_is_recorded_as_failed_and_its_batch_is_kept(monkeypatch):
+    """The spotting's one refusal (no room left on the long string, which a full-size table never
+    meets) is forced: the shot that needs a ball spotted fails alone, as a shot the simulator
+    cannot finish does, and the others of its batch are judged."""
+    settle = rules.settle
+
+    def no_room(state, ruling, balls, table):
+        if ruling.balls_to_spot:
+            raise ValueError("no room on the long string to spot a ball")
+        return settle(state, ruling, balls, table)
+
+    monkeypatch.setattr(rules, "settle", no_room)
+    game = Game("nine_ball", noise="olympiad")
+    state = dataclasses.replace(rules.new_game("nine_ball"), ball_in_hand=None, is_break=False, shot=1)
+    game.reset(balls=Balls(np.array(SELF_PLAY_XY)), state=state)
+    foul, soft = Shot(force=(-61.0140070208788, -140.40303487937453)), Shot(force=(5.0, 0.0))
+    for records in (True, False):
+        noise = np.random.Generator(np.random.PCG64())
+        noise.bit_generator.state = SELF_PLAY_NOISE
+        failed, kept = game.evaluate([foul, soft], draws=1, seed=noise, common=True, records=records)
+        assert "could not settle" in failed.error and "no room" in failed.error
+        assert failed.ruling is None and failed.state_after is game.state
+        assert np.array_equal(failed.balls_after.xy, game.balls.xy)
+        assert kept.error is None and kept.ruling is not None and not kept.balls_after.pocketed[9]

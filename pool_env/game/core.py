@@ -56,7 +56,8 @@ class Game:
     - `play(shot)`: one shot, all of it: ball-in-hand placement, the called pocket, the noise,
       the strike, the simulation, the rules' judgement and spotting. `shot` is a `Shot` or an
       action vector of the game's layout (`layout`, `decode`/`encode`). Returns a `ShotRecord`;
-      a shot the simulator cannot finish is recorded with its `error` and changes nothing.
+      a shot the simulator cannot finish (or whose balls the rules cannot put back) is recorded
+      with its `error` and changes nothing.
     - `snapshot()` / `restore(snapshot)`: the whole state, the noise generator's included:
       restore, then play the same shot, and the record is bit-identical.
     - `evaluate(shots, draws=M, seed=...)`: K shots x M noise draws from the current state in

@@ -154,7 +154,10 @@ def judge_batch(game, struck, threads: int | None = 1) -> list[JudgedShot]:
                 judged = known[key] = (outcome, ruling, after)
             outcome, ruling, after = judged
             if ruling.balls_to_spot:
-                balls = rules.settle(after, ruling, balls_at(s.balls, S[m], st[m]), table)[0]
+                try:
+                    balls = rules.settle(after, ruling, balls_at(s.balls, S[m], st[m]), table)[0]
+                except ValueError:  # left to the one-by-one judging below, which records the failure
+                    continue
                 layout = Layout(balls.xy, balls.pocketed)
             else:
                 layout = Layout(S[m, :, 0:2], st[m] == POCKETED)

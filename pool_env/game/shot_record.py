@@ -41,7 +41,7 @@ class ShotRecord:
     (spotted balls back on the table); `result` the
     physics `Result` (events, trajectories, stats); `ruling` the rules' `Ruling` and
     `state_after` the next `rules.GameState` (None in the break and run modes); `over` the
-    game ended with this shot; `error` why the shot could not be simulated (then `result` is
+    game ended with this shot; `error` why the shot could not be simulated or settled (then `result` is
     None, the game did not change and the balls are `balls_before`). Read-only by convention."""
 
     shooter: int
