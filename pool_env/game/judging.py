@@ -20,7 +20,7 @@ def shot_record(struck: StruckShot, result, state, table: Table, mode: Mode, dec
     if isinstance(result, Exception):
         if not isinstance(result, SHOT_ERRORS):
             raise result
-        return failed(head, struck, f"{type(result).__name__}: {result}")
+        return failed(head, struck, state, f"{type(result).__name__}: {result}")
     if mode.rules is None:
         final = result.final
         cleared = table.pockets.shape[0] > 0 and bool(final.pocketed[1:].all())
@@ -38,16 +38,16 @@ def shot_record(struck: StruckShot, result, state, table: Table, mode: Mode, dec
     try:
         balls, after = rules.settle(after, ruling, final, table)
     except ValueError as exc:  # the rules cannot put a ball back (no room left to spot it)
-        return failed(head, struck, f"ValueError: the rules could not settle the shot: {exc}")
+        return failed(head, struck, state, f"ValueError: the rules could not settle the shot: {exc}")
     if not decisions and getattr(after, "pending", None) is not None:  # no re-rack is a default
         after = rules.decide(after, after.pending.default)
     return ShotRecord(*head, balls, result, ruling, after, after.over, judged=outcome,
                       elevation=struck.elevation, called_ball=struck.called_ball)
 
 
-def failed(head: tuple, struck: StruckShot, error: str) -> ShotRecord:
-    """The record of a shot that could not be simulated or settled (`error` says why): no result,
-    the balls as they were before it (the cue ball where it was placed), the state unchanged."""
-    state = head[-1]
+def failed(head: tuple, struck: StruckShot, state, error: str) -> ShotRecord:
+    """The record of a shot from the rules' `state` that could not be simulated or settled
+    (`error` says why): no result, the balls as they were before it (the cue ball where it was
+    placed), the state unchanged."""
     return ShotRecord(*head, struck.placed, None, None, state, False, error, elevation=struck.elevation,
                       called_ball=struck.called_ball)
