@@ -76,6 +76,8 @@ class Args:
     fit_epochs: int = option(30, "--algo value: passes over the labelled data in each fit of the nets")
     pot_positions: int = option(40000, "--algo value: random two-ball positions whose ghost-ball pots are simulated "
                                 "to fit the pot net the value nets read (0: no pot net)")
+    pot_games: int = option(7500, "--algo value: ghost-ball games whose positions' menu pots are simulated too, each "
+                            "alone with its ball, for the pot net (0: only the random positions)")
     safe_positions: int = option(30000, "--algo value: random two-ball positions whose safeties and kicks are "
                                  "simulated to fit the safety net the value nets read (0: none; needs the pot net)")
     combos: bool = option(False, "--algo value: the value nets also read where each shot sends its object ball and "
@@ -138,7 +140,7 @@ def parse_args(argv=None) -> tuple[Args, bool]:
 AT_LEAST = {"data_games": 1, "rounds": 1, "fit_epochs": 1, "timesteps": 1, "n_envs": 1, "seed": 0, "n_steps": 1,
             "batch_size": 2, "n_epochs": 1, "eval_episodes": 1, "eval_seed": 0, "curve_points": 0, "curve_episodes": 1,
             "video_episodes": 0, "progress_every": 0, "min_timesteps": 0,
-            "pot_positions": 0, "safe_positions": 0}  # least values (SB3: batch_size 2)
+            "pot_positions": 0, "pot_games": 0, "safe_positions": 0}  # least values (SB3: batch_size 2)
 
 
 def check_args(args: Args) -> None:
@@ -222,7 +224,7 @@ def learned_player(args: Args, run) -> Path:
     noise = None if args.noise == "none" else args.noise
     recipe(game, noise, args.data_games, args.rounds, run.eval_seeds, args.seed, args.n_envs, run.dir,
            log=log.info, epochs=args.fit_epochs, pot_positions=args.pot_positions,
-           safe_positions=args.safe_positions, combos=args.combos)
+           safe_positions=args.safe_positions, combos=args.combos, pot_games=args.pot_games)
     log.info("run folder: %s", run.dir.resolve())
     return run.dir
 

@@ -29,6 +29,10 @@ CANDIDATE_FEATURES = 36  # see `candidate_features`
 LAYOUT = 5  # the feature rows new nets are fitted on (`menu`)
 LABEL_LAYOUT = 2  # the rows labelled data keeps: layouts 3-5 add only columns computed from them, at fit time
 BREAK_PREFIX = "break_"  # a saved net's arrays of its break net (`ValueNet.breaks`)
+EXPLORE = 0.25  # share of the data games' shots played by a random menu candidate (positions off the usual path)
+REST_POINTS = 6  # the next shot's quality is averaged over the predicted rest and this many points around it ...
+REST_SPREAD = 0.1  # m ... this far off, or with the pot net's rest-error net as far as it says, within REST_SPREADS
+REST_SPREADS = (0.03, 0.5)  # m
 
 
 @dataclass
@@ -66,6 +70,7 @@ def next_qualities(search: SearchAgent, xy, on_table, state, balls, rests) -> np
     xys = np.repeat(np.asarray(xy, dtype=np.float64)[None], len(balls), axis=0)
     xys[:, 0] = rests
     ons = np.repeat(np.asarray(on_table, dtype=bool)[None], len(balls), axis=0)
+    ons[:, 0] = True  # the cue ball stops at the rest, on the table even if it was in hand (after a scratch)
     ons[np.arange(len(balls)), balls] = False
     legal = {}
     for ball in set(int(b) for b in balls):
@@ -249,10 +254,11 @@ def menu(search: SearchAgent, observation, game: str | None, layout: int = LAYOU
 
 def pot_columns(search: SearchAgent, pots: PotNet, d, state, rows) -> np.ndarray:
     """(K, POT_COLUMNS + 2) float32 of a menu's `candidate_features` rows: `PotNet.columns`, then
-    for a pot the next shot's ghost-ball quality from the pot net's cue-ball rest
-    (`next_qualities`) and that times the chance it keeps the table (zeros for other shots).
+    for a pot the next shot's ghost-ball quality around the pot net's cue-ball rest
+    (`spread_qualities`, as far around as its rest-error net expects the rest to be off, else
+    REST_SPREAD) and that times the chance it keeps the table (zeros for other shots).
     The pot's ball is the one on the table at the row's object-ball place."""
-    cols = pots.columns(rows, search.table)
+    cols, errors = pots.read(rows, search.table, search.physics, search.radius)
     out = np.zeros((len(rows), POT_COLUMNS + 2), dtype=np.float32)
     out[:, :POT_COLUMNS] = cols
     pot = np.flatnonzero((rows[:, 0] == 1.0) & (rows[:, 19] == 1.0))
@@ -264,10 +270,24 @@ def pot_columns(search: SearchAgent, pots: PotNet, d, state, rows) -> np.ndarray
     gap[:, 0] = np.inf
     balls = np.argmin(gap, axis=1)
     rests = (cols[pot, 2:4].astype(np.float64) + 1.0) * size / 2.0
-    q = next_qualities(search, d.xy, d.on_table, state, balls, rests)
+    spread = np.full(len(pot), REST_SPREAD) if errors is None else np.clip(errors, *REST_SPREADS)
+    q = spread_qualities(search, d, state, balls, rests, spread)
     out[pot, POT_COLUMNS] = q
     out[pot, POT_COLUMNS + 1] = q * cols[pot, 4]
     return out
+
+
+def spread_qualities(search: SearchAgent, d, state, balls, rests, spread) -> np.ndarray:
+    """(M,): `next_qualities` averaged over each rest and REST_POINTS points `spread[m]` m around
+    it (kept on the cloth): a leave whose quality holds as far off as the rest may be predicted
+    wrong is worth more than one that is good only at the predicted point."""
+    turns = 2.0 * np.pi * np.arange(REST_POINTS) / REST_POINTS
+    ring = np.column_stack([np.cos(turns), np.sin(turns)])
+    offsets = np.concatenate([np.zeros((1, len(rests), 2)), ring[:, None, :] * np.asarray(spread)[None, :, None]])
+    size = np.array([search.table.length, search.table.width])
+    points = np.clip(rests[None] + offsets, search.radius, size - search.radius).reshape(-1, 2)
+    q = next_qualities(search, d.xy, d.on_table, state, np.tile(balls, len(offsets)), points)
+    return q.reshape(len(offsets), -1).mean(axis=0)
 
 
 class ValueNet:

@@ -133,6 +133,7 @@ def opponent_qualities(search, xy, on_table, state, contacts) -> np.ndarray:
     mask[[int(b) for b in legal]] = True
     xys = np.repeat(np.asarray(xy, dtype=np.float64)[None], len(hit), axis=0)
     ons = np.repeat(np.asarray(on_table, dtype=bool)[None], len(hit), axis=0)
+    ons[:, 0] = True  # the cue ball stops on the table, even if it was in hand (after a scratch)
     for row, i in enumerate(hit):
         c = contacts[i]
         xys[row, 0], xys[row, c.ball] = c.cue_path[-1], c.object_path[-1]

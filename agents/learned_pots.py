@@ -9,18 +9,21 @@ from multiprocessing import get_context
 import numpy as np
 
 from pool_env.game import MAX_SPEED, GameView
-from pool_env.physics import Balls, Table
+from pool_env.physics import Balls, Physics, Table
 from pool_env.players.planner import DN, DX, DY, OK, SPEED
 
+from .learned_contact import AFTER_CONTACT, after_contact
 from .learned_mlp import NumpyMLP, fit_outputs
 from .search import SearchAgent
 from .search_candidates import ARRIVALS, Candidate
 from .search_position import game_state
 
-POT_INPUTS = 17  # see `pot_inputs`
+POT_INPUTS = 17 + AFTER_CONTACT  # see `pot_inputs`
 POT_OUTPUTS = 4  # logit of the pot, logit of a scratch, the cue ball's rest (x, y in the pot's frame, [-1, 1])
 POT_COLUMNS = 6  # see `PotNet.columns`
 POT_PREFIX = "pot_"  # a saved value net's arrays of its pot net
+ERROR_PREFIX = "err_"  # a pot net's arrays of its rest-error net (`fit_rest_errors`)
+ERROR_FLOOR = 0.02  # m: the rest-error net fits log(error + ERROR_FLOOR), finite where a rest is exact
 BALL = 9  # the one object ball of a simulated pot (alone on the table: the rules' legal ball)
 RAIL_SHARE = 0.3  # share of the simulated positions with the object ball within RAIL_BAND of a cushion
 RAIL_BAND = 0.08  # m
@@ -52,14 +55,18 @@ def mirrored(points, flip, table: Table) -> np.ndarray:
     return np.where(flip > 0, points, size - points)
 
 
-def pot_inputs(cue, obj, pocket, direction, speed, top, arrival, table: Table) -> np.ndarray:
+def pot_inputs(cue, obj, pocket, direction, speed, top, arrival, table: Table, physics: Physics,
+               radius: float) -> np.ndarray:
     """(N, POT_INPUTS) float32 of N ghost-ball pots (cue and object ball centres (N, 2) in m,
     pocket indices, the unit directions, cue speeds m/s, tips `top` R, arrival-speed indices),
     all in the pot's mirrored frame (`frames`): the cue ball and the object ball (x, y in
     [-1, 1]), the direction, the unit line from the object ball to the pocket, a side pocket,
     speed / MAX_SPEED, top, the arrival index / 2, the cosine of the cut, the cue-object and
     object-pocket distances (m), the object ball's and the cue ball's distances to the nearer
-    long and short rail lines (m) beside the pocket."""
+    long and short rail lines (m) beside the pocket; then the ghost-ball model of the cue ball
+    after the contact (`learned_contact.after_contact`): the ghost ball and where the cue ball
+    starts to roll (x, y in [-1, 1]), its velocities after the contact and when it rolls
+    (m/s), and log(1 + its rolling run in m)."""
     cue, obj, direction = (np.asarray(a, dtype=np.float64).reshape(-1, 2) for a in (cue, obj, direction))
     pocket_xy, is_side, flip = pocket_frames(obj, pocket, table)
     c, o, p = mirrored(cue, flip, table), mirrored(obj, flip, table), mirrored(pocket_xy, flip, table)
@@ -80,6 +87,10 @@ def pot_inputs(cue, obj, pocket, direction, speed, top, arrival, table: Table) -
     out[:, 14] = d2
     out[:, 15] = o[:, 1]
     out[:, 16] = c[:, 1]
+    after = after_contact(c, o, d, speed, top, physics, radius)
+    out[:, 17:19], out[:, 19:21] = after[:, 0:2] * scale - 1.0, after[:, 2:4]
+    out[:, 21:23], out[:, 23:25] = after[:, 4:6] * scale - 1.0, after[:, 6:8]
+    out[:, 25] = np.log1p(after[:, 8])
     return out
 
 
@@ -156,6 +167,20 @@ def simulate_pots(search: SearchAgent, positions, rows, cands) -> np.ndarray:
     return out
 
 
+def pot_examples(search: SearchAgent, positions, rows, cands) -> tuple[np.ndarray, np.ndarray]:
+    """(`pot_inputs` (M, POT_INPUTS), labels (M, 4)) of planned pots (rows and candidates as
+    `planned_pots` gives them, rows grouped by position): each simulated alone with its ball
+    (`simulate_pots`), the cue ball's rest mirrored into the pot's frame (x, y in [-1, 1])."""
+    q = rows[:, 0].astype(int)
+    table = search.table
+    x = pot_inputs(positions[q, 0], positions[q, 1], rows[:, 1].astype(int), [c.direction for c in cands],
+                   rows[:, 3], rows[:, 4], rows[:, 2], table, search.physics, search.radius)
+    y = simulate_pots(search, positions, rows, cands)
+    flip = pocket_frames(positions[q, 1], rows[:, 1].astype(int), table)[2]
+    y[:, 2:4] = mirrored(y[:, 2:4], flip, table) * np.array([2.0 / table.length, 2.0 / table.width]) - 1.0
+    return x, y
+
+
 def make_pot_data(positions: int = 1000, seed: int = 0, log=print, first_chunk: int = 0) -> dict:
     """`positions` random positions (`random_positions`) in chunks of CHUNK, chunk c drawn from
     a generator seeded (seed, c) (chunks `first_chunk` on), every planned pot of each simulated:
@@ -169,13 +194,8 @@ def make_pot_data(positions: int = 1000, seed: int = 0, log=print, first_chunk: 
         rows, cands = planned_pots(search, pos)
         if not len(rows):
             continue
-        q = rows[:, 0].astype(int)
-        inputs.append(pot_inputs(pos[q, 0], pos[q, 1], rows[:, 1].astype(int), [c.direction for c in cands],
-                                 rows[:, 3], rows[:, 4], rows[:, 2], search.table))
-        y = simulate_pots(search, pos, rows, cands)
-        flip = pocket_frames(pos[q, 1], rows[:, 1].astype(int), search.table)[2]
-        scale = np.array([2.0 / search.table.length, 2.0 / search.table.width])
-        y[:, 2:4] = mirrored(y[:, 2:4], flip, search.table) * scale - 1.0
+        x, y = pot_examples(search, pos, rows, cands)
+        inputs.append(x)
         labels.append(y)
         if log is not None:
             log(f"pots: {first + len(pos)}/{positions} positions, {sum(map(len, labels))} shots, "
@@ -188,13 +208,14 @@ def _chunks_part(job) -> dict:
     return make(positions, seed, log=None, first_chunk=first_chunk)
 
 
-def parallel_chunks(make, positions: int, seed: int, workers: int) -> dict:
+def parallel_chunks(make, positions: int, seed: int, workers: int, chunk: int = CHUNK) -> dict:
     """`make(positions, seed, log=None, first_chunk=...)` (a data maker that draws its positions
-    in seeded chunks of CHUNK, as `make_pot_data`) split over `workers` processes by whole
-    chunks, joined in order: the same data as one process makes, whatever the number of workers."""
-    chunks = -(-positions // CHUNK)
-    share = -(-chunks // workers) * CHUNK
-    jobs = [(make, min(share, positions - k * share), seed, k * share // CHUNK) for k in range(workers)
+    in seeded chunks of `chunk`, as `make_pot_data` does of CHUNK) split over `workers` processes
+    by whole chunks, joined in order: the same data as one process makes, whatever the number of
+    workers."""
+    chunks = -(-positions // chunk)
+    share = -(-chunks // workers) * chunk
+    jobs = [(make, min(share, positions - k * share), seed, k * share // chunk) for k in range(workers)
             if positions - k * share > 0]
     with ProcessPoolExecutor(len(jobs), mp_context=get_context("spawn")) as pool:
         parts = list(pool.map(_chunks_part, jobs))
@@ -222,36 +243,66 @@ def fit_pots(data: dict, hidden=(128, 128), epochs: int = 30, seed: int = 0, lr:
                               "pot fit"))
 
 
+def fit_rest_errors(pots: PotNet, data: dict, table: Table, hidden=(64, 64), epochs: int = 8, seed: int = 0,
+                    log=print) -> PotNet:
+    """`pots` with a rest-error net: an MLP of the same inputs fitted (squared error, Adam, on one
+    torch thread) to log(e + ERROR_FLOOR), e (m) how far the pot net's predicted rest lies from
+    the simulated one, over the pots whose cue ball stayed on the table; its exp is a typical
+    error of that prediction (`PotNet.rest_errors`)."""
+    kept = np.asarray(data["labels"])[:, 1] < 0.5
+    x, y = np.asarray(data["inputs"])[kept], np.asarray(data["labels"])[kept]
+    miss = (pots.predict(x)[2] - y[:, 2:4]) * np.array([table.length, table.width]) / 2.0
+    target = np.log(np.hypot(miss[:, 0], miss[:, 1]) + ERROR_FLOOR)[:, None]
+    arrays = fit_outputs(x, target, 1, lambda out, t: ((out - t) ** 2).mean(), hidden, epochs, seed, 2e-3, log,
+                         "rest-error fit")
+    return PotNet({**pots.arrays, **{ERROR_PREFIX + k: v for k, v in arrays.items()}})
+
+
 class PotNet(NumpyMLP):
     """The pot model in NumPy (`NumpyMLP`): `__call__` of `pot_inputs` rows gives
-    (N, POT_OUTPUTS); `columns` the value net's features."""
+    (N, POT_OUTPUTS); `columns` the value net's features; with a rest-error net (the arrays
+    named "err_...", `fit_rest_errors`) `rest_errors` how far off each predicted rest may be."""
+
+    def __init__(self, arrays: dict):
+        super().__init__(arrays)
+        errors = {k[len(ERROR_PREFIX):]: v for k, v in arrays.items() if k.startswith(ERROR_PREFIX)}
+        self.errors = NumpyMLP(errors) if errors else None
 
     def predict(self, x) -> tuple:
         """(the probability of the pot, of a scratch, the cue ball's rest in the pot's frame (N, 2))."""
         out = self(x)
         return 1.0 / (1.0 + np.exp(-out[:, 0])), 1.0 / (1.0 + np.exp(-out[:, 1])), out[:, 2:4]
 
-    def columns(self, features, table: Table) -> np.ndarray:
-        """(K, POT_COLUMNS) float32 of a menu's rows (`learned.candidate_features` leading):
-        for a pot, its predicted probability of dropping and of a scratch, the cue ball's
-        predicted rest (x, y in [-1, 1]), the chance it keeps the table (dropped and no
-        scratch) and that times the ghost-ball next-shot quality; zeros for other shots."""
+    def rest_errors(self, x) -> np.ndarray | None:
+        """(N,) m: a typical distance of each predicted rest from the true one, plus ERROR_FLOOR
+        (None without a rest-error net)."""
+        return None if self.errors is None else np.exp(self.errors(x)[:, 0].astype(np.float64))
+
+    def read(self, features, table: Table, physics: Physics, radius: float) -> tuple:
+        """(`columns`, the `rest_errors` of the rows' pots in order (None without a rest-error net))."""
         f = np.asarray(features, dtype=np.float32)
         out = np.zeros((len(f), POT_COLUMNS), dtype=np.float32)
         pots = np.flatnonzero((f[:, 0] == 1.0) & (f[:, 19] == 1.0))
         if not len(pots):
-            return out
+            return out, None if self.errors is None else np.zeros(0)
         g = f[pots].astype(np.float64)
         size = np.array([table.length, table.width])
         cue, obj = (g[:, 10:12] + 1.0) * size / 2.0, (g[:, 26:28] + 1.0) * size / 2.0
         pocket = np.argmax(g[:, 20:26], axis=1)
-        x = pot_inputs(cue, obj, pocket, g[:, 7:9], g[:, 4] * MAX_SPEED, g[:, 6], g[:, 18], table)
+        x = pot_inputs(cue, obj, pocket, g[:, 7:9], g[:, 4] * MAX_SPEED, g[:, 6], g[:, 18], table, physics, radius)
         p_pot, p_scratch, rest = self.predict(x)
         flip = pocket_frames(obj, pocket, table)[2]
         rest = mirrored((rest.astype(np.float64) + 1.0) * size / 2.0, flip, table) * 2.0 / size - 1.0
         keep = p_pot * (1.0 - p_scratch)
         out[pots] = np.column_stack([p_pot, p_scratch, rest, keep, keep * g[:, 31]])
-        return out
+        return out, self.rest_errors(x)
+
+    def columns(self, features, table: Table, physics: Physics, radius: float) -> np.ndarray:
+        """(K, POT_COLUMNS) float32 of a menu's rows (`learned.candidate_features` leading):
+        for a pot, its predicted probability of dropping and of a scratch, the cue ball's
+        predicted rest (x, y in [-1, 1]), the chance it keeps the table (dropped and no
+        scratch) and that times the ghost-ball next-shot quality; zeros for other shots."""
+        return self.read(features, table, physics, radius)[0]
 
     def save_arrays(self) -> dict:
         return {POT_PREFIX + k: v for k, v in self.arrays.items()}

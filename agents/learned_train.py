@@ -15,6 +15,7 @@ from pool_env.players import GameGhostBallAgent
 
 from .learned import (
     CANDIDATE_FEATURES,
+    EXPLORE,
     KINDS,
     LABEL_LAYOUT,
     LAYOUT,
@@ -26,8 +27,9 @@ from .learned import (
 )
 from .learned_combos import COMBO_COLUMNS, combo_columns
 from .learned_features import OUTCOME_FEATURES
+from .learned_game_pots import parallel_game_pot_data
 from .learned_mlp import descend, mlp_arrays, torch_mlp
-from .learned_pots import POT_COLUMNS, PotNet, fit_pots, parallel_pot_data
+from .learned_pots import POT_COLUMNS, PotNet, fit_pots, fit_rest_errors, parallel_pot_data
 from .learned_safeties import SAFE_COLUMNS, SafetyNet, fit_safeties, parallel_safe_data
 from .match import alternate, play_game, points
 from .search import SearchAgent, balls_of, game_state
@@ -35,9 +37,9 @@ from .search_position import decode
 from .stats import wilson
 
 ROUND_SEEDS = 100_000  # round r's games are seeded seed + r * ROUND_SEEDS + k (train.py's games start at 1,000,000)
+POT_EPOCHS = 20  # the pot net's epochs in `recipe`
 EVAL_NOISES = (None, "olympiad")  # the recipe's evaluations: the published figures
 BREAK_COLUMNS, BREAK_HIDDEN, BREAK_EPOCHS = 17, (32,), 60  # the break net: its inputs, layers, epochs
-EXPLORE = 0.25  # share of the data games' shots played by a random menu candidate (positions off the usual path)
 
 
 def labels(search: SearchAgent, observation, game: str) -> tuple:
@@ -269,15 +271,22 @@ def match(player, game: str = "nine_ball", noise=None, games: int = 400, seed: i
     return {"games": games, "wins": wins, "win_rate": wins / games, "ci95": (lo, hi)}
 
 
-def shot_models(pot_positions: int, safe_positions: int, seed: int, workers: int, out, log, timing: dict) -> tuple:
+def shot_models(pot_positions: int, safe_positions: int, seed: int, workers: int, out, log, timing: dict,
+                pot_games: int = 0) -> tuple:
     """`recipe`'s pot net and safety net (either None when its positions are 0; no safety net
-    without a pot net), their data saved into `out` and their seconds into `timing`."""
+    without a pot net), their data saved into `out` and their seconds into `timing`. The pot
+    net's data: the pots of `pot_positions` random two-ball positions, then with `pot_games` the
+    menus' pots of that many ghost-ball games (`learned_game_pots`), each simulated alone."""
     pots = safeties = None
     Path(out).mkdir(parents=True, exist_ok=True)
     if pot_positions:
         t = time.perf_counter()
-        pot_data = parallel_pot_data(pot_positions, seed, workers)
-        pots = fit_pots(pot_data, seed=seed, log=log)
+        parts = [parallel_pot_data(pot_positions, seed, workers)]
+        if pot_games:
+            parts.append(parallel_game_pot_data(pot_games, seed, workers))
+        pot_data = {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
+        pots = fit_pots(pot_data, epochs=POT_EPOCHS, seed=seed, log=log)
+        pots = fit_rest_errors(pots, pot_data, SearchAgent("nine_ball", noise=None).table, seed=seed, log=log)
         np.savez_compressed(Path(out) / "pots-data.npz", **pot_data)
         timing["pots"] = time.perf_counter() - t
         log(f"pot net: {len(pot_data['labels'])} simulated pots, fitted in {timing['pots']:.0f} s")
@@ -293,7 +302,8 @@ def shot_models(pot_positions: int, safe_positions: int, seed: int, workers: int
 
 
 def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int, workers: int, out, log=print,
-           epochs: int = 30, pot_positions: int = 0, safe_positions: int = 0, combos: bool = False) -> dict:
+           epochs: int = 30, pot_positions: int = 0, safe_positions: int = 0, combos: bool = False,
+           pot_games: int = 0) -> dict:
     """The learned player, start to finish: `data_games` ghost-ball self-play games labelled
     (`parallel_dataset`), a value net fitted; then `rounds - 1` times as many games again of
     that net against the ghost-ball player, labelled and added, the net fitted anew; the last
@@ -302,13 +312,14 @@ def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int
     the labelled data (`learned-data.npz`) and the result (`learned.json`) into `out`; returns
     the result. With `pot_positions`, first a pot net (`learned_pots`) fitted to the pots
     planned from that many random positions (simulated on `workers` processes, seeded `seed`),
+    and with `pot_games` the menus' pots of that many ghost-ball games (`learned_game_pots`),
     whose columns the value nets then read (layout 3; its data saved as `pots-data.npz`); and
     with `safe_positions` too, a safety net (`learned_safeties`) fitted to the safeties and kicks
     planned from that many random positions (seeded `seed` + 1), whose columns follow (layout 4;
     its data saved as `safe-data.npz`); and with `combos` too, the third balls' columns
     (`learned_combos`, no data of their own) after those (layout 5)."""
     started, net, parts, timing = time.perf_counter(), None, [], {}
-    pots, safeties = shot_models(pot_positions, safe_positions, seed, workers, out, log, timing)
+    pots, safeties = shot_models(pot_positions, safe_positions, seed, workers, out, log, timing, pot_games)
     for r in range(rounds):
         t = time.perf_counter()
         parts.append(parallel_dataset(game, noise, data_games, seed + ROUND_SEEDS * r, workers, net))
@@ -327,7 +338,8 @@ def recipe(game: str, noise, data_games: int, rounds: int, eval_seeds, seed: int
                 for n in dict.fromkeys((noise, *EVAL_NOISES))}
     timing["evaluation"], timing["total"] = time.perf_counter() - t, time.perf_counter() - started
     result = {**by_noise[str(noise or "none")], "game": game, "noise": noise, "data_games": data_games,
-              "rounds": rounds, "epochs": epochs, "pot_positions": pot_positions, "safe_positions": safe_positions,
+              "rounds": rounds, "epochs": epochs, "pot_positions": pot_positions, "pot_games": pot_games,
+              "safe_positions": safe_positions,
               "combos": combos and safeties is not None,
               "decisions": int(data["decision"].max()) + 1,
               "rows": len(data["values"]), "by_noise": by_noise, "seconds": timing}

@@ -1,5 +1,6 @@
 """agents.learned: the learned player's shot menu, its features' closed forms, the net, one evaluation per shot."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -8,6 +9,7 @@ import pytest
 import pool_env
 from agents.learned import LearnedPlayer, ValueNet, roll_at_contact, weights_path
 from agents.learned_features import contact, pocket_gap
+from agents.learned_pots import POT_INPUTS
 from agents.learned_train import padded, play_game, rack_means
 from pool_env.game import Game
 from pool_env.physics import Physics
@@ -170,7 +172,8 @@ def test_the_recipe_runs_end_to_end_and_writes_its_net_and_result(tmp_path):
     import train
 
     code = train.cli(["--algo", "value", "--env-id", "PoolNineBall-v0", "--data-games", "2", "--rounds", "2",
-                      "--eval-episodes", "2", "--n-envs", "1", "--pot-positions", "30", "--safe-positions", "20",
+                      "--eval-episodes", "2", "--n-envs", "1", "--pot-positions", "30", "--pot-games", "2",
+                      "--safe-positions", "20",
                       "--out", str(tmp_path),
                       "--run-name", "r", "--no-progress-bar"])
     assert code == 0
@@ -179,6 +182,7 @@ def test_the_recipe_runs_end_to_end_and_writes_its_net_and_result(tmp_path):
     net = ValueNet.load(tmp_path / "r" / "learned.npz")
     assert net.arrays["w0"].shape[0] == net.arrays["mean"].shape[0]
     assert net.layout == 4 and net.pots is not None and result["pot_positions"] == 30
+    assert result["pot_games"] == 2 and net.pots.arrays["w0"].shape[0] == POT_INPUTS
     assert net.safeties is not None and result["safe_positions"] == 20
 
 
@@ -220,3 +224,29 @@ def test_the_ranking_diagnosis_counts_the_nets_picks_against_the_best_label():
     assert math.isclose(r["all"]["regret"], 0.35, abs_tol=1e-6)
     assert math.isclose(r["decision: pot on"]["regret"], 0.7, abs_tol=1e-6)
     assert r["decision: no pot"]["top1"] == 1.0 and r["best: safety"]["regret"] == 0.0
+
+
+def test_the_next_shots_quality_after_a_pot_does_not_depend_on_the_cue_ball_having_been_in_hand():
+    """After a scratch the cue ball is off the table until placed; a pot from the placed spot
+    leaves it at its rest, on the table, and the next shot is played from there (not in hand)."""
+    from agents.learned import next_qualities
+    from agents.learned_features import Contact, opponent_qualities
+    from agents.search import SearchAgent
+    from pool_env import rules
+
+    search = SearchAgent("nine_ball", noise=None)
+    xy = np.zeros((10, 2))
+    xy[0], xy[1], xy[2], xy[9] = (0.6, 0.6), (1.9, 0.3), (1.6, 0.7), (0.4, 1.0)
+    cue_on = np.zeros(10, dtype=bool)
+    cue_on[[0, 1, 2, 9]] = True
+    in_hand = cue_on.copy()
+    in_hand[0] = False
+    state = dataclasses.replace(rules.new_game("nine_ball"), on_table=frozenset({1, 2, 9}), is_break=False, shot=1)
+    rests = np.array([[1.2, 0.7], [2.3, 1.1]])  # the 2 straight on from one, far and cut from the other
+    on = next_qualities(search, xy, cue_on, state, np.array([1, 1]), rests)
+    hand = next_qualities(search, xy, in_hand, state, np.array([1, 1]), rests)
+    assert np.array_equal(hand, on) and on[0] != on[1] and on.min() < 1.0
+    paths = [Contact(1, xy[1] - (0.0572, 0.0), 1.0, np.array([xy[1], xy[1] + 0.01]), np.array([xy[0], r]))
+             for r in rests]
+    assert np.array_equal(opponent_qualities(search, xy, in_hand, state, paths),
+                          opponent_qualities(search, xy, cue_on, state, paths))

@@ -15,10 +15,11 @@ from agents.learned_pots import (
     simulate_pots,
 )
 from agents.search import SearchAgent
-from pool_env.physics import BALL_RADIUS, Table
+from pool_env.physics import BALL_RADIUS, Physics, Table
 
 TABLE = Table.eight_foot()
 L, W, R = TABLE.length, TABLE.width, BALL_RADIUS
+PHYS = Physics()
 
 
 def straight_in(search, back: float):
@@ -48,13 +49,14 @@ def test_a_short_straight_in_centre_hit_pot_drops_and_the_cue_ball_stays_on_its_
 
 def test_mirror_image_pots_have_the_same_inputs():
     cue, obj, d = np.array([[0.9, 0.3]]), np.array([[0.4, 0.2]]), np.array([[-0.8, -0.6]])
-    base = pot_inputs(cue, obj, [0], d, 1.5, 0.3, 1, TABLE)
-    flip_x = pot_inputs([[L - 0.9, 0.3]], [[L - 0.4, 0.2]], [1], [[0.8, -0.6]], 1.5, 0.3, 1, TABLE)
-    flip_y = pot_inputs([[0.9, W - 0.3]], [[0.4, W - 0.2]], [2], [[-0.8, 0.6]], 1.5, 0.3, 1, TABLE)
+    base = pot_inputs(cue, obj, [0], d, 1.5, 0.3, 1, TABLE, PHYS, R)
+    flip_x = pot_inputs([[L - 0.9, 0.3]], [[L - 0.4, 0.2]], [1], [[0.8, -0.6]], 1.5, 0.3, 1, TABLE, PHYS, R)
+    flip_y = pot_inputs([[0.9, W - 0.3]], [[0.4, W - 0.2]], [2], [[-0.8, 0.6]], 1.5, 0.3, 1, TABLE, PHYS, R)
     assert base.shape == (1, POT_INPUTS)
     assert np.allclose(flip_x, base, atol=1e-6) and np.allclose(flip_y, base, atol=1e-6)
-    side = pot_inputs([[0.7, 0.5]], [[0.9, 0.1]], [4], [[0.6, -0.8]], 1.0, 0.0, 0, TABLE)
-    side_mirror = pot_inputs([[L - 0.7, W - 0.5]], [[L - 0.9, W - 0.1]], [5], [[-0.6, 0.8]], 1.0, 0.0, 0, TABLE)
+    side = pot_inputs([[0.7, 0.5]], [[0.9, 0.1]], [4], [[0.6, -0.8]], 1.0, 0.0, 0, TABLE, PHYS, R)
+    side_mirror = pot_inputs([[L - 0.7, W - 0.5]], [[L - 0.9, W - 0.1]], [5], [[-0.6, 0.8]], 1.0, 0.0, 0, TABLE,
+                             PHYS, R)
     assert np.allclose(side, side_mirror, atol=1e-6) and side[0, 8] == 1.0 and base[0, 8] == 0.0
 
 
@@ -78,7 +80,7 @@ def test_the_columns_are_zero_for_shots_that_are_not_pots():
     rows[1, [0, 19, 20]] = 1.0  # a pot into pocket 0
     rows[1, 7:9] = (-0.6, -0.8)
     rows[1, 4] = 0.1
-    cols = net.columns(rows, TABLE)
+    cols = net.columns(rows, TABLE, PHYS, R)
     assert cols.shape == (2, POT_COLUMNS) and not cols[0].any() and cols[1, 0] > 0
 
 
@@ -91,7 +93,7 @@ def test_the_shipped_pot_net_knows_a_soft_draw_from_afar_stops_short_and_a_stun_
     positions, rows, cands = straight_in(search, 0.6)
     at = positions[[0] * len(rows)]
     x = pot_inputs(at[:, 0], at[:, 1], rows[:, 1], [c.direction for c in cands], rows[:, 3], rows[:, 4], rows[:, 2],
-                   TABLE)
+                   TABLE, search.physics, R)
     p_pot = pots.predict(x)[0]
     dropped = simulate_pots(search, positions, rows, cands)[:, 0]
     slow = rows[:, 2] == 0  # the slowest arrival: the draw's backspin eats the speed planned for the object ball
