@@ -30,8 +30,9 @@ def menu_pots(d, cands, rows) -> tuple:
         return np.zeros((0, 2, 2)), np.zeros((0, 6)), []
     pairs = np.array([[*(d.xy[0] if c.spot is None else c.spot), *d.xy[r[0]]] for c, r in pots])
     positions, which = np.unique(pairs, axis=0, return_inverse=True)
-    order = np.argsort(which.reshape(-1), kind="stable")  # grouped by position, as `two_ball_records` reads them
-    out = np.array([[which.reshape(-1)[i], pots[i][1][1], pots[i][1][2], pots[i][0].speed, pots[i][0].tip[1],
+    which = which.reshape(-1)
+    order = np.argsort(which, kind="stable")  # grouped by position, as `two_ball_records` reads them
+    out = np.array([[which[i], pots[i][1][1], pots[i][1][2], pots[i][0].speed, pots[i][0].tip[1],
                      pots[i][1][4]] for i in order])
     return positions.reshape(-1, 2, 2), out, [dataclasses.replace(pots[i][0], spot=None, ball=BALL) for i in order]
 
