@@ -3,10 +3,11 @@
 import numpy as np
 import pytest
 
-from agents.learned_contact import after_contact
-from pool_env.physics import BALL_RADIUS, Physics
+from agents.learned_contact import CUSHION_HITS, NOT_REACHED, after_contact, cushion_hits
+from pool_env.physics import BALL_RADIUS, Physics, Table
 
 PHYS = Physics()
+TABLE = Table.eight_foot()  # the games' table
 R, G = BALL_RADIUS, PHYS.g
 
 
@@ -63,3 +64,54 @@ def test_a_half_ball_stun_cut_sends_the_cue_ball_along_the_tangent_at_half_its_s
     normal = out[2:4] @ n
     assert normal == pytest.approx((1.0 - PHYS.e_b) / 2.0 * v * np.cos(np.pi / 6), rel=1e-9)
     assert tangent < 0.0 and 6.0 / 7.0 * v / 2.0 <= -tangent < v / 2.0  # away from the object ball's side
+
+
+def straight_hit(cue, speed, top, heading):
+    """`cushion_hits` of a full hit: the object ball 3 R ahead of `cue` along `heading`."""
+    d = np.asarray([heading], dtype=np.float64)
+    d /= np.hypot(*d[0])
+    cue = np.asarray([cue], dtype=np.float64)
+    return cushion_hits(cue, cue + 3.0 * R * d, d, speed, top, TABLE, PHYS, R)[0]
+
+
+def test_a_followed_full_hit_up_the_table_meets_the_far_cushion_line_square_at_the_rolling_speed_left():
+    """Rolling after the contact along +y from (x0, y_r) at v1, the cue ball meets the line
+    y = W - R square on at x0, with v1^2 - 2 mu_r g (W - R - y_r) left; back down the table it meets
+    y = R with (W - 2R) / e_c^2 more of its run spent. x0 lies nearer a corner than the side pocket."""
+    x0 = 0.4
+    cue, d = np.array([[x0, 0.2]]), np.array([[0.0, 1.0]])
+    after = after_contact(cue, cue + 3.0 * R * d, d, 3.0, 0.3, PHYS, R)[0]
+    assert after[6] == pytest.approx(0.0, abs=1e-12) and after[7] > 0.0  # rolls straight on
+    out = straight_hit((x0, 0.2), 3.0, 0.3, (0.0, 1.0))
+    assert out.shape == (CUSHION_HITS,)
+    spend = 2.0 * PHYS.mu_r * PHYS.g
+    first = after[7] ** 2 - spend * (TABLE.width - R - after[5])
+    second = first - spend * (TABLE.width - 2.0 * R) / PHYS.e_c**2
+    assert first > 0.0 and second > 0.0
+    assert out[0:4] == pytest.approx([x0 - R, 0.0, np.sqrt(first), 1.0], rel=1e-9)
+    assert out[4:8] == pytest.approx([x0 - R, 0.0, np.sqrt(second), 1.0], rel=1e-9)
+
+
+def test_a_followed_full_hit_along_the_diagonal_into_a_corner_meets_the_cushion_lines_at_the_pocket():
+    """Followed along the line through the corner (R, R) of the cushion lines, the cue ball meets
+    them at the corner pocket itself: no distance along the rail, at 45 degrees."""
+    out = straight_hit((0.6, 0.6), 2.0, 0.3, (-1.0, -1.0))
+    assert out[0] == pytest.approx(0.0, abs=1e-9)
+    assert out[1] == 0.0 and out[2] > 0.0
+    assert out[3] == pytest.approx(np.sqrt(0.5), rel=1e-9)
+
+
+def test_a_slow_stun_full_hit_stops_before_any_cushion():
+    """A stun full hit leaves the cue ball (1 - e)/2 of its speed: at 0.5 m/s it runs
+    ((5/7) 0.0125)^2 / (2 mu_r g) m, well short of the far cushion."""
+    out = straight_hit((1.0, 0.3), 0.5, 0.0, (0.0, 1.0))
+    assert out[0::4] == pytest.approx([NOT_REACHED] * 3)
+    assert out[2::4] == pytest.approx([0.0] * 3)
+
+
+def test_a_cushion_hit_nearest_the_side_pocket_says_so():
+    """Rolling up the table from x = L/2 + 0.05 m, the cue ball meets the long cushion line 0.05 m
+    from the side pocket, nearer it than any corner."""
+    out = straight_hit((TABLE.length / 2.0 + 0.05, 0.2), 3.0, 0.3, (0.0, 1.0))
+    assert out[0] == pytest.approx(0.05, rel=1e-9)
+    assert out[1] == 1.0
