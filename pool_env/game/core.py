@@ -18,9 +18,9 @@ from .placement import placement_area
 from .shot import Shot, noise_of
 from .shot_record import GameSnapshot, ShotRecord, StruckShot
 from .snapshots import check_snapshot, game_key, snapshot_of
-from .snapshots import table_key as table_key  # its home was here
+from .snapshots import table_key as table_key  # re-exported: it was defined here
 from .starting import check_calling, check_layout, check_state, objects_on, random_cue_start
-from .striking import CALLING_RULES as CALLING_RULES  # its home was here
+from .striking import CALLING_RULES as CALLING_RULES  # re-exported: it was defined here
 from .striking import check_can_shoot, shot_and_action, struck_encoded, struck_shot
 
 
