@@ -4,25 +4,25 @@ from __future__ import annotations
 
 import gymnasium as gym
 import numpy as np
-from gymnasium import logger, spaces
+from gymnasium import spaces
 
 from .. import rules
-from ..game import GAME_BALLS, Game, Shot, env_layout, game_observation, game_observation_size, game_view
+from ..game import GAME_BALLS, Game, env_layout, game_observation, game_observation_size
 from ..physics import Balls
 from ..render.overlay import overlay
 from ..render.playback import ShotPlayback, step_shot_frames
 from ..render.table import game_palette
 from ..render.window import HumanWindow
-from ..rules import codes
 from .captions import captioned, score_text, shot_caption
-from .common import StepsShots, can_render, check_env_options, check_reset_options, run_step
-from .infos import check_info_mode, no_shot_info, record_info, rich_info, sampled_info, score_info, winner_code
+from .common import StepsShots, can_render, check_env_options, check_reset_options
+from .game_turns import OPPONENT as OPPONENT  # re-exported (OPPONENT, SHAPING_*): they were defined here
+from .game_turns import SHAPING_BALL as SHAPING_BALL
+from .game_turns import SHAPING_FOUL as SHAPING_FOUL
+from .game_turns import GameTurns
+from .infos import check_info_mode
 from .obs_types import Observer
-from .opponents import OpponentDecision, resolve_opponent
 
-SHAPING_BALL, SHAPING_FOUL = 0.1, 0.1  # shaping: + per ball the agent pockets legally, - per foul
 RESET_OPTIONS = ("balls", "ball_in_hand", "agent_breaks")
-OPPONENT = 1  # the opponent is player 1 of the game, the agent player 0
 
 
 class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
@@ -202,21 +202,19 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         self.observation_space, self.obs_type = self.observer.space, obs_type
         self.text_observer = Observer(self, "text", None)  # render_mode="ansi"
         self.opponent = opponent
-        self._opponent, self._opponent_player, self._opponent_name = resolve_opponent(opponent, self)
-        if self._opponent is None and not self.agent_breaks:
+        self._turns = GameTurns(self, opponent)  # the play: the agent's shot, the opponent's turn, reward and info
+        if self._turns.practice and not self.agent_breaks:
             raise ValueError("practice (opponent=None) has no one to break: keep agent_breaks=True")
-        if self.hotseat and self._opponent is not None:
+        if self.hotseat and not self._turns.practice:
             raise ValueError("hotseat is two people at one table: it takes opponent=None")
         self.render_size = (int(render_size[0]), int(render_size[1]))
         self.overlay = bool(overlay)
         self.playback = ShotPlayback(self.table, self.render_size, self.metadata["render_fps"],
                                      deferred=render_mode is not None, palette=game_palette(self.game.mode))
-        self._started, self._done, self._shots, self._end_reason = False, True, 0, None
-        self._quaternions, self._reset_records, self._reset_error = None, (), None
+        self._started, self._quaternions = False, None
         self._window = None  # render_mode="human": a pool_env.render.window.Window
         self.batch_opponent = False  # True: step_shots yields an OpponentDecision for the opponent's shots
         self._window_title = f"pool_env: {game}"
-        self._begin_step()
 
     # --- Gymnasium API ----------------------------------------------------------------------
     def reset(self, *, seed=None, options=None):
@@ -232,7 +230,7 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         super().reset(seed=seed)
         given = options.get("balls")
         agent_breaks = bool(options.get("agent_breaks", self.agent_breaks))
-        if not agent_breaks and self._opponent is None:
+        if not agent_breaks and self._turns.practice:
             raise ValueError("practice (opponent=None) has no one to break: reset with agent_breaks True")
         try:
             self.game.reset(rng=self.np_random, balls=given, breaker=0 if agent_breaks else 1,
@@ -241,22 +239,10 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
             raise ValueError(f"options['balls']: {exc}") from None
         self.table, self.physics = self.game.table, self.game.physics  # drawn afresh with randomize
         self._quaternions = self.np_random.normal(size=(self.n_balls, 4))
-        opponent_seed = int(self.np_random.integers(2**63 - 1))
-        if self._opponent_player is not None and hasattr(self._opponent_player, "reset"):
-            self._opponent_player.reset(seed=opponent_seed)  # a built-in opponent plays the same for the same seed
-        self._started, self._shots, self._done, self._end_reason = True, 0, False, None
+        self._turns.reseed(int(self.np_random.integers(2**63 - 1)))
+        self._started = True
         self.playback.reset(self.game.balls, self._quaternions)
-        self._begin_step()
-        run_step(self._reset_turn(), self.table, self.physics)  # the opponent's break and turn, if it breaks
-        self._reset_records, self._reset_error = tuple(self._step_records), self._error
-        self._reset_truncation, self._truncation = self._truncation, None  # the next step ends the episode
-        self._step_records = []
-        info = {**no_shot_info(self.game.balls, self.game.ball_in_hand, self._error), **sampled_info(self.game)}
-        return self._info(info, self._reset_records)
-
-    def _reset_turn(self):
-        yield from self._opponent_turn()
-        return None
+        return self._turns.begin()  # the opponent's break and turn, if it breaks
 
     def render(self):
         if not can_render(self.render_mode, self._started):
@@ -272,12 +258,12 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         `reset` the starting frame (and the opponent's shots, when it broke)."""
         if not self._started:
             raise RuntimeError("call reset() before shot_frames()")
-        records = [record for record in self._step_records if record.error is None]
+        records = [record for record in self._turns.records if record.error is None]
         if not records:
             return [self._annotate(frame) for frame in self.playback.shot_frames(fps)]
-        shots = step_shot_frames(self.playback, self._step_start, self._quaternions, [r.result for r in records], fps)
+        shots = step_shot_frames(self.playback, self._turns.start, self._quaternions, [r.result for r in records], fps)
         captions = [(shot_caption(self.game, record, who), list(record.ruling.messages))
-                    for record, who in self._captions]
+                    for record, who in self._turns.captions]
         return captioned(shots, captions, self.overlay)
 
     def _annotate(self, frame):
@@ -306,24 +292,24 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
     @property
     def shots(self) -> int:
         """The agent's shots this episode."""
-        return self._shots
+        return self._turns.shots
 
     @property
     def reset_records(self) -> tuple:
         """The `ShotRecord`s of the opponent's turn inside the last `reset` (when it broke)."""
-        return self._reset_records
+        return self._turns.reset_records
 
     @property
     def step_records(self) -> tuple:
         """The `pool_env.game.ShotRecord`s of the last step (the agent's shot, then the
         opponent's; a shot that could not be simulated too, with its `error`); () after a reset."""
-        return tuple(self._step_records)
+        return tuple(self._turns.records)
 
     def observation(self, viewer: int = 0) -> np.ndarray:
         """The state observation now from player `viewer`'s side (0: the agent's), whatever `obs_type` is:
         a callable opponent is given its side's."""
-        return game_observation(self.game.balls, self.game.state, viewer, self._shots, self.max_shots, self.table,
-                                self.decisions)
+        return game_observation(self.game.balls, self.game.state, viewer, self._turns.shots, self.max_shots,
+                                self.table, self.decisions)
 
     # --- a step, as a generator of shots (vector envs simulate many envs' shots at once) --------
     def step_shots(self, action, observe=True):
@@ -335,115 +321,4 @@ class PoolGameEnv(StepsShots, HumanWindow, gym.Env):
         the driver: the generator yields an `OpponentDecision` and is sent the Shot."""
         if not self._started:
             raise RuntimeError("call reset() before step()")
-        if self._done:
-            raise RuntimeError("the game is over; call reset()")
-        ended_at_reset, self._reset_error = self._reset_error, None
-        self._begin_step()
-        if self.game.over or ended_at_reset is not None:  # the opponent's turn at reset ended the game
-            if not isinstance(action, Shot):
-                self.game.decode(action)  # a bad action still raises
-            self._error, self._truncation = ended_at_reset, self._reset_truncation
-            return self._finish(observe)
-        if self.game.pending is not None:  # the agent's decision (the decision entry picks it)
-            self.game.decide(self.game.decode_decision(action))
-            yield from self._opponent_turn()  # after a pass back, the opponent shoots
-            return self._finish(observe)
-        struck = self.game.strike(action)
-        self._note(self.game.resolve(struck, (yield struck)), mine=True)
-        yield from self._opponent_turn()
-        return self._finish(observe)
-
-    def _opponent_turn(self):
-        """The opponent's shots while it is to shoot (a generator of StruckShots, as step_shots)."""
-        game = self.game
-        while self._error is None and not game.over and game.shooter == OPPONENT and self._opponent is not None:
-            if self._opponent_shots >= self.max_shots:
-                self._error = f"the opponent took {self.max_shots} shots in a row"
-                self._truncation = "opponent_shot_limit"
-                return
-            player = self._opponent_player
-            if game.pending is not None:  # a built-in player's choice (`choose`), else the default
-                game.decide(player.choose(game) if hasattr(player, "choose") else game.pending.default)
-                continue
-            direct = player is not None and hasattr(player, "decide_batch")  # it reads the game, not an observation
-            if direct:
-                view = game_view(game.balls, game.state, OPPONENT, self._shots, self.max_shots, self.table)
-                action = (yield OpponentDecision(player, view)) if self.batch_opponent else player.decide(view)
-            else:
-                action = self._opponent_action()
-            try:  # a Shot plays as the action it would have encoded
-                struck = game.strike_encoded(action) if direct else game.strike(action)
-            except ValueError as exc:
-                raise ValueError(f"the opponent ({self._opponent_name}) played a bad action: {exc}") from None
-            self._note(game.resolve(struck, (yield struck)), mine=False)
-
-    def _opponent_action(self):
-        """The opponent's action for its observation (the built-in players cue level: with
-        `elevation`, their action gets a level cue's entry)."""
-        action = self._opponent(self.observation(OPPONENT))
-        if self.elevation and np.shape(action) == (self.game.layout.size - 1,):
-            action = np.append(action, np.float32(0.0))
-        return action
-
-    def _begin_step(self):
-        self._captions, self._step_records = [], []
-        self._step_start = self.game.balls if self._started else None
-        self._reward, self._error, self._agent_info, self._opponent_shots = 0.0, None, None, 0
-        self._truncation = None
-
-    def _note(self, record, mine: bool):
-        """A shot just played (`mine`: the stepping player's): the playback follows it, its
-        caption, reward and info are noted."""
-        if record.ball_in_hand is not None:
-            self.playback.place(record.balls_before)
-        self._step_records.append(record)
-        if record.error is not None:
-            self._error = record.error
-            logger.warn(f"PoolGameEnv: a shot could not be simulated and the episode is truncated ({self._error})")
-            return
-        self.playback.shot(record.result)
-        self.playback.place(record.balls_after)
-        who = f"player {record.shooter + 1}" if self.hotseat else ("agent" if mine else "opponent")
-        self._captions.append((record, who))  # captioned when frames are asked for
-        self._end_reason = record.ruling.end_reason
-        if mine:
-            self._shots += 1
-            self._agent_info = record_info(record)
-            self._reward += self._shot_reward(record)
-        else:
-            self._opponent_shots += 1
-
-    def _shot_reward(self, record) -> float:
-        ruling = record.ruling
-        legal = len(record.pocketed) if ruling.foul is None else 0
-        if self._opponent is None:  # practice: a ball a point, a run-out one more
-            return float(legal) + (1.0 if ruling.winner == record.shooter else 0.0)
-        if not self.shaping:
-            return 0.0
-        return SHAPING_BALL * legal - (SHAPING_FOUL if ruling.foul is not None else 0.0)
-
-    def _finish(self, observe=True):
-        """The step's (observation, reward, terminated, truncated, info), every shot applied."""
-        game, practice = self.game, self._opponent is None
-        terminated = game.over or (practice and not self.hotseat and game.shooter != 0)
-        truncated = not terminated and (self._error is not None or self._shots >= self.max_shots)
-        if truncated and self._truncation is None:
-            self._truncation = "shot_error" if self._error is not None else "shot_limit"
-        reward = self._reward
-        if not practice and game.winner is not None:
-            reward += 1.0 if game.winner == 0 else -1.0
-        self._done = terminated or truncated
-        info = self._agent_info or no_shot_info(game.balls, game.ball_in_hand, self._error)
-        return self.observer.observe(self) if observe else None, float(reward), bool(terminated), bool(truncated), \
-            self._info(info, self._step_records)
-
-    def _info(self, shot: dict, records) -> dict:
-        """The info of a step or a reset: the agent's shot's entries (`shot`), then the
-        opponent's shots, the winner, the end reason, the error and why the episode was
-        truncated (`codes.TRUNCATIONS`; 0 if it was not); the records if rich."""
-        game = self.game
-        info = {**shot, "opponent_shots": self._opponent_shots, "winner": winner_code(game.winner),
-                "end_reason": codes.encode("end_reason", self._end_reason if game.winner is not None else None),
-                "error": self._error is not None, "truncation": codes.encode("truncation", self._truncation),
-                **score_info(game.state)}
-        return rich_info(info, records, self._error) if self.info_mode == "rich" else info
+        return (yield from self._turns.step(action, observe))

@@ -7,34 +7,21 @@ import copy
 import numpy as np
 
 from .. import rules
-from ..physics import Balls, Physics, Table, strike
+from ..physics import Balls, Physics, Table
 from ..physics.randomize import Randomization, Sample
-from .actions import (
-    LAYOUTS,
-    ActionLayout,
-    decode_action,
-    decode_decision,
-    decode_entries,
-    encode_action,
-    encode_decision,
-    encoded_entries,
-)
-from .batch import simulate_struck, simulate_struck_batch
-from .evaluation import DrawnNormals, JudgedShot, evaluation_rng, judge_batch, normals_per_draw
+from .actions import LAYOUTS, ActionLayout, decode_action, decode_decision, encode_action, encode_decision
+from .batch import simulate_struck
+from .evaluation import JudgedShot, evaluate_shots
 from .judging import shot_record
 from .modes import Mode, mode_of
-from .placement import cue_ball_placed, placement_area
-from .shot import CONTACT_TIME, Shot, noise_of, noisy_shot
+from .placement import placement_area
+from .shot import Shot, noise_of
 from .shot_record import GameSnapshot, ShotRecord, StruckShot
+from .snapshots import check_snapshot, game_key, snapshot_of
+from .snapshots import table_key as table_key  # re-exported: it was defined here
 from .starting import check_calling, check_layout, check_state, objects_on, random_cue_start
-
-CALLING_RULES = ("eight_ball", "ten_ball")  # the games whose shots call a pocket (and a ball)
-
-
-def table_key(table: Table) -> tuple:
-    """What makes two tables the same table."""
-    return (table.length, table.width, table.pocket_entries.tobytes(), table.cushion_height,
-            table.corner_pocket, table.side_pocket)
+from .striking import CALLING_RULES as CALLING_RULES  # re-exported: it was defined here
+from .striking import check_can_shoot, shot_and_action, struck_encoded, struck_shot
 
 
 class Game:
@@ -307,62 +294,16 @@ class Game:
         """`play`'s first half: the shot checked, the cue ball placed (ball in hand), the noise
         drawn (from `rng`, default the game's generator) and the cue ball struck. Changes
         nothing but the generator. RuntimeError if the game is over, ValueError for a bad shot."""
-        if self._over:
-            raise RuntimeError("the game is over; reset() it")
-        self._check_no_pending()
-        return self._strike(*self._shot_and_action(shot), rng)
-
-    def _check_no_pending(self):
-        if self.pending is not None:
-            raise RuntimeError(f"player {self.shooter} has a decision to make first ({self.pending.name}: one of "
-                               f"{self.pending.options}); call decide(option)")
+        check_can_shoot(self)
+        return struck_shot(self, self._mode, *shot_and_action(self, shot), rng)
 
     def strike_encoded(self, shot: Shot, rng=None) -> StruckShot:
         """`strike` of the action vector that `encode` makes of `shot` (`strike(encode(shot))`,
         the same StruckShot bit for bit: the shot as its float32 entries play it, and those
         entries its `action`), without building the vector: for players that decide from the
         game's state and hand it the Shot an env action of theirs would carry."""
-        if self._over:
-            raise RuntimeError("the game is over; reset() it")
-        self._check_no_pending()
-        area, pockets = self.placement_area(), self.table.pockets.shape[0]
-        targets = self._called_targets()
-        entries = encoded_entries(self.layout, shot, area, pockets, targets)
-        decoded = decode_entries(self.layout, entries, area, pockets, targets, self.may_push_out, clipped=True)
-        return self._strike(decoded, tuple(entries), rng)
-
-    def _shot_and_action(self, shot) -> tuple:
-        """(the `Shot`, the action vector's entries as a tuple or None) of a Shot or an action."""
-        if isinstance(shot, Shot):
-            return shot, None
-        a = np.asarray(shot, dtype=np.float64)
-        return self.decode(a), (tuple(a.tolist()) if a.ndim == 1 else None)
-
-    def _strike(self, shot: Shot, action, rng, placements: dict | None = None) -> StruckShot:
-        """`strike` of a decoded shot (`action` its vector's entries, or None); `placements`
-        keeps the cue ball's placements from this state by the spot asked for (evaluate's shots
-        share their spots)."""
-        placed, hand = self._balls, self.ball_in_hand
-        if hand is not None:
-            placed = cue_ball_placed(placed, self.table, self.physics, hand, shot.place, placements)
-        called = shot.pocket if self._mode.rules in CALLING_RULES else None
-        if called is not None and called >= self.table.pockets.shape[0]:
-            raise ValueError(f"Shot.pocket {called} names no pocket (the table has {self.table.pockets.shape[0]})")
-        ball = shot.ball if self._mode.rules in CALLING_RULES else None
-        if ball is not None and ball not in self._state.on_table:
-            raise ValueError(f"Shot.ball {ball} is not on the table (on it: {sorted(self._state.on_table)})")
-        if shot.push_out and not self.may_push_out:
-            raise ValueError("Shot.push_out: no push out now (only the 9-ball shot right after a legal break: WPA 2.4)")
-        force, tip, elevation = shot.force, shot.tip, shot.elevation
-        if self.noise is not None:
-            force, tip, elevation = noisy_shot(force, tip, self.noise, self.rng if rng is None else rng, elevation)
-        try:  # the physics for an elevated cue: the slate's e_t and mu_t
-            struck = strike(placed, force, tip, CONTACT_TIME, ball=rules.cue_ball(self._state), elevation=elevation,
-                            physics=self.physics)
-        except ValueError as exc:
-            struck = exc
-        return StruckShot(shot, self.shooter, hand, called, placed, force, tip, struck, action, elevation, ball,
-                          shot.push_out)
+        check_can_shoot(self)
+        return struck_encoded(self, self._mode, shot, rng)
 
     def resolve(self, struck: StruckShot, result) -> ShotRecord:
         """`play`'s second half: apply the simulation's `Result` (or the SimulationError or
@@ -385,29 +326,16 @@ class Game:
     def key(self) -> tuple:
         """What a snapshot must match to be restored here: mode, table, physics, noise, rules, and
         whether choices wait for `decide` (a pending choice means nothing to a game that never waits)."""
-        noise = None if self.noise is None else tuple(sorted(self.noise.items()))
-        return (self.mode, table_key(self.table), self.physics, noise, tuple(sorted(self.rule_options.items())),
-                self.decisions)
+        return game_key(self)
 
     def snapshot(self) -> GameSnapshot:
         """The whole state now, the noise generator's included."""
-        return GameSnapshot(self.key, self._balls, self._state, self._shots, self._over,
-                            copy.deepcopy(self.rng.bit_generator.state))
+        return snapshot_of(self)
 
     def restore(self, snapshot: GameSnapshot) -> Game:
         """Put back a `snapshot` of this game (or of one made with the same mode, table, physics,
         noise, rules and decisions); the generator's state is set in place. ValueError for another game's."""
-        if not isinstance(snapshot, GameSnapshot):
-            raise TypeError(f"restore takes a GameSnapshot, got {type(snapshot).__name__}")
-        if snapshot.key != self.key:
-            theirs, ours = snapshot.key, self.key
-            names = ("mode", "table", "physics", "noise", "rule options", "decisions")
-            what = [name for name, a, b in zip(names, theirs, ours) if a != b]
-            raise ValueError(f"the snapshot is of another game: its {', '.join(what)} differ from this game's")
-        ours = type(self.rng.bit_generator).__name__
-        if snapshot.rng_state["bit_generator"] != ours:
-            raise ValueError(f"the snapshot's noise generator is a {snapshot.rng_state['bit_generator']}, "
-                             f"this game's a {ours}")
+        check_snapshot(self, snapshot)
         self._balls, self._state, self._shots, self._over = snapshot.balls, snapshot.state, snapshot.shots, \
             snapshot.over
         self.rng.bit_generator.state = copy.deepcopy(snapshot.rng_state)
@@ -433,38 +361,4 @@ class Game:
         then simulated in compiled calls that each run many (`threads` of them at once) and
         each distinct outcome is judged once (`evaluation.judge_batch`): a shot's Python work
         is mostly gone."""
-        shots = list(shots)
-        if not shots:
-            raise ValueError("evaluate needs at least one shot")
-        if isinstance(draws, bool) or int(draws) != draws or draws < 1:
-            raise ValueError(f"draws must be an integer >= 1, got {draws!r}")
-        if self._over:
-            raise RuntimeError("the game is over; reset() it")
-        self._check_no_pending()
-        decoded = []
-        for k, shot in enumerate(shots):
-            try:
-                decoded.append(self._shot_and_action(shot))
-            except ValueError as exc:
-                raise ValueError(f"shot {k}: {exc}") from None
-        rng = evaluation_rng(seed, self.rng)
-        placements: dict = {}  # candidate shots often place the cue ball on the same spot
-        common_draws = int(draws) if common and self.noise is not None else 0
-        normals, struck = DrawnNormals(rng, common_draws), []  # each shot's noise in one generator call
-        for shot, action in decoded:
-            normals.arm(int(draws) * normals_per_draw(shot, self.noise))
-            struck += [self._strike_or_fail(shot, action, normals, placements) for _ in range(int(draws))]
-        if not records and type(self._state) is rules.GameState:
-            return judge_batch(self, struck, threads)
-        results = simulate_struck_batch(struck, self.table, self.physics, threads)
-        rulings: dict = {}  # candidate shots often end alike: the rules judge each outcome once
-        judged = [self.judge(s, r, rulings) for s, r in zip(struck, results)]
-        return judged if records else [JudgedShot.of(record) for record in judged]
-
-    def _strike_or_fail(self, shot: Shot, action, rng, placements=None) -> StruckShot:
-        """`strike` of a decoded shot, a placement that finds no free spot recorded as the shot's failure."""
-        try:
-            return self._strike(shot, action, rng, placements)
-        except ValueError as exc:
-            zero = (0.0, 0.0)
-            return StruckShot(shot, self.shooter, self.ball_in_hand, None, self._balls, zero, zero, exc)
+        return evaluate_shots(self, self._mode, shots, draws, seed, threads, records, common)

@@ -1,4 +1,4 @@
-"""`Game.evaluate(..., records=False)`: a pool game's shots simulated in one compiled call, each outcome judged once."""
+"""`Game.evaluate`: K shots x M noise draws from one state; records=False simulates in compiled calls, judges once."""
 
 from __future__ import annotations
 
@@ -11,8 +11,10 @@ from .. import rules
 from ..physics import Balls
 from ..physics.batch_run import balls_at, simulate_level_batch
 from ..physics.kinds import DONE, POCKETED
-from .batch import simulate_struck
+from .batch import simulate_struck, simulate_struck_batch
+from .modes import Mode
 from .shot import Shot
+from .striking import check_can_shoot, shot_and_action, struck_or_failed
 
 NORMALS_PER_DRAW = 4  # `shot.noisy_shot`'s: aim, speed, side, top (and the elevation of an elevated cue)
 
@@ -167,3 +169,33 @@ def judge_batch(game, struck, threads: int | None = 1) -> list[JudgedShot]:
         if out[k] is None:
             out[k] = JudgedShot.of(game.judge(s, simulate_struck(s, table, game.physics), rulings))
     return out
+
+
+def evaluate_shots(game, mode: Mode, shots, draws: int = 1, seed=None, threads: int | None = 1,
+                   records: bool = True, common: bool = False) -> list:
+    """`Game.evaluate` of `game` (`mode` its mode), which does not change: see there."""
+    shots = list(shots)
+    if not shots:
+        raise ValueError("evaluate needs at least one shot")
+    if isinstance(draws, bool) or int(draws) != draws or draws < 1:
+        raise ValueError(f"draws must be an integer >= 1, got {draws!r}")
+    check_can_shoot(game)
+    decoded = []
+    for k, shot in enumerate(shots):
+        try:
+            decoded.append(shot_and_action(game, shot))
+        except ValueError as exc:
+            raise ValueError(f"shot {k}: {exc}") from None
+    rng = evaluation_rng(seed, game.rng)
+    placements: dict = {}  # candidate shots often place the cue ball on the same spot
+    common_draws = int(draws) if common and game.noise is not None else 0
+    normals, struck = DrawnNormals(rng, common_draws), []  # each shot's noise in one generator call
+    for shot, action in decoded:
+        normals.arm(int(draws) * normals_per_draw(shot, game.noise))
+        struck += [struck_or_failed(game, mode, shot, action, normals, placements) for _ in range(int(draws))]
+    if not records and type(game.state) is rules.GameState:
+        return judge_batch(game, struck, threads)
+    results = simulate_struck_batch(struck, game.table, game.physics, threads)
+    rulings: dict = {}  # candidate shots often end alike: the rules judge each outcome once
+    judged = [game.judge(s, r, rulings) for s, r in zip(struck, results)]
+    return judged if records else [JudgedShot.of(record) for record in judged]
