@@ -69,8 +69,16 @@ class NumpyMLP:
         self.arrays = {k: np.asarray(v, dtype=np.float32) for k, v in arrays.items()}
         self.layers = sorted(int(k[1:]) for k in self.arrays if k.startswith("w"))
 
+    @property
+    def inputs(self) -> int:
+        """How many input columns it reads."""
+        return int(self.arrays["mean"].shape[-1])
+
     def __call__(self, x) -> np.ndarray:
-        h = (np.asarray(x, dtype=np.float32) - self.arrays["mean"]) / self.arrays["std"]
+        x = np.asarray(x, dtype=np.float32)
+        if x.ndim != 2 or x.shape[1] != self.inputs:
+            raise ValueError(f"this net reads rows of {self.inputs} inputs, not an array of shape {x.shape}")
+        h = (x - self.arrays["mean"]) / self.arrays["std"]
         for n in self.layers:
             h = h @ self.arrays[f"w{n}"] + self.arrays[f"b{n}"]
             if n != self.layers[-1]:

@@ -12,13 +12,13 @@ from pool_env.game import MAX_SPEED, GameView
 from pool_env.physics import Balls, Physics, Table
 from pool_env.players.planner import DN, DX, DY, OK, SPEED
 
-from .learned_contact import AFTER_CONTACT, after_contact
+from .learned_contact import AFTER_CONTACT, CUSHION_HITS, after_contact, cushion_hits
 from .learned_mlp import NumpyMLP, fit_outputs
 from .search import SearchAgent
 from .search_candidates import ARRIVALS, Candidate
 from .search_position import game_state
 
-POT_INPUTS = 17 + AFTER_CONTACT  # see `pot_inputs`
+POT_INPUTS = 17 + AFTER_CONTACT + CUSHION_HITS  # see `pot_inputs`
 POT_OUTPUTS = 4  # logit of the pot, logit of a scratch, the cue ball's rest (x, y in the pot's frame, [-1, 1])
 POT_COLUMNS = 6  # see `PotNet.columns`
 POT_PREFIX = "pot_"  # a saved value net's arrays of its pot net
@@ -66,7 +66,8 @@ def pot_inputs(cue, obj, pocket, direction, speed, top, arrival, table: Table, p
     long and short rail lines (m) beside the pocket; then the ghost-ball model of the cue ball
     after the contact (`learned_contact.after_contact`): the ghost ball and where the cue ball
     starts to roll (x, y in [-1, 1]), its velocities after the contact and when it rolls
-    (m/s), and log(1 + its rolling run in m)."""
+    (m/s), and log(1 + its rolling run in m); then where its path first meets the cushions
+    (`learned_contact.cushion_hits`: the scratches it risks)."""
     cue, obj, direction = (np.asarray(a, dtype=np.float64).reshape(-1, 2) for a in (cue, obj, direction))
     pocket_xy, is_side, flip = pocket_frames(obj, pocket, table)
     c, o, p = mirrored(cue, flip, table), mirrored(obj, flip, table), mirrored(pocket_xy, flip, table)
@@ -91,6 +92,7 @@ def pot_inputs(cue, obj, pocket, direction, speed, top, arrival, table: Table, p
     out[:, 17:19], out[:, 19:21] = after[:, 0:2] * scale - 1.0, after[:, 2:4]
     out[:, 21:23], out[:, 23:25] = after[:, 4:6] * scale - 1.0, after[:, 6:8]
     out[:, 25] = np.log1p(after[:, 8])
+    out[:, 26:] = cushion_hits(c, o, d, speed, top, table, physics, radius)
     return out
 
 
@@ -280,6 +282,9 @@ class PotNet(NumpyMLP):
 
     def read(self, features, table: Table, physics: Physics, radius: float) -> tuple:
         """(`columns`, the `rest_errors` of the rows' pots in order (None without a rest-error net))."""
+        if self.inputs != POT_INPUTS:
+            raise ValueError(f"this pot net was fitted to {self.inputs} inputs a pot, where `pot_inputs` now "
+                             f"makes {POT_INPUTS}: fit it again (python train.py --algo value)")
         f = np.asarray(features, dtype=np.float32)
         out = np.zeros((len(f), POT_COLUMNS), dtype=np.float32)
         pots = np.flatnonzero((f[:, 0] == 1.0) & (f[:, 19] == 1.0))

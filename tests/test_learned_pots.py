@@ -84,6 +84,18 @@ def test_the_columns_are_zero_for_shots_that_are_not_pots():
     assert cols.shape == (2, POT_COLUMNS) and not cols[0].any() and cols[1, 0] > 0
 
 
+def test_a_pot_net_fitted_to_other_inputs_says_so_instead_of_reading_the_wrong_columns():
+    """A pot net saved before `pot_inputs` grew (26 inputs a pot) cannot read today's rows."""
+    old = 26
+    net = PotNet({"mean": np.zeros(old), "std": np.ones(old), "w0": np.ones((old, 4)), "b0": np.zeros(4)})
+    rows = np.zeros((1, CANDIDATE_FEATURES), dtype=np.float32)
+    rows[0, [0, 19, 20]] = 1.0
+    with pytest.raises(ValueError, match=f"fitted to 26 inputs a pot, where `pot_inputs` now makes {POT_INPUTS}"):
+        net.columns(rows, TABLE, PHYS, R)
+    with pytest.raises(ValueError, match="reads rows of 26 inputs"):
+        net(np.zeros((3, POT_INPUTS)))
+
+
 @pytest.mark.skipif(not weights_path("nine_ball").exists(), reason="no shipped 9-ball network")
 def test_the_shipped_pot_net_knows_a_soft_draw_from_afar_stops_short_and_a_stun_drops():
     pots = LearnedPlayer("nine_ball").net.pots
