@@ -46,11 +46,14 @@ def arrival(speed, top, travel, physics: Physics) -> tuple:
     return v, np.where(travel <= x_slip, 2.5 * top * speed + 2.5 * a * t, rolled)
 
 
-def contact_motion(cue, obj, direction, speed, top, physics: Physics, radius: float) -> tuple:
-    """(the ghost ball (N, 2) m, the cue ball's velocity after the contact (N, 2) m/s, the cloth's
-    pull on it while it slides (N, 2) m/s^2, how long it slides (N,) s) of cue balls at `cue`
-    sent along unit `direction` at `speed` m/s with the tip `top` R at resting balls `obj`: the
-    contact by `geometry.collision`'s friction formulas, then sliding at mu_s g against its slip."""
+def after_contact(cue, obj, direction, speed, top, physics: Physics, radius: float) -> np.ndarray:
+    """(N, AFTER_CONTACT): for cue balls at `cue` (N, 2) m sent along unit `direction` at `speed`
+    m/s with the tip `top` R at resting balls `obj`, the ghost ball (2, m), the cue ball's
+    velocity after the contact (2, m/s: `geometry.collision`'s friction formulas), where it then
+    starts to roll (2, m: sliding at mu_s g against its slip), its velocity there (2, m/s), and
+    the run rolling friction leaves it, v^2 / (2 mu_r g) (m, rails not counted)."""
+    cue, obj, direction = (np.asarray(a, dtype=np.float64).reshape(-1, 2) for a in (cue, obj, direction))
+    speed, top = np.asarray(speed, dtype=np.float64), np.asarray(top, dtype=np.float64)
     travel, ghost, n, t = run_to_contact(cue, obj, direction, radius)
     v, roll = arrival(speed, top, travel, physics)
     dn, dt = (direction * n).sum(axis=1), (direction * t).sum(axis=1)
@@ -65,18 +68,6 @@ def contact_motion(cue, obj, direction, speed, top, physics: Physics, radius: fl
     slip_speed = np.hypot(slip[:, 0], slip[:, 1])
     t_roll = 2.0 * slip_speed / (7.0 * physics.mu_s * physics.g)
     pull = -physics.mu_s * physics.g * slip / np.maximum(slip_speed, 1e-12)[:, None]
-    return ghost, velocity, pull, t_roll
-
-
-def after_contact(cue, obj, direction, speed, top, physics: Physics, radius: float) -> np.ndarray:
-    """(N, AFTER_CONTACT): for cue balls at `cue` (N, 2) m sent along unit `direction` at `speed`
-    m/s with the tip `top` R at resting balls `obj`, the ghost ball (2, m), the cue ball's
-    velocity after the contact (2, m/s: `geometry.collision`'s friction formulas), where it then
-    starts to roll (2, m: sliding at mu_s g against its slip), its velocity there (2, m/s), and
-    the run rolling friction leaves it, v^2 / (2 mu_r g) (m, rails not counted)."""
-    cue, obj, direction = (np.asarray(a, dtype=np.float64).reshape(-1, 2) for a in (cue, obj, direction))
-    speed, top = np.asarray(speed, dtype=np.float64), np.asarray(top, dtype=np.float64)
-    ghost, velocity, pull, t_roll = contact_motion(cue, obj, direction, speed, top, physics, radius)
     rolls_at = ghost + velocity * t_roll[:, None] + 0.5 * pull * t_roll[:, None] ** 2
     rolling = velocity + pull * t_roll[:, None]
     run = (rolling**2).sum(axis=1) / (2.0 * physics.mu_r * physics.g)
@@ -101,33 +92,30 @@ def cushion_lines(start, direction, length, radius: float, table: Table) -> tupl
     return np.column_stack(dists), np.column_stack(axes)
 
 
-def cushion_hits(cue, obj, direction, speed, top, table: Table, physics: Physics, radius: float) -> np.ndarray:
-    """(N, CUSHION_HITS): where the cue ball of each pot (as `after_contact`) first meets the cushion
-    lines, the first HITS times: how far along the rail that point lies from the nearest pocket
-    (m; NOT_REACHED if the ball stops before), is that a side pocket, the ball's speed there (m/s;
-    0 if it stops before) and the cosine of its path to the rail's normal. The path is
-    `geometry.cue_path`'s, mirror-folded: the slide's chord from the ghost ball to where the ball
-    rolls (its speed taken linearly between the two), then the roll straight on, each cushion
-    taking a share 1 - e_c^2 of the run left. A pot whose cue ball reaches a cushion line at a
-    pocket's mouth, with pace, is a likely scratch."""
-    cue, obj, direction = (np.asarray(a, dtype=np.float64).reshape(-1, 2) for a in (cue, obj, direction))
-    speed, top = np.asarray(speed, dtype=np.float64), np.asarray(top, dtype=np.float64)
-    ghost, velocity, pull, t_roll = contact_motion(cue, obj, direction, speed, top, physics, radius)
-    rolls_at = ghost + velocity * t_roll[:, None] + 0.5 * pull * t_roll[:, None] ** 2
-    rolling = velocity + pull * t_roll[:, None]
+def cushion_hits(after, table: Table, physics: Physics, radius: float) -> np.ndarray:
+    """(N, CUSHION_HITS) of the pots whose cue ball leaves the contact as `after_contact`'s rows
+    `after` say: where it first meets the cushion lines, the first HITS times: how far along the
+    rail that point lies from the nearest pocket (m; NOT_REACHED if the ball stops before), is
+    that a side pocket, the ball's speed there (m/s; 0 if it stops before) and the cosine of its
+    path to the rail's normal. The path is `geometry.cue_path`'s, mirror-folded: the slide's chord
+    from the ghost ball to where the ball rolls (its speed taken linearly between the two), then
+    the roll straight on, each cushion taking a share 1 - e_c^2 of the run left. A pot whose cue
+    ball reaches a cushion line at a pocket's mouth, with pace, is a likely scratch."""
+    after = np.asarray(after, dtype=np.float64).reshape(-1, AFTER_CONTACT)
+    ghost, velocity, rolls_at, rolling = after[:, 0:2], after[:, 2:4], after[:, 4:6], after[:, 6:8]
     v0, v1 = np.hypot(velocity[:, 0], velocity[:, 1]), np.hypot(rolling[:, 0], rolling[:, 1])
     chord = np.hypot(*(rolls_at - ghost).T)
-    legs = ((ghost, (rolls_at - ghost) / np.maximum(chord, 1e-12)[:, None], chord, 0.0),
-            (rolls_at, rolling / np.maximum(v1, 1e-12)[:, None], np.full(len(cue), np.inf), chord))
-    parts = [cushion_lines(p, d, length, radius, table) for p, d, length, _ in legs]
+    legs = ((ghost, (rolls_at - ghost) / np.maximum(chord, 1e-12)[:, None], chord),
+            (rolls_at, rolling / np.maximum(v1, 1e-12)[:, None], np.full(len(after), np.inf)))
+    parts = [cushion_lines(p, d, length, radius, table) for p, d, length in legs]
     dist = np.concatenate([parts[0][0], parts[1][0] + chord[:, None]], axis=1)
     axis = np.concatenate([parts[0][1], parts[1][1]], axis=1)
     on_roll = np.concatenate([np.zeros_like(parts[0][1]), np.ones_like(parts[1][1])], axis=1)
     order = np.argsort(dist, axis=1, kind="stable")[:, :HITS]
-    rows = np.arange(len(cue))[:, None]
+    rows = np.arange(len(after))[:, None]
     dist, axis, on_roll = dist[rows, order], axis[rows, order], on_roll[rows, order] == 1
-    out = np.zeros((len(cue), CUSHION_HITS))
-    cost, before, bounces, going = np.zeros(len(cue)), chord.copy(), np.zeros(len(cue)), np.ones(len(cue), bool)
+    out = np.zeros((len(after), CUSHION_HITS))
+    cost, before, bounces, going = np.zeros(len(after)), chord.copy(), np.zeros(len(after)), np.ones(len(after), bool)
     for h in range(HITS):
         s, rolled, along_x = dist[:, h], on_roll[:, h], axis[:, h] == 1
         met = np.isfinite(s)
@@ -138,7 +126,8 @@ def cushion_hits(cue, obj, direction, speed, top, table: Table, physics: Physics
         v = np.where(met, np.where(rolled, v_roll, v_slide), 0.0)
         going = going & met & (v > 0.0)
         leg = np.where(rolled[:, None], legs[1][1], legs[0][1])
-        point = np.where(rolled[:, None], rolls_at + leg * (s - chord)[:, None], ghost + leg * s[:, None])
+        at = np.where(met, s, chord)[:, None]  # a hit never met: any finite point (it is not written)
+        point = np.where(rolled[:, None], rolls_at + leg * (at - chord[:, None]), ghost + leg * at)
         x = fold(np.where(going, point[:, 0], radius), radius, table.length - radius)[0]
         y = fold(np.where(going, point[:, 1], radius), radius, table.width - radius)[0]
         along, end = np.where(along_x, x, y), np.where(along_x, table.length, table.width) - radius

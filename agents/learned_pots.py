@@ -92,7 +92,7 @@ def pot_inputs(cue, obj, pocket, direction, speed, top, arrival, table: Table, p
     out[:, 17:19], out[:, 19:21] = after[:, 0:2] * scale - 1.0, after[:, 2:4]
     out[:, 21:23], out[:, 23:25] = after[:, 4:6] * scale - 1.0, after[:, 6:8]
     out[:, 25] = np.log1p(after[:, 8])
-    out[:, 26:] = cushion_hits(c, o, d, speed, top, table, physics, radius)
+    out[:, 26:] = cushion_hits(after, table, physics, radius)
     return out
 
 

@@ -71,7 +71,7 @@ def straight_hit(cue, speed, top, heading):
     d = np.asarray([heading], dtype=np.float64)
     d /= np.hypot(*d[0])
     cue = np.asarray([cue], dtype=np.float64)
-    return cushion_hits(cue, cue + 3.0 * R * d, d, speed, top, TABLE, PHYS, R)[0]
+    return cushion_hits(after_contact(cue, cue + 3.0 * R * d, d, speed, top, PHYS, R), TABLE, PHYS, R)[0]
 
 
 def test_a_followed_full_hit_up_the_table_meets_the_far_cushion_line_square_at_the_rolling_speed_left():
